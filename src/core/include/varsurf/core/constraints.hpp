@@ -1,0 +1,50 @@
+// Geometric constraints on a sheet, all linear in the poles and separable in x, y, z.
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "varsurf/core/bspline_curve.hpp"
+#include "varsurf/core/spline_space.hpp"
+
+namespace varsurf {
+
+// The surface point at (u, v) must be `target`.
+struct PointConstraint {
+  double u = 0.0;
+  double v = 0.0;
+  Eigen::Vector3d target = Eigen::Vector3d::Zero();
+  double weight = 1.0;  // relative importance if constraints contradict each other
+};
+
+// Curve incidence (Welch & Witkin eq. 7): w(c(t)) = D(t) for t in [first, last], in least squares
+// over the curve. `preimage` (dim 2) and `target` (dim 3) share the parameter t.
+struct CurveConstraint {
+  BSplineCurve preimage;
+  BSplineCurve target;
+  double weight = 1.0;  // relative importance if constraints contradict each other
+};
+
+// Weighted least-squares samples of constraints: row r says sqrt(w_r) * (b_r . p) = sqrt(w_r) * d_r.
+struct ConstraintSamples {
+  std::vector<std::vector<int>> index;  // non-zero columns of each row
+  std::vector<Eigen::VectorXd> coeff;   // their coefficients (already scaled by sqrt(w_r))
+  Eigen::MatrixX3d rhs;                 // scaled right-hand sides, one row per sample
+  int rows() const { return static_cast<int>(index.size()); }
+};
+
+// One row per point (weight as given).
+ConstraintSamples sample_point(const SplineSpace& space, const PointConstraint& c);
+
+// Gauss samples along the curve, split at pre-image knots and where the pre-image crosses the
+// sheet's knot lines, so that each piece is polynomial and the quadrature is exact for polynomial
+// pre-images. Weights are arc length of the target, normalized so the whole curve weighs `weight`.
+// Throws InvalidInput if the pre-image leaves the sheet's domain.
+ConstraintSamples sample_curve(const SplineSpace& space, const CurveConstraint& c);
+
+// Largest |w(c(t)) - D(t)| over `samples` parameters evenly spaced on the curve: the incidence
+// error as the solver sees it (through the pre-image).
+double incidence_error(const SplineSpace& space, const Eigen::MatrixX3d& poles,
+                       const CurveConstraint& c, int samples = 200);
+
+}  // namespace varsurf

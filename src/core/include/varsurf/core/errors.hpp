@@ -1,0 +1,19 @@
+// Error types thrown by the core. The binding maps each to a distinct Python exception.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+namespace varsurf {
+
+// The caller gave something the model cannot represent (bad knots, NaN, a curve outside the domain).
+struct InvalidInput : std::invalid_argument {
+  using std::invalid_argument::invalid_argument;
+};
+
+// The input was well formed but the numerical solve failed (singular system, no convergence).
+struct SolveFailure : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+}  // namespace varsurf

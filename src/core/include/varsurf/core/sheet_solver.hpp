@@ -1,0 +1,61 @@
+// Minimize the sheet energy subject to its constraints (Welch & Witkin sec. 4.3, eq. 9).
+//
+// All point and curve constraints form one weighted least-squares system B p = d. Their solution set
+// {p : B^T W B p = B^T W d} is reduced to independent rows by an SVD per cluster of constraints that
+// share poles (dependent rows -- crossing curves, isoparametric curves, points on curves -- drop
+// out; contradictory ones are met in least squares). Fixed poles are eliminated. The remaining
+// equality-constrained quadratic problem is solved through its sparse KKT system, one factorization
+// shared by x, y and z.
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "varsurf/core/constraints.hpp"
+#include "varsurf/core/spline_space.hpp"
+#include "varsurf/core/thin_plate_energy.hpp"
+
+namespace varsurf {
+
+struct SheetProblem {
+  SplineSpace space;
+  Eigen::MatrixX3d initial_poles;  // size() x 3: start shape, values of fixed poles
+  ThinPlateWeights energy;
+  std::vector<PointConstraint> points;
+  std::vector<CurveConstraint> curves;
+  std::vector<int> fixed_poles;  // flat indices held at initial_poles
+};
+
+struct SolveOptions {
+  // Singular values of a constraint cluster below rank_tolerance * largest are treated as zero.
+  double rank_tolerance = 1e-9;
+  // Tikhonov pull toward initial_poles, relative to the energy's scale: keeps directions that
+  // neither energy nor constraints determine (e.g. a free affine motion) where they started.
+  double regularization = 1e-9;
+  int refinement_steps = 2;  // iterative refinement of the KKT solve
+  int max_unknowns = 2000000;  // refuse larger problems with a clear message
+};
+
+struct SolveReport {
+  int unknowns = 0;             // free poles (per coordinate)
+  int constraint_samples = 0;   // least-squares rows before reduction
+  int constraint_rank = 0;      // independent rows kept
+  int clusters = 0;             // independent groups of constraints
+  double constraint_residual = 0.0;  // max |A p - b| of the reduced rows after the solve
+  double kkt_residual = 0.0;    // relative residual of the KKT solve
+  double assemble_seconds = 0.0;
+  double reduce_seconds = 0.0;
+  double factor_seconds = 0.0;
+  double solve_seconds = 0.0;
+  double total_seconds = 0.0;
+};
+
+struct SolveResult {
+  Eigen::MatrixX3d poles;
+  SolveReport report;
+};
+
+// Throws InvalidInput for inconsistent problems, SolveFailure if the KKT system is singular.
+SolveResult solve_sheet(const SheetProblem& problem, const SolveOptions& options = {});
+
+}  // namespace varsurf
