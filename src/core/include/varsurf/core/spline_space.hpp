@@ -41,6 +41,14 @@ struct SplineSpace {
   static SplineSpace uniform(int degree_u, int degree_v, int spans_u, int spans_v);
 };
 
+// A surface of the space: its poles, size() x 3.
+struct BSplineSurface {
+  SplineSpace space;
+  Eigen::MatrixX3d poles;
+  void validate() const;  // throws InvalidInput
+  Eigen::Vector3d evaluate(double u, double v) const;
+};
+
 // Flat indices of the poles on the four boundary rows of the space.
 std::vector<int> boundary_pole_indices(const SplineSpace& space);
 
