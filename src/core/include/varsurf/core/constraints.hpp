@@ -25,7 +25,8 @@ struct CurveConstraint {
   double weight = 1.0;  // relative importance if constraints contradict each other
 };
 
-// Weighted least-squares samples of constraints: row r says sqrt(w_r) * (b_r . p) = sqrt(w_r) * d_r.
+// Weighted least-squares samples of constraints: row r says sqrt(w_r) * (b_r . p) = sqrt(w_r) *
+// d_r.
 struct ConstraintSamples {
   std::vector<std::vector<int>> index;  // non-zero columns of each row
   std::vector<Eigen::VectorXd> coeff;   // their coefficients (already scaled by sqrt(w_r))

@@ -6,7 +6,8 @@
 
 namespace varsurf {
 
-// The caller gave something the model cannot represent (bad knots, NaN, a curve outside the domain).
+// The caller gave something the model cannot represent (bad knots, NaN, a curve outside the
+// domain).
 struct InvalidInput : std::invalid_argument {
   using std::invalid_argument::invalid_argument;
 };

@@ -1,4 +1,5 @@
-// Clamped B-spline knot vectors and basis function evaluation (Piegl & Tiller, algorithms A2.1–A2.3).
+// Clamped B-spline knot vectors and basis function evaluation (Piegl & Tiller, algorithms
+// A2.1–A2.3).
 #pragma once
 
 #include <Eigen/Core>

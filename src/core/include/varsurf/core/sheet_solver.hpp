@@ -1,9 +1,9 @@
 // Minimize the sheet energy subject to its constraints (Welch & Witkin sec. 4.3, eq. 9).
 //
-// All point and curve constraints form one weighted least-squares system B p = d. Their solution set
-// {p : B^T W B p = B^T W d} is reduced to independent rows by an SVD per cluster of constraints that
-// share poles (dependent rows -- crossing curves, isoparametric curves, points on curves -- drop
-// out; contradictory ones are met in least squares). Fixed poles are eliminated. The remaining
+// All point and curve constraints form one weighted least-squares system B p = d. Their solution
+// set {p : B^T W B p = B^T W d} is reduced to independent rows by an SVD per cluster of constraints
+// that share poles (dependent rows -- crossing curves, isoparametric curves, points on curves --
+// drop out; contradictory ones are met in least squares). Fixed poles are eliminated. The remaining
 // equality-constrained quadratic problem is solved through its sparse KKT system, one factorization
 // shared by x, y and z.
 #pragma once
@@ -29,20 +29,26 @@ struct SheetProblem {
 struct SolveOptions {
   // Singular values of a constraint cluster below rank_tolerance * largest are treated as zero.
   double rank_tolerance = 1e-9;
+  // RMS distance (model units) at which a constraint cluster counts as met: its least-squares
+  // fit keeps only as many singular directions as it needs to get there (discrepancy principle)
+  // and leaves the rest to the energy. 0 fits every direction above rank_tolerance.
+  double fit_tolerance = 0.0;
   // Tikhonov pull toward initial_poles, relative to the energy's scale: keeps directions that
   // neither energy nor constraints determine (e.g. a free affine motion) where they started.
-  double regularization = 1e-9;
-  int refinement_steps = 2;  // iterative refinement of the KKT solve
+  double regularization = 1e-10;
+  // Refinement sweeps against the unshifted system; they also remove the regularization's bias
+  // from every direction the problem determines.
+  int refinement_steps = 6;
   int max_unknowns = 2000000;  // refuse larger problems with a clear message
 };
 
 struct SolveReport {
-  int unknowns = 0;             // free poles (per coordinate)
-  int constraint_samples = 0;   // least-squares rows before reduction
-  int constraint_rank = 0;      // independent rows kept
-  int clusters = 0;             // independent groups of constraints
+  int unknowns = 0;                  // free poles (per coordinate)
+  int constraint_samples = 0;        // least-squares rows before reduction
+  int constraint_rank = 0;           // independent rows kept
+  int clusters = 0;                  // independent groups of constraints
   double constraint_residual = 0.0;  // max |A p - b| of the reduced rows after the solve
-  double kkt_residual = 0.0;    // relative residual of the KKT solve
+  double kkt_residual = 0.0;         // relative residual of the KKT solve
   double assemble_seconds = 0.0;
   double reduce_seconds = 0.0;
   double factor_seconds = 0.0;

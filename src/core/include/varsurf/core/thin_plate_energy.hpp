@@ -1,5 +1,5 @@
-// Thin plate under tension (Welch & Witkin eq. 4): sum_ij alpha_ij D_i w D_j w + beta_ij (D_i D_j w)^2
-// integrated over the parameter domain, as the quadratic form p^T H p per coordinate.
+// Thin plate under tension (Welch & Witkin eq. 4): sum_ij alpha_ij D_i w D_j w + beta_ij (D_i D_j
+// w)^2 integrated over the parameter domain, as the quadratic form p^T H p per coordinate.
 #pragma once
 
 #include <Eigen/Core>
@@ -20,6 +20,7 @@ struct ThinPlateWeights {
 
 // Exact for non-rational spaces (Gauss rule of degree+1 points per span and direction); rational
 // spaces use two more points per direction.
-Eigen::SparseMatrix<double> assemble_thin_plate(const SplineSpace& space, const ThinPlateWeights& w);
+Eigen::SparseMatrix<double> assemble_thin_plate(const SplineSpace& space,
+                                                const ThinPlateWeights& w);
 
 }  // namespace varsurf

@@ -1,0 +1,54 @@
+#include "varsurf/core/bspline_curve.hpp"
+
+#include <cmath>
+#include <string>
+
+#include "varsurf/core/errors.hpp"
+#include "varsurf/core/knot_vector.hpp"
+
+namespace varsurf {
+
+void BSplineCurve::validate(const char* what) const {
+  const std::string w(what);
+  if (poles.rows() == 0 || poles.cols() == 0) throw InvalidInput(w + ": has no poles");
+  validate_knots(knots, degree, pole_count(), what);
+  if (!poles.allFinite()) throw InvalidInput(w + ": pole coordinates are not finite");
+  if (rational()) {
+    if (weights.size() != poles.rows()) throw InvalidInput(w + ": one weight per pole expected");
+    if (!weights.allFinite() || (weights.array() <= 0.0).any())
+      throw InvalidInput(w + ": weights must be finite and positive");
+  }
+}
+
+Eigen::MatrixXd BSplineCurve::derivatives(double t, int order) const {
+  if (order < 0 || order > 2) throw InvalidInput("curve derivatives: order must be 0, 1 or 2");
+  const int p = degree;
+  const int span = find_span(knots, p, t);
+  Eigen::MatrixXd n(order + 1, p + 1);
+  basis_derivatives(knots, p, span, t, order, n);
+  const int first = span - p;
+  if (!rational()) {
+    return n * poles.middleRows(first, p + 1);
+  }
+  // Homogeneous derivatives A^(k) and W^(k), then the quotient rule (Piegl & Tiller A4.2).
+  const Eigen::VectorXd w = weights.segment(first, p + 1);
+  Eigen::MatrixXd nw = n * w.asDiagonal();
+  Eigen::MatrixXd a = nw * poles.middleRows(first, p + 1);
+  Eigen::VectorXd wd = nw.rowwise().sum();
+  Eigen::MatrixXd c(order + 1, dim());
+  for (int k = 0; k <= order; ++k) {
+    Eigen::RowVectorXd v = a.row(k);
+    for (int i = 1; i <= k; ++i) {
+      const double binom = (k == 2 && i == 1) ? 2.0 : 1.0;
+      v -= binom * wd(i) * c.row(k - i);
+    }
+    c.row(k) = v / wd(0);
+  }
+  return c;
+}
+
+Eigen::VectorXd BSplineCurve::evaluate(double t) const {
+  return derivatives(t, 0).row(0).transpose();
+}
+
+}  // namespace varsurf

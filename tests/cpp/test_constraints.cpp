@@ -1,0 +1,134 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "test_support.hpp"
+#include "varsurf/core/constraints.hpp"
+#include "varsurf/core/errors.hpp"
+#include "varsurf/core/sheet_solver.hpp"
+
+using namespace varsurf;
+
+namespace {
+
+// A curved reference surface of the given space, and its exact image of the iso line u = u0.
+Eigen::MatrixX3d reference_poles(const SplineSpace& sp) {
+  return test::fit_poles(sp, [](double u, double v) {
+    return Eigen::Vector3d(10 * u, 8 * v + u * u, std::sin(3 * u) * std::cos(2 * v));
+  });
+}
+
+CurveConstraint iso_u(const SplineSpace& sp, const Eigen::MatrixX3d& poles, double u0) {
+  CurveConstraint c;
+  c.preimage = test::line_curve(Eigen::Vector2d(u0, 0.0), Eigen::Vector2d(u0, 1.0));
+  c.target = test::fit_piecewise_curve(
+      breakpoints(sp.knots_v, sp.degree_v), sp.degree_v, 3, [&](double t) {
+        return Eigen::VectorXd(evaluate_surface(sp, poles, u0, t, 0).row(0).transpose());
+      });
+  return c;
+}
+
+CurveConstraint iso_v(const SplineSpace& sp, const Eigen::MatrixX3d& poles, double v0) {
+  CurveConstraint c;
+  c.preimage = test::line_curve(Eigen::Vector2d(0.0, v0), Eigen::Vector2d(1.0, v0));
+  c.target = test::fit_piecewise_curve(
+      breakpoints(sp.knots_u, sp.degree_u), sp.degree_u, 3, [&](double t) {
+        return Eigen::VectorXd(evaluate_surface(sp, poles, t, v0, 0).row(0).transpose());
+      });
+  return c;
+}
+
+SheetProblem bare_problem(const SplineSpace& sp) {
+  SheetProblem pb;
+  pb.space = sp;
+  pb.initial_poles = Eigen::MatrixX3d::Zero(sp.size(), 3);
+  pb.energy = ThinPlateWeights::isotropic(0.1, 1.0);
+  return pb;
+}
+
+}  // namespace
+
+TEST(CurveConstraint, IsoLineHasOneIndependentRowPerPole) {
+  // w(u0, v) = sum_j (sum_i N_i(u0) P_ij) N_j(v): an iso line fixes nv combinations of poles.
+  const SplineSpace sp = SplineSpace::uniform(3, 3, 5, 4);
+  const Eigen::MatrixX3d ref = reference_poles(sp);
+  SheetProblem pb = bare_problem(sp);
+  pb.curves.push_back(iso_u(sp, ref, 0.37));
+  const SolveResult r = solve_sheet(pb);
+  EXPECT_EQ(r.report.constraint_rank, sp.nv());
+  EXPECT_GT(r.report.constraint_samples, sp.nv());
+  EXPECT_LT(incidence_error(sp, r.poles, pb.curves[0]), 1e-10);
+}
+
+TEST(CurveConstraint, CrossingCurvesShareOneRow) {
+  // Two crossing iso lines constrain nu + nv - 1 combinations: the crossing point is shared, and
+  // its duplicate row must be reduced away for the KKT system to stay solvable.
+  const SplineSpace sp = SplineSpace::uniform(3, 3, 4, 6);
+  const Eigen::MatrixX3d ref = reference_poles(sp);
+  SheetProblem pb = bare_problem(sp);
+  pb.curves.push_back(iso_u(sp, ref, 0.41));
+  pb.curves.push_back(iso_v(sp, ref, 0.63));
+  const SolveResult r = solve_sheet(pb);
+  EXPECT_EQ(r.report.constraint_rank, sp.nu() + sp.nv() - 1);
+  EXPECT_EQ(r.report.clusters, 1);
+  EXPECT_LT(incidence_error(sp, r.poles, pb.curves[0]), 1e-10);
+  EXPECT_LT(incidence_error(sp, r.poles, pb.curves[1]), 1e-10);
+}
+
+TEST(CurveConstraint, PointOnCurveAddsNoRow) {
+  const SplineSpace sp = SplineSpace::uniform(3, 3, 5, 4);
+  const Eigen::MatrixX3d ref = reference_poles(sp);
+  SheetProblem pb = bare_problem(sp);
+  pb.curves.push_back(iso_u(sp, ref, 0.37));
+  PointConstraint p;
+  p.u = 0.37;
+  p.v = 0.52;
+  p.target = evaluate_surface(sp, ref, p.u, p.v, 0).row(0).transpose();
+  pb.points.push_back(p);
+  const SolveResult r = solve_sheet(pb);
+  EXPECT_EQ(r.report.constraint_rank, sp.nv());
+  EXPECT_LT((evaluate_surface(sp, r.poles, p.u, p.v, 0).row(0).transpose() - p.target).norm(),
+            1e-10);
+}
+
+TEST(CurveConstraint, DisjointCurvesFormSeparateClusters) {
+  const SplineSpace sp = SplineSpace::uniform(3, 3, 8, 8);
+  const Eigen::MatrixX3d ref = reference_poles(sp);
+  SheetProblem pb = bare_problem(sp);
+  pb.curves.push_back(iso_u(sp, ref, 0.1));
+  pb.curves.push_back(iso_u(sp, ref, 0.9));
+  const SolveResult r = solve_sheet(pb);
+  EXPECT_EQ(r.report.clusters, 2);
+  EXPECT_EQ(r.report.constraint_rank, 2 * sp.nv());
+}
+
+TEST(CurveConstraint, WeightsSumToTheCurveWeight) {
+  const SplineSpace sp = SplineSpace::uniform(3, 3, 4, 4);
+  CurveConstraint c = iso_u(sp, reference_poles(sp), 0.3);
+  c.weight = 2.5;
+  const ConstraintSamples s = sample_curve(sp, c);
+  double total = 0.0;
+  for (const Eigen::VectorXd& row : s.coeff) total += row.sum() * row.sum();  // (sqrt(w) * 1)^2
+  EXPECT_NEAR(total, 2.5, 1e-12);
+}
+
+TEST(CurveConstraint, RejectsBadCurves) {
+  const SplineSpace sp = SplineSpace::uniform(3, 3, 4, 4);
+  CurveConstraint c;
+  c.target = test::line_curve(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0, 0));
+  c.preimage =
+      test::line_curve(Eigen::Vector2d(0.2, 0.2), Eigen::Vector2d(1.3, 0.2));  // leaves domain
+  EXPECT_THROW(sample_curve(sp, c), InvalidInput);
+  c.preimage = test::line_curve(Eigen::Vector2d(0.2, 0.2), Eigen::Vector2d(0.8, 0.2), 0.0, 2.0);
+  EXPECT_THROW(sample_curve(sp, c), InvalidInput);  // parameter ranges differ
+  c.preimage = test::line_curve(Eigen::Vector2d(0.2, 0.2), Eigen::Vector2d(0.8, 0.2));
+  c.target = test::line_curve(Eigen::Vector3d(1, 1, 1), Eigen::Vector3d(1, 1, 1));
+  EXPECT_THROW(sample_curve(sp, c), InvalidInput);  // zero length
+  c.target = test::line_curve(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0, NAN));
+  EXPECT_THROW(sample_curve(sp, c), InvalidInput);
+  c.target = test::line_curve(Eigen::Vector2d(0, 0), Eigen::Vector2d(1, 0));
+  EXPECT_THROW(sample_curve(sp, c), InvalidInput);  // target must be 3D
+  PointConstraint p;
+  p.u = NAN;
+  EXPECT_THROW(sample_point(sp, p), InvalidInput);
+}

@@ -1,0 +1,88 @@
+// Helpers shared by the core tests: exact pole fits of representable functions, Greville points.
+#pragma once
+
+#include <Eigen/Dense>
+#include <functional>
+#include <vector>
+
+#include "varsurf/core/bspline_curve.hpp"
+#include "varsurf/core/knot_vector.hpp"
+#include "varsurf/core/spline_space.hpp"
+
+namespace varsurf::test {
+
+inline std::vector<double> greville(const std::vector<double>& knots, int degree) {
+  const int n = static_cast<int>(knots.size()) - degree - 1;
+  std::vector<double> g(static_cast<size_t>(n));
+  for (int i = 0; i < n; ++i) {
+    double s = 0.0;
+    for (int k = 1; k <= degree; ++k) s += knots[static_cast<size_t>(i + k)];
+    g[static_cast<size_t>(i)] = s / degree;
+  }
+  return g;
+}
+
+// Poles of the surface interpolating f at the Greville grid: exact when f lies in the space.
+inline Eigen::MatrixX3d fit_poles(const SplineSpace& space,
+                                  const std::function<Eigen::Vector3d(double, double)>& f) {
+  const std::vector<double> gu = greville(space.knots_u, space.degree_u);
+  const std::vector<double> gv = greville(space.knots_v, space.degree_v);
+  const int n = space.size();
+  Eigen::MatrixXd a = Eigen::MatrixXd::Zero(n, n);
+  Eigen::MatrixX3d b(n, 3);
+  for (int i = 0; i < space.nu(); ++i)
+    for (int j = 0; j < space.nv(); ++j) {
+      const int row = space.index(i, j);
+      const BasisSample s = space.basis(gu[static_cast<size_t>(i)], gv[static_cast<size_t>(j)], 0);
+      for (size_t k = 0; k < s.index.size(); ++k)
+        a(row, s.index[k]) = s.values(0, static_cast<Eigen::Index>(k));
+      b.row(row) = f(gu[static_cast<size_t>(i)], gv[static_cast<size_t>(j)]).transpose();
+    }
+  return a.fullPivLu().solve(b);
+}
+
+// Piecewise Bezier curve (C0, interior knots of multiplicity `degree`) through f on each piece:
+// exact when f restricted to every piece is a polynomial of degree <= `degree`.
+inline BSplineCurve fit_piecewise_curve(const std::vector<double>& breaks, int degree, int dim,
+                                        const std::function<Eigen::VectorXd(double)>& f) {
+  BSplineCurve c;
+  c.degree = degree;
+  const int pieces = static_cast<int>(breaks.size()) - 1;
+  c.knots.assign(static_cast<size_t>(degree + 1), breaks.front());
+  for (int k = 1; k < pieces; ++k)
+    c.knots.insert(c.knots.end(), static_cast<size_t>(degree), breaks[static_cast<size_t>(k)]);
+  c.knots.insert(c.knots.end(), static_cast<size_t>(degree + 1), breaks.back());
+  const int n = static_cast<int>(c.knots.size()) - degree - 1;
+  // Collocation at Chebyshev points of each piece plus the shared ends: n conditions.
+  std::vector<double> ts;
+  for (int k = 0; k < pieces; ++k) {
+    const double a = breaks[static_cast<size_t>(k)], b = breaks[static_cast<size_t>(k + 1)];
+    for (int i = (k == 0 ? 0 : 1); i <= degree; ++i)
+      ts.push_back(a + (b - a) * 0.5 * (1.0 - std::cos(M_PI * i / degree)));
+  }
+  Eigen::MatrixXd a = Eigen::MatrixXd::Zero(n, n);
+  Eigen::MatrixXd rhs(n, dim);
+  for (int r = 0; r < n; ++r) {
+    const double t = ts[static_cast<size_t>(r)];
+    const int span = find_span(c.knots, degree, t);
+    Eigen::MatrixXd nd(1, degree + 1);
+    basis_derivatives(c.knots, degree, span, t, 0, nd);
+    for (int j = 0; j <= degree; ++j) a(r, span - degree + j) = nd(0, j);
+    rhs.row(r) = f(t).transpose();
+  }
+  c.poles = a.fullPivLu().solve(rhs);
+  return c;
+}
+
+inline BSplineCurve line_curve(const Eigen::VectorXd& a, const Eigen::VectorXd& b, double t0 = 0.0,
+                               double t1 = 1.0) {
+  BSplineCurve c;
+  c.degree = 1;
+  c.knots = {t0, t0, t1, t1};
+  c.poles.resize(2, a.size());
+  c.poles.row(0) = a.transpose();
+  c.poles.row(1) = b.transpose();
+  return c;
+}
+
+}  // namespace varsurf::test
