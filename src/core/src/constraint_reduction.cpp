@@ -127,14 +127,20 @@ ReducedConstraints reduce_constraints(const std::vector<ConstraintSamples>& bloc
     if (s.size() == 0 || !(s(0) > 0.0)) continue;
     if (!s.allFinite()) throw InvalidInput("constraint values are not finite");
     const Eigen::MatrixX3d beta = svd.matrixU().transpose() * core_rhs;
-    const double allowed = fit_tolerance * fit_tolerance * cluster_weight;
+    Eigen::Index numeric_rank = 0;
+    while (numeric_rank < s.size() && s(numeric_rank) > rank_tolerance * s(0)) ++numeric_rank;
+    // Residual left by each truncation; the full-rank one is what no choice of poles removes:
+    // constraints that contradict each other (curves crossing at different heights).
     double residual = d.squaredNorm();
+    const double best = std::max(0.0, residual - beta.topRows(numeric_rank).squaredNorm());
+    const double allowed = best + fit_tolerance * fit_tolerance * cluster_weight;
     Eigen::Index rank = 0;
-    while (rank < s.size() && s(rank) > rank_tolerance * s(0)) {
+    while (rank < numeric_rank) {
       if (fit_tolerance > 0.0 && residual <= allowed) break;
       residual -= beta.row(rank).squaredNorm();
       ++rank;
     }
+    if (cluster_weight > 0.0) out.conflict = std::max(out.conflict, std::sqrt(best / cluster_weight));
     const Eigen::MatrixXd vr = svd.matrixV().leftCols(rank);
     const Eigen::MatrixX3d br = beta.topRows(rank).array().colwise() / s.head(rank).array();
     for (Eigen::Index r = 0; r < rank; ++r) {

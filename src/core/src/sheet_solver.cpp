@@ -82,6 +82,7 @@ SolveResult solve_sheet(const SheetProblem& pb, const SolveOptions& opt) {
   rep.constraint_samples = red.samples;
   rep.constraint_rank = r;
   rep.clusters = red.clusters;
+  rep.conflict = red.conflict;
   rep.reduce_seconds = seconds_since(t);
 
   // KKT system [H_ff, A^T; A, 0] [p_f; y] = [-H_fc p_c; b] (Welch & Witkin eq. 9).

@@ -47,6 +47,9 @@ struct SolveReport {
   int constraint_samples = 0;        // least-squares rows before reduction
   int constraint_rank = 0;           // independent rows kept
   int clusters = 0;                  // independent groups of constraints
+  // RMS distance (model units) by which the constraints contradict each other: the least-squares
+  // residual at full rank, largest over clusters. Near 0 when they are compatible.
+  double conflict = 0.0;
   double constraint_residual = 0.0;  // max |A p - b| of the reduced rows after the solve
   double kkt_residual = 0.0;         // relative residual of the KKT solve
   double assemble_seconds = 0.0;

@@ -1,0 +1,13 @@
+// Parts of the varsurf._native module, one per file.
+#pragma once
+
+#include <pybind11/pybind11.h>
+
+namespace varsurf::binding {
+
+void bind_errors(pybind11::module_& m);          // exception classes and translators
+void bind_core_types(pybind11::module_& m);      // data types of the core
+void bind_core_functions(pybind11::module_& m);  // solver and knot helpers
+void bind_occ_bridge(pybind11::module_& m);      // BREP/STEP bridge to FreeCAD
+
+}  // namespace varsurf::binding

@@ -1,0 +1,65 @@
+#include <pybind11/eigen.h>
+#include <pybind11/stl.h>
+
+#include <utility>
+#include <vector>
+
+#include "binding.hpp"
+#include "varsurf/core/constraints.hpp"
+#include "varsurf/core/errors.hpp"
+#include "varsurf/core/knot_vector.hpp"
+#include "varsurf/core/sheet_solver.hpp"
+#include "varsurf/core/spline_space.hpp"
+
+namespace py = pybind11;
+using namespace pybind11::literals;
+
+namespace varsurf::binding {
+
+void bind_core_functions(py::module_& m) {
+  m.def("solve_sheet", &solve_sheet, "problem"_a, "options"_a = SolveOptions(),
+        py::call_guard<py::gil_scoped_release>(),
+        "Minimize the sheet energy subject to the problem's constraints; returns SolveResult. "
+        "Raises InvalidInput for inconsistent problems, SolveFailure for singular systems.");
+
+  m.def(
+      "boundary_pole_indices",
+      [](const SplineSpace& space) {
+        space.validate();
+        return boundary_pole_indices(space);
+      },
+      "space"_a, "Flat indices of the poles on the four boundary rows of the space.");
+
+  m.def(
+      "incidence_error",
+      [](const SplineSpace& space, const Eigen::MatrixX3d& poles, const CurveConstraint& c,
+         int samples) {
+        // The core trusts its arguments here; check them so bad input cannot crash the host.
+        BSplineSurface surface;
+        surface.space = space;
+        surface.poles = poles;
+        surface.validate();
+        c.preimage.validate("curve pre-image");
+        c.target.validate("target curve");
+        if (c.preimage.dim() != 2) throw InvalidInput("curve pre-image must be a 2D (u, v) curve");
+        if (c.target.dim() != 3) throw InvalidInput("target curve must be a 3D curve");
+        return incidence_error(space, poles, c, samples);
+      },
+      "space"_a, "poles"_a, "constraint"_a, "samples"_a = 200,
+      "Largest |sheet(preimage(t)) - target(t)| over `samples` evenly spaced t.");
+
+  m.def("flat_knots", &flat_knots, "knots"_a, "mults"_a,
+        "Flat knot vector from distinct knots and multiplicities (FreeCAD's form).");
+
+  m.def(
+      "split_knots",
+      [](const std::vector<double>& flat) {
+        std::vector<double> knots;
+        std::vector<int> mults;
+        split_knots(flat, knots, mults);
+        return std::make_pair(knots, mults);
+      },
+      "flat"_a, "(knots, mults) of a flat knot vector, as FreeCAD's B-spline constructors want.");
+}
+
+}  // namespace varsurf::binding

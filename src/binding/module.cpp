@@ -1,0 +1,13 @@
+#include "binding.hpp"
+
+PYBIND11_MODULE(_native, m) {
+  m.doc() =
+      "VarSurf native core: variational B-spline sheets (Welch & Witkin) and the OpenCASCADE "
+      "bridge. Shapes cross the boundary as BREP strings (Part.Shape.exportBrepToString / "
+      "importBrepFromString).";
+  m.attr("__version__") = "0.1.0";
+  varsurf::binding::bind_errors(m);
+  varsurf::binding::bind_core_types(m);
+  varsurf::binding::bind_core_functions(m);
+  varsurf::binding::bind_occ_bridge(m);
+}

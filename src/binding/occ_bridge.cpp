@@ -1,0 +1,104 @@
+// Bridge functions: shapes enter and leave as BREP strings (Part.Shape.exportBrepToString /
+// importBrepFromString), everything else as core types.
+#include <pybind11/eigen.h>
+#include <pybind11/stl.h>
+
+#include <string>
+
+#include "binding.hpp"
+#include "varsurf/occ/brep_io.hpp"
+#include "varsurf/occ/curve_projection.hpp"
+#include "varsurf/occ/deviation.hpp"
+#include "varsurf/occ/face_builder.hpp"
+#include "varsurf/occ/geom_convert.hpp"
+#include "varsurf/occ/shape_check.hpp"
+#include "varsurf/occ/single_shape.hpp"
+#include "varsurf/occ/step_io.hpp"
+#include "varsurf/occ/surface_refinement.hpp"
+
+namespace py = pybind11;
+using namespace pybind11::literals;
+
+namespace varsurf::binding {
+
+void bind_occ_bridge(py::module_& m) {
+  py::class_<occ::PreImage>(m, "PreImage", "Result of project_curve.")
+      .def(py::init<>())
+      .def_readonly("curve", &occ::PreImage::curve,
+                    "2D (u, v) B-spline sharing the target's parameter range.")
+      .def_readonly("max_distance", &occ::PreImage::max_distance,
+                    "Largest distance from the sampled target to the sheet.")
+      .def_readonly("fit_error", &occ::PreImage::fit_error,
+                    "Largest |preimage(t_k) - projected (u, v)_k| over the samples.");
+
+  py::class_<occ::ShapeCheck>(m, "ShapeCheck", "Result of check_brep (BRepCheck_Analyzer).")
+      .def(py::init<>())
+      .def_readonly("valid", &occ::ShapeCheck::valid)
+      .def_readonly("max_tolerance", &occ::ShapeCheck::max_tolerance,
+                    "Largest vertex/edge/face tolerance.")
+      .def_readonly("message", &occ::ShapeCheck::message, "'valid' or the first problems found.")
+      .def("__bool__", [](const occ::ShapeCheck& c) { return c.valid; });
+
+  m.def(
+      "surface_from_face_brep",
+      [](const std::string& brep) {
+        return occ::surface_from_face(occ::only_face(occ::read_brep(brep)));
+      },
+      "brep"_a,
+      "BSplineSurface of the one face in a BREP string (any surface type is converted to NURBS, "
+      "placed, unperiodized and restricted to the face's UV bounds).");
+
+  m.def(
+      "curve_from_edge_brep",
+      [](const std::string& brep) {
+        return occ::curve_from_edge(occ::only_edge(occ::read_brep(brep)));
+      },
+      "brep"_a, "3D BSplineCurve of the one edge in a BREP string, between its end parameters.");
+
+  m.def(
+      "project_curve",
+      [](const BSplineSurface& surface, const BSplineCurve& curve, int samples, double tolerance) {
+        occ::ProjectionOptions options;
+        options.samples = samples;
+        options.tolerance = tolerance;
+        return occ::project_curve(surface, curve, options);
+      },
+      "surface"_a, "curve"_a, "samples"_a = 0, "tolerance"_a = occ::ProjectionOptions().tolerance,
+      py::call_guard<py::gil_scoped_release>(),
+      "Pre-image of a 3D target curve on a sheet: orthogonal projection of `samples` target "
+      "points (0 = automatic), fitted by a 2D B-spline with the target's own parameter. Raises "
+      "InvalidInput if the curve passes more than `tolerance` beyond the sheet's boundary.");
+
+  m.def("refine_surface", &occ::refine_surface, "surface"_a, "min_spans_u"_a, "min_spans_v"_a,
+        "min_degree"_a = 1,
+        "The same surface with its degree raised to at least min_degree and knots inserted so "
+        "that each direction has at least the given number of spans (longest intervals halved "
+        "first).");
+
+  m.def(
+      "face_brep",
+      [](const BSplineSurface& surface) { return occ::write_brep(occ::make_face(surface)); },
+      "surface"_a, "BREP string of a valid face bounded by the sheet's natural boundary.");
+
+  m.def("max_deviation", &occ::max_deviation, "surface"_a, "curve"_a, "samples"_a = 200,
+        py::call_guard<py::gil_scoped_release>(),
+        "Largest distance from `samples` evenly spaced target points to the whole sheet, "
+        "measured by OpenCASCADE (independent of the solver).");
+
+  m.def(
+      "write_step",
+      [](const std::string& brep, const std::string& path) {
+        occ::write_step(occ::read_brep(brep), path);
+      },
+      "brep"_a, "path"_a, "Write a BREP string's shape to a STEP file (AP214).");
+
+  m.def(
+      "read_step", [](const std::string& path) { return occ::write_brep(occ::read_step(path)); },
+      "path"_a, "Shape of a STEP file as a BREP string.");
+
+  m.def(
+      "check_brep", [](const std::string& brep) { return occ::check_shape(occ::read_brep(brep)); },
+      "brep"_a, "Validity of a BREP string's shape (BRepCheck_Analyzer) as a ShapeCheck.");
+}
+
+}  // namespace varsurf::binding

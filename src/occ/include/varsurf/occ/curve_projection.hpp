@@ -1,0 +1,37 @@
+// Pre-images of target curves: the (u, v) curve c(t) on a base sheet whose surface point S(c(t))
+// is the orthogonal projection of the target D(t), with the same parameter t (the solver's curve
+// constraint needs the shared parameter).
+#pragma once
+
+#include "varsurf/core/bspline_curve.hpp"
+#include "varsurf/core/spline_space.hpp"
+
+namespace varsurf::occ {
+
+struct ProjectionOptions {
+  int samples = 0;           // total samples along the target; 0 = automatic:
+  int samples_per_span = 8;  //   at least this many per polynomial span of the target
+  int min_samples = 64;      //   and at least this many in all
+  // How far (model units) the target may pass beyond the sheet's boundary, measured in the
+  // sheet's tangent plane at the closest boundary point.
+  double tolerance = 1e-6;
+  // Wanted max |c(t_k) - uv_k| of the fit, relative to the larger side of the (u, v) domain. The
+  // solver makes the new sheet pass through the target at c(t) whatever c is, so this shapes the
+  // parametrization more than the result; tighter costs poles (and constraint samples).
+  double fit_tolerance = 1e-7;
+  int degree = 3;        // degree of the pre-image (raised to the target's if that is higher)
+  int max_poles = 1000;  // refinement stops here and reports the fit error it reached
+};
+
+struct PreImage {
+  BSplineCurve curve;         // 2D, parameter range exactly that of the target
+  double max_distance = 0.0;  // max |D(t_k) - S(uv_k)|: how far the target is from the sheet
+  double fit_error = 0.0;     // max |c(t_k) - uv_k| over the projected samples
+};
+
+// InvalidInput for invalid data, a target leaving the sheet (no orthogonal projection) or a
+// projection jumping across the sheet (a closed sheet's seam, a fold); GeometryError if OCCT fails.
+PreImage project_curve(const BSplineSurface& base, const BSplineCurve& target,
+                       const ProjectionOptions& options = {});
+
+}  // namespace varsurf::occ

@@ -1,0 +1,18 @@
+// STEP exchange (AP214, surface curves written as 3D curves and pcurves).
+#pragma once
+
+#include <TopoDS_Shape.hxx>
+
+#include <string>
+
+namespace varsurf::occ {
+
+// InvalidInput for a null shape or an empty path; GeometryError if translation or writing fails.
+// OCCT's global STEP settings are restored afterwards (they are shared with the host, e.g.
+// FreeCAD).
+void write_step(const TopoDS_Shape& shape, const std::string& path);
+
+// All roots of the file as one shape. GeometryError if the file cannot be read or holds no shape.
+TopoDS_Shape read_step(const std::string& path);
+
+}  // namespace varsurf::occ

@@ -1,0 +1,457 @@
+#include "varsurf/occ/curve_projection.hpp"
+
+#include <Geom_BSplineSurface.hxx>
+#include <ShapeAnalysis_Surface.hxx>
+
+#include <Eigen/Dense>
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
+#include <algorithm>
+#include <cmath>
+#include <iterator>
+#include <limits>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "varsurf/core/errors.hpp"
+#include "varsurf/core/knot_vector.hpp"
+#include "varsurf/occ/geom_convert.hpp"
+#include "varsurf/occ/occ_error.hpp"
+
+namespace varsurf::occ {
+
+namespace {
+
+struct Sample {
+  Eigen::Vector2d uv;
+  double distance;
+};
+
+// Projects target points onto the base sheet: OCCT for the (global or continued) first guess,
+// then a few bounded Newton steps on |S(u, v) - P|^2 with the core's exact evaluator.
+class Projector {
+ public:
+  Projector(const BSplineSurface& base, const BSplineCurve& target, double tolerance)
+      : base_(base),
+        target_(target),
+        tolerance_(tolerance),
+        lo_(base.space.u_first(), base.space.v_first()),
+        hi_(base.space.u_last(), base.space.v_last()),
+        scale_(std::max(
+            1.0, (base.poles.colwise().maxCoeff() - base.poles.colwise().minCoeff()).norm())),
+        analysis_(to_geom(base)) {}
+
+  Sample project(double t, const Eigen::Vector2d* previous) {
+    const Eigen::Vector3d p = target_.evaluate(t);
+    const gp_Pnt point(p(0), p(1), p(2));
+    const double preci = 1e-9 * scale_;
+    const gp_Pnt2d guess = guarded("projecting onto the sheet", [&] {
+      return previous
+                 ? analysis_.NextValueOfUV(gp_Pnt2d((*previous)(0), (*previous)(1)), point, preci)
+                 : analysis_.ValueOfUV(point, preci);
+    });
+    Eigen::Vector2d uv(guess.X(), guess.Y());
+    if (!uv.allFinite()) uv = previous ? *previous : Eigen::Vector2d(0.5 * (lo_ + hi_));
+    uv = uv.cwiseMax(lo_).cwiseMin(hi_);
+    polish(p, uv);
+    check_inside(t, p, uv);
+    return {uv, (surface(uv, 0).row(0).transpose() - p).norm()};
+  }
+
+ private:
+  Eigen::MatrixXd surface(const Eigen::Vector2d& uv, int order) const {
+    return evaluate_surface(base_.space, base_.poles, uv(0), uv(1), order);
+  }
+
+  // Newton (Gauss-Newton where the Hessian is indefinite) with the step clipped to the domain.
+  void polish(const Eigen::Vector3d& p, Eigen::Vector2d& uv) const {
+    Eigen::MatrixXd s = surface(uv, 2);
+    double f = (s.row(0).transpose() - p).squaredNorm();
+    for (int it = 0; it < 12; ++it) {
+      const Eigen::Vector3d d = s.row(0).transpose() - p;
+      const Eigen::Vector3d su = s.row(1), sv = s.row(2);
+      const Eigen::Vector2d g(su.dot(d), sv.dot(d));
+      Eigen::Matrix2d h;
+      h << su.dot(su), su.dot(sv), su.dot(sv), sv.dot(sv);
+      Eigen::Matrix2d full = h;
+      full(0, 0) += Eigen::Vector3d(s.row(3)).dot(d);
+      full(0, 1) += Eigen::Vector3d(s.row(4)).dot(d);
+      full(1, 0) += Eigen::Vector3d(s.row(4)).dot(d);
+      full(1, 1) += Eigen::Vector3d(s.row(5)).dot(d);
+      // Coordinates held by a bound they push against stay there.
+      Eigen::Vector2d free(1.0, 1.0);
+      for (int c = 0; c < 2; ++c) {
+        if ((uv(c) <= lo_(c) && g(c) > 0.0) || (uv(c) >= hi_(c) && g(c) < 0.0)) free(c) = 0.0;
+      }
+      auto solve = [&](Eigen::Matrix2d m) -> Eigen::Vector2d {
+        for (int c = 0; c < 2; ++c) {
+          if (free(c) == 0.0) {
+            m.row(c).setZero();
+            m.col(c).setZero();
+            m(c, c) = 1.0;
+          }
+        }
+        const Eigen::Vector2d rhs = -g.cwiseProduct(free);
+        Eigen::LDLT<Eigen::Matrix2d> ldlt(m);
+        if (ldlt.info() != Eigen::Success || !ldlt.isPositive() || m.determinant() <= 0.0)
+          return Eigen::Vector2d::Zero();
+        return ldlt.solve(rhs);
+      };
+      Eigen::Vector2d step = solve(full);
+      if (!step.allFinite() || step.isZero()) step = solve(h);
+      if (!step.allFinite() || step.isZero()) return;
+      bool improved = false;
+      for (int half = 0; half < 20 && !improved; ++half, step *= 0.5) {
+        const Eigen::Vector2d next = (uv + step).cwiseMax(lo_).cwiseMin(hi_);
+        const Eigen::MatrixXd sn = surface(next, 2);
+        const double fn = (sn.row(0).transpose() - p).squaredNorm();
+        if (fn < f) {
+          const double moved = (next - uv).cwiseAbs().maxCoeff();
+          uv = next;
+          s = sn;
+          f = fn;
+          improved = true;
+          if (moved <= 1e-15 * (hi_ - lo_).maxCoeff()) return;
+        }
+      }
+      if (!improved) return;
+    }
+  }
+
+  // At the domain boundary the offset to the target must be normal to the sheet; a component
+  // along the outward tangent means the target passes beyond the sheet's edge.
+  void check_inside(double t, const Eigen::Vector3d& p, const Eigen::Vector2d& uv) const {
+    const Eigen::MatrixXd s = surface(uv, 1);
+    const Eigen::Vector3d d = p - s.row(0).transpose();
+    if (d.norm() <= tolerance_) return;
+    const Eigen::Vector2d near = 1e-7 * (hi_ - lo_);
+    for (int c = 0; c < 2; ++c) {
+      for (int side = 0; side < 2; ++side) {
+        const bool at = side == 0 ? uv(c) <= lo_(c) + near(c) : uv(c) >= hi_(c) - near(c);
+        if (!at) continue;
+        // Outward direction in the tangent plane, perpendicular to the boundary curve.
+        const Eigen::Vector3d across = s.row(1 + c), along = s.row(2 - c);
+        if (along.norm() <= 1e-12 * scale_ || across.norm() <= 1e-12 * scale_) continue;
+        const Eigen::Vector3d a = along.normalized();
+        Eigen::Vector3d out = across - across.dot(a) * a;
+        if (out.norm() <= 1e-9 * across.norm()) continue;
+        out = (side == 0 ? -1.0 : 1.0) * out.normalized();
+        const double beyond = d.dot(out);
+        if (beyond > tolerance_) {
+          std::ostringstream msg;
+          msg << "the target curve leaves the face: at t = " << t << " it lies " << beyond
+              << " beyond the sheet's " << (c == 0 ? "u" : "v") << (side == 0 ? "-min" : "-max")
+              << " boundary (distance to the sheet " << d.norm()
+              << "); no orthogonal projection exists there";
+          throw InvalidInput(msg.str());
+        }
+      }
+    }
+  }
+
+  const BSplineSurface& base_;
+  const BSplineCurve& target_;
+  double tolerance_;
+  Eigen::Vector2d lo_, hi_;
+  double scale_;  // model size, for relative tolerances
+  ShapeAnalysis_Surface analysis_;
+};
+
+// Least-squares fit of a clamped B-spline with the given knots through (t_k, uv_k), interpolating
+// both ends; the parameters are the samples' own t. Banded normal equations: B-spline least
+// squares with samples in every span is well conditioned.
+BSplineCurve fit(const std::map<double, Sample>& samples, int degree,
+                 const std::vector<double>& knots) {
+  BSplineCurve c;
+  c.degree = degree;
+  c.knots = knots;
+  const int n = static_cast<int>(knots.size()) - degree - 1;
+  const Eigen::Vector2d first = samples.begin()->second.uv, last = samples.rbegin()->second.uv;
+  c.poles.resize(n, 2);
+  c.poles.row(0) = first.transpose();
+  c.poles.row(n - 1) = last.transpose();
+  if (n == 2) return c;
+  std::vector<Eigen::Triplet<double>> entries;
+  Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(n - 2, 2);
+  Eigen::MatrixXd basis(1, degree + 1);
+  for (auto it = std::next(samples.begin()); it != std::prev(samples.end()); ++it) {
+    const double t = it->first;
+    const int span = find_span(knots, degree, t);
+    basis_derivatives(knots, degree, span, t, 0, basis);
+    Eigen::Vector2d r = it->second.uv;
+    for (int j = 0; j <= degree; ++j) {
+      const int col = span - degree + j;
+      if (col == 0) r -= basis(0, j) * first;
+      if (col == n - 1) r -= basis(0, j) * last;
+    }
+    for (int j = 0; j <= degree; ++j) {
+      const int cj = span - degree + j;
+      if (cj == 0 || cj == n - 1) continue;
+      rhs.row(cj - 1) += basis(0, j) * r.transpose();
+      for (int k = 0; k <= degree; ++k) {
+        const int ck = span - degree + k;
+        if (ck == 0 || ck == n - 1) continue;
+        entries.emplace_back(cj - 1, ck - 1, basis(0, j) * basis(0, k));
+      }
+    }
+  }
+  Eigen::SparseMatrix<double> normal(n - 2, n - 2);
+  normal.setFromTriplets(entries.begin(), entries.end());
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(normal);
+  if (ldlt.info() != Eigen::Success)
+    throw GeometryError("projection: the pre-image fit is singular (too few samples per span)");
+  c.poles.middleRows(1, n - 2) = ldlt.solve(rhs);
+  if (!c.poles.allFinite())
+    throw GeometryError("projection: the pre-image fit is singular (too few samples per span)");
+  return c;
+}
+
+// Samples of the pre-image, ordered by t; new ones start from their left neighbour's (u, v).
+class Samples {
+ public:
+  explicit Samples(Projector& projector) : projector_(projector) {}
+
+  const Sample& add(double t) {
+    auto it = points_.lower_bound(t);
+    if (it != points_.end() && it->first == t) return it->second;
+    const Eigen::Vector2d* guess = nullptr;
+    if (it != points_.begin()) {
+      guess = &std::prev(it)->second.uv;
+    } else if (it != points_.end()) {
+      guess = &it->second.uv;
+    }
+    if (points_.size() >= 500000)
+      throw InvalidInput("projection: the pre-image needs too many samples (does it settle?)");
+    return points_.emplace_hint(it, t, projector_.project(t, guess))->second;
+  }
+  const std::map<double, Sample>& points() const { return points_; }
+  size_t count_in(double a, double b) const {
+    return static_cast<size_t>(std::distance(points_.lower_bound(a), points_.upper_bound(b)));
+  }
+
+ private:
+  Projector& projector_;
+  std::map<double, Sample> points_;
+};
+
+// Interior breakpoints of the pre-image and their multiplicities.
+class Breaks {
+ public:
+  Breaks(double t0, double t1, int degree)
+      : t0_(t0), t1_(t1), merge_(1e-9 * (t1 - t0)), degree_(degree) {}
+
+  // A breakpoint where the pre-image has C^continuity (merged with a close one).
+  void add(double t, int continuity) {
+    if (!(t > t0_ + merge_ && t < t1_ - merge_)) return;
+    const int mult = std::clamp(degree_ - std::max(continuity, 0), 1, degree_);
+    auto it = mults_.lower_bound(t - merge_);
+    if (it != mults_.end() && it->first <= t + merge_) {
+      it->second = std::max(it->second, mult);
+    } else {
+      mults_.emplace(t, mult);
+    }
+  }
+  std::vector<double> flat() const {
+    std::vector<double> k(static_cast<size_t>(degree_ + 1), t0_);
+    for (const auto& [t, m] : mults_) k.insert(k.end(), static_cast<size_t>(m), t);
+    k.insert(k.end(), static_cast<size_t>(degree_ + 1), t1_);
+    return k;
+  }
+  std::vector<double> values() const {
+    std::vector<double> v{t0_};
+    for (const auto& [t, m] : mults_) v.push_back(t);
+    v.push_back(t1_);
+    return v;
+  }
+  int poles() const {
+    int n = degree_ + 1;
+    for (const auto& [t, m] : mults_) n += m;
+    return n;
+  }
+
+ private:
+  double t0_, t1_, merge_;
+  int degree_;
+  std::map<double, int> mults_;
+};
+
+// Where the pre-image crosses an interior knot line of the sheet, the foot point moves with the
+// sheet's normal, which is one order less smooth there: the pre-image gets a breakpoint of that
+// continuity (else the fit converges slowly around the kink).
+void add_knot_crossings(const SplineSpace& space, Samples& samples, Breaks& breaks,
+                        double t_range) {
+  for (int c = 0; c < 2; ++c) {
+    const std::vector<double>& flat = c == 0 ? space.knots_u : space.knots_v;
+    const int degree = c == 0 ? space.degree_u : space.degree_v;
+    std::vector<double> values;
+    std::vector<int> mults;
+    split_knots(flat, values, mults);
+    const double eps = 1e-10 * (flat.back() - flat.front());
+    for (size_t k = 1; k + 1 < values.size(); ++k) {
+      const double line = values[k];
+      const int continuity = degree - mults[k] - 1;
+      auto side = [&](const Sample& s) {
+        return s.uv(c) > line + eps ? 1 : (s.uv(c) < line - eps ? -1 : 0);
+      };
+      // Pairs of samples strictly on opposite sides, with only on-line samples between them.
+      std::vector<std::pair<double, double>> brackets;
+      double last_t = 0.0;
+      int last_side = 0;
+      for (const auto& [t, s] : samples.points()) {
+        const int sd = side(s);
+        if (sd == 0) continue;
+        if (last_side != 0 && sd != last_side) brackets.emplace_back(last_t, t);
+        last_t = t;
+        last_side = sd;
+      }
+      for (auto [a, b] : brackets) {
+        const int side_a = side(samples.points().at(a));
+        for (int it = 0; it < 100 && b - a > 1e-13 * t_range; ++it) {
+          const double mid = 0.5 * (a + b);
+          const int sd = side(samples.add(mid));
+          if (sd == 0) {
+            a = b = mid;
+          } else if (sd == side_a) {
+            a = mid;
+          } else {
+            b = mid;
+          }
+        }
+        breaks.add(0.5 * (a + b), continuity);
+      }
+    }
+  }
+}
+
+// Every knot span gets samples spread over all of it (one in each of `count` equal parts), so
+// that the least-squares fit is well posed there. Bisection samples cluster at a crossing and do
+// not count for the rest of the span.
+void fill_spans(Samples& samples, const std::vector<double>& span_ends, int count) {
+  for (size_t s = 0; s + 1 < span_ends.size(); ++s) {
+    const double a = span_ends[s], h = (span_ends[s + 1] - a) / count;
+    for (int i = 0; i < count; ++i) {
+      if (samples.count_in(a + i * h, a + (i + 1) * h) == 0) samples.add(a + (i + 0.5) * h);
+    }
+  }
+}
+
+}  // namespace
+
+PreImage project_curve(const BSplineSurface& base, const BSplineCurve& target,
+                       const ProjectionOptions& options) {
+  base.validate();
+  target.validate("target curve");
+  if (target.dim() != 3) throw InvalidInput("target curve must be a 3D curve");
+  if (options.samples < 0 || options.samples > 1000000 || options.samples_per_span < 1 ||
+      options.samples_per_span > 10000 || options.min_samples < 2 || options.min_samples > 1000000)
+    throw InvalidInput("projection: sample counts out of range");
+  if (!(options.tolerance >= 0.0) || !std::isfinite(options.tolerance) ||
+      !(options.fit_tolerance > 0.0) || !std::isfinite(options.fit_tolerance))
+    throw InvalidInput("projection: tolerances must be finite, fit_tolerance positive");
+  if (options.degree < 1 || options.degree > 9)
+    throw InvalidInput("projection: pre-image degree must be in 1..9");
+  if (options.max_poles < 4) throw InvalidInput("projection: max_poles must be at least 4");
+  const int degree = std::min(std::max(options.degree, target.degree), 9);
+  const double t0 = target.first(), t1 = target.last(), t_range = t1 - t0;
+
+  // Sample parameters: evenly within each polynomial span of the target, span ends included.
+  std::vector<double> target_breaks;
+  std::vector<int> target_mults;
+  split_knots(target.knots, target_breaks, target_mults);
+  const int spans = static_cast<int>(target_breaks.size()) - 1;
+  const int wanted = options.samples > 0
+                         ? options.samples
+                         : std::max(options.min_samples, options.samples_per_span * spans);
+  const int per_span = std::max(degree + 1, (wanted + spans - 1) / spans);
+  Projector projector(base, target, options.tolerance);
+  Samples samples(projector);
+  for (int s = 0; s < spans; ++s) {
+    for (int i = 0; i < per_span; ++i) {
+      samples.add(target_breaks[s] + (target_breaks[s + 1] - target_breaks[s]) * i / per_span);
+    }
+  }
+  samples.add(t1);
+
+  // A pre-image that jumps between neighbouring samples is refined until it is smooth or the jump
+  // proves to be a discontinuity (seam of a closed sheet, a fold, a ridge of equal distances).
+  const Eigen::Vector2d lo(base.space.u_first(), base.space.v_first());
+  const Eigen::Vector2d hi(base.space.u_last(), base.space.v_last());
+  const Eigen::Vector2d width = hi - lo;
+  for (auto it = samples.points().begin(); std::next(it) != samples.points().end();) {
+    const auto next = std::next(it);
+    const double jump =
+        (next->second.uv - it->second.uv).cwiseQuotient(width).cwiseAbs().maxCoeff();
+    if (jump <= 0.05) {
+      ++it;
+      continue;
+    }
+    if (next->first - it->first < 1e-9 * t_range) {
+      std::ostringstream msg;
+      msg << "the target curve's projection onto the sheet jumps at t = " << it->first
+          << " from (u, v) = (" << it->second.uv(0) << ", " << it->second.uv(1) << ") to ("
+          << next->second.uv(0) << ", " << next->second.uv(1)
+          << "): it crosses a seam or fold of the sheet, or is equally close to two regions";
+      throw InvalidInput(msg.str());
+    }
+    samples.add(0.5 * (it->first + next->first));  // `it` stays valid: std::map
+  }
+
+  // Breakpoints: the target's (as smooth as the target there) and the sheet's knot lines.
+  Breaks breaks(t0, t1, degree);
+  for (size_t i = 1; i + 1 < target_breaks.size(); ++i)
+    breaks.add(target_breaks[i], target.degree - target_mults[i]);
+  add_knot_crossings(base.space, samples, breaks, t_range);
+
+  // Fit, then refine the knot vector where the fit misses the samples; stop at the tolerance, at
+  // max_poles, or when refining no longer pays (the samples' own noise).
+  const double fit_tol = options.fit_tolerance * width.maxCoeff();
+  const int per_knot_span = 2 * (degree + 1);
+  BSplineCurve curve;
+  double best = std::numeric_limits<double>::infinity();
+  int stalls = 0;
+  for (int round = 0; round < 40; ++round) {
+    const std::vector<double> kb = breaks.values();
+    fill_spans(samples, kb, per_knot_span);
+    const BSplineCurve trial = fit(samples.points(), degree, breaks.flat());
+    std::vector<double> span_error(kb.size() - 1, 0.0);
+    double worst = 0.0;
+    for (const auto& [t, s] : samples.points()) {
+      const int span =
+          std::clamp(static_cast<int>(std::upper_bound(kb.begin(), kb.end(), t) - kb.begin()) - 1,
+                     0, static_cast<int>(kb.size()) - 2);
+      const double e = (trial.evaluate(t) - s.uv).norm();
+      span_error[span] = std::max(span_error[span], e);
+      worst = std::max(worst, e);
+    }
+    stalls = worst < 0.5 * best ? 0 : stalls + 1;
+    if (worst < best) {
+      curve = trial;
+      best = worst;
+    }
+    if (best <= fit_tol || stalls >= 3) break;
+    std::vector<double> inserts;
+    for (size_t s = 0; s < span_error.size(); ++s) {
+      if (span_error[s] > fit_tol) inserts.push_back(0.5 * (kb[s] + kb[s + 1]));
+    }
+    if (breaks.poles() + static_cast<int>(inserts.size()) > options.max_poles) break;
+    for (double t : inserts) breaks.add(t, degree - 1);
+  }
+
+  // Poles inside the domain keep the whole curve inside (convex hull); clipping only removes the
+  // fit's overshoot near the boundary.
+  for (int i = 0; i < curve.pole_count(); ++i)
+    curve.poles.row(i) = curve.poles.row(i).transpose().cwiseMax(lo).cwiseMin(hi).transpose();
+
+  PreImage out;
+  out.curve = curve;
+  for (const auto& [t, s] : samples.points()) {
+    out.fit_error = std::max(out.fit_error, (curve.evaluate(t) - s.uv).norm());
+    out.max_distance = std::max(out.max_distance, s.distance);
+  }
+  out.curve.validate("pre-image");
+  return out;
+}
+
+}  // namespace varsurf::occ

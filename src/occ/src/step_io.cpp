@@ -1,0 +1,73 @@
+#include "varsurf/occ/step_io.hpp"
+
+#include <IFSelect_ReturnStatus.hxx>
+#include <Interface_Static.hxx>
+#include <STEPControl_Controller.hxx>
+#include <STEPControl_Reader.hxx>
+#include <STEPControl_Writer.hxx>
+
+#include <fstream>
+#include <string>
+
+#include "varsurf/core/errors.hpp"
+#include "varsurf/occ/occ_error.hpp"
+
+namespace varsurf::occ {
+
+namespace {
+
+// Sets an OCCT static parameter for the lifetime of the object, then puts the old value back.
+class StaticSetting {
+ public:
+  StaticSetting(const char* name, const char* value) : name_(name) {
+    const char* old = Interface_Static::CVal(name);
+    had_ = old != nullptr;
+    if (had_) old_ = old;
+    if (!Interface_Static::SetCVal(name, value))
+      throw GeometryError(std::string("writing STEP: cannot set ") + name + " = " + value);
+  }
+  ~StaticSetting() {
+    if (had_) Interface_Static::SetCVal(name_, old_.c_str());
+  }
+  StaticSetting(const StaticSetting&) = delete;
+  StaticSetting& operator=(const StaticSetting&) = delete;
+
+ private:
+  const char* name_;
+  std::string old_;
+  bool had_ = false;
+};
+
+}  // namespace
+
+void write_step(const TopoDS_Shape& shape, const std::string& path) {
+  if (shape.IsNull()) throw InvalidInput("cannot write a null shape to STEP");
+  if (path.empty()) throw InvalidInput("STEP file path is empty");
+  guarded("writing STEP", [&] {
+    STEPControl_Controller::Init();  // registers the STEP settings changed below
+    const StaticSetting schema("write.step.schema", "AP214IS");
+    const StaticSetting surface_curves("write.surfacecurve.mode", "1");
+    STEPControl_Writer writer;  // after the settings: its model takes the schema when created
+    if (writer.Transfer(shape, STEPControl_AsIs) != IFSelect_RetDone)
+      throw GeometryError("writing STEP: the shape could not be translated");
+    if (writer.Write(path.c_str()) != IFSelect_RetDone)
+      throw GeometryError("writing STEP: cannot write '" + path + "'");
+  });
+}
+
+TopoDS_Shape read_step(const std::string& path) {
+  if (path.empty()) throw InvalidInput("STEP file path is empty");
+  if (!std::ifstream(path).good()) throw GeometryError("reading STEP: cannot open '" + path + "'");
+  return guarded("reading STEP", [&] {
+    STEPControl_Reader reader;
+    if (reader.ReadFile(path.c_str()) != IFSelect_RetDone)
+      throw GeometryError("reading STEP: '" + path + "' is not a readable STEP file");
+    if (reader.TransferRoots() <= 0)
+      throw GeometryError("reading STEP: '" + path + "' holds no transferable shape");
+    TopoDS_Shape shape = reader.OneShape();
+    if (shape.IsNull()) throw GeometryError("reading STEP: '" + path + "' holds no shape");
+    return shape;
+  });
+}
+
+}  // namespace varsurf::occ

@@ -1,0 +1,57 @@
+"""VarSurf: variational B-spline surface modeling for FreeCAD.
+
+App-side public API (importable headless, without any GUI module):
+
+    make_sheet(base, curves, stretch=0.0, bend=1.0, fix_boundary=True)  -> Sheet object
+    export_step(objects, path)                                           -> path
+    selection_to_sheet_args(selection_ex)                                -> (base, curves)
+    solve_sheet_on_face(face, edges, ...)                                -> SheetOutcome
+"""
+
+__version__ = "0.1.0"
+
+from varsurf.model import (  # noqa: E402
+    DEFAULT_BEND,
+    DEFAULT_RANK_TOLERANCE,
+    DEFAULT_TOLERANCE,
+    DEFAULT_MIN_SPANS,
+    DEFAULT_MAX_SPANS,
+    DEFAULT_STRETCH,
+    SheetError,
+    SheetOutcome,
+    solve_sheet_on_face,
+)
+
+
+def __getattr__(name):
+    # The document-level API needs FreeCAD; load it on first use so that `import varsurf` also
+    # works where only the native extension and the math are wanted.
+    if name in ("make_sheet", "export_step", "selection_to_sheet_args", "selection_problem",
+                "create_sheet_from_selection", "sheet_command_lines", "is_sheet",
+                "run_sheet_command"):
+        from varsurf import api
+
+        return getattr(api, name)
+    raise AttributeError(f"module 'varsurf' has no attribute {name!r}")
+
+
+__all__ = [
+    "__version__",
+    "DEFAULT_BEND",
+    "DEFAULT_RANK_TOLERANCE",
+    "DEFAULT_TOLERANCE",
+    "DEFAULT_MIN_SPANS",
+    "DEFAULT_MAX_SPANS",
+    "DEFAULT_STRETCH",
+    "SheetError",
+    "SheetOutcome",
+    "solve_sheet_on_face",
+    "make_sheet",
+    "export_step",
+    "selection_to_sheet_args",
+    "selection_problem",
+    "create_sheet_from_selection",
+    "sheet_command_lines",
+    "is_sheet",
+    "run_sheet_command",
+]

@@ -1,0 +1,290 @@
+"""Scripting API of the VarSurf workbench (App side: works headless, in macros and in the GUI).
+
+    import varsurf
+    sheet = varsurf.make_sheet((surface, "Face1"), [(sketch, ("Edge1", "Edge2"))], bend=1.0)
+    App.ActiveDocument.recompute()
+    print(sheet.MaxDeviations)
+    varsurf.export_step([sheet], "/tmp/sheet.step")
+"""
+
+from __future__ import annotations
+
+import os
+from typing import Iterable, List, Optional, Sequence, Tuple
+
+import FreeCAD
+
+from varsurf import model
+
+#: Name of the undo transaction the GUI command and the task panel open.
+TRANSACTION_CREATE = "Create VarSurf sheet"
+
+
+# --------------------------------------------------------------------------------------------
+# references
+
+
+def _as_names(subs) -> Tuple[str, ...]:
+    if subs is None:
+        return ()
+    if isinstance(subs, str):
+        return (subs,) if subs else ()
+    return tuple(str(s) for s in subs if s)
+
+
+def _shape_of(obj):
+    shape = getattr(obj, "Shape", None)
+    if shape is None or shape.isNull():
+        raise ValueError(f"{obj.Label} has no shape")
+    return shape
+
+
+def _normalize_base(base):
+    if not isinstance(base, (tuple, list)) or len(base) != 2:
+        raise ValueError('base must be (object, "FaceN")')
+    obj, subs = base
+    names = _as_names(subs)
+    if len(names) != 1 or not names[0].startswith("Face"):
+        raise ValueError(f'base must name exactly one face of {obj.Label}, e.g. (obj, "Face1")')
+    return obj, names[0]
+
+
+def _normalize_curves(curves) -> List[Tuple[object, Tuple[str, ...]]]:
+    """[(obj, ("Edge1", ...)), ...], merged per object, in order; a bare object means all its edges."""
+    merged: List[Tuple[object, List[str]]] = []
+    for item in curves or []:
+        if isinstance(item, (tuple, list)):
+            if len(item) != 2:
+                raise ValueError('each curve must be (object, "EdgeN") or (object, ("EdgeN", ...))')
+            obj, subs = item
+            names = _as_names(subs)
+        else:
+            obj, names = item, ()
+        if not names:
+            names = tuple(f"Edge{i + 1}" for i in range(len(_shape_of(obj).Edges)))
+        for name in names:
+            if not name.startswith("Edge"):
+                raise ValueError(f"{obj.Label}:{name} is not an edge")
+        for entry in merged:
+            if entry[0] is obj:
+                entry[1].extend(n for n in names if n not in entry[1])
+                break
+        else:
+            merged.append((obj, list(dict.fromkeys(names))))
+    return [(obj, tuple(names)) for obj, names in merged]
+
+
+# --------------------------------------------------------------------------------------------
+# creation
+
+
+def make_sheet(
+    base,
+    curves: Iterable = (),
+    stretch: float = model.DEFAULT_STRETCH,
+    bend: float = model.DEFAULT_BEND,
+    fix_boundary: bool = True,
+    tolerance: float = model.DEFAULT_TOLERANCE,
+    min_spans: int = model.DEFAULT_MIN_SPANS,
+    max_spans: int = model.DEFAULT_MAX_SPANS,
+    doc=None,
+    name: str = "Sheet",
+):
+    """Add a VarSurf Sheet to the document (it is computed at the next recompute).
+
+    base: (object, "FaceN"), the base surface; its boundary is kept when fix_boundary is True.
+    curves: [(object, "EdgeN") or (object, ("EdgeN", ...)) or object (all its edges), ...], the
+        curves the sheet must pass through; they must lie over the base face.
+    stretch, bend: thin-plate weights alpha and beta (default: pure thin plate, 0 and 1).
+    tolerance: distance (mm) at which a curve counts as met.
+    min_spans, max_spans: spans per direction the base face is refined to, and the limit of the
+        automatic refinement used when the curves cannot be met within the tolerance.
+    """
+    from varsurf.app.sheet import SheetFeature
+
+    base_obj, face_name = _normalize_base(base)
+    curve_links = _normalize_curves(curves)
+    if doc is None:
+        doc = base_obj.Document
+    obj = doc.addObject("Part::FeaturePython", name)
+    SheetFeature(obj)
+    obj.Base = (base_obj, face_name)
+    obj.Curves = [(o, names) for o, names in curve_links]
+    obj.Stretch = float(stretch)
+    obj.Bend = float(bend)
+    obj.FixBoundary = bool(fix_boundary)
+    obj.Tolerance = float(tolerance)
+    obj.MinSpans = int(min_spans)
+    obj.MaxSpans = int(max_spans)
+    if FreeCAD.GuiUp:
+        from varsurf.gui.view_providers import ViewProviderSheet
+
+        ViewProviderSheet(obj.ViewObject)
+        obj.ViewObject.Proxy.on_created(obj.ViewObject)
+    return obj
+
+
+def export_step(objects, path: str) -> str:
+    """Write the shapes of ``objects`` (document objects or Part shapes) to an AP214 STEP file.
+
+    Faces keep their exact B-spline surfaces and their pcurves. Returns the path.
+    """
+    import Part
+
+    if not isinstance(objects, (list, tuple)):
+        objects = [objects]
+    shapes = []
+    for item in objects:
+        shape = item if isinstance(item, Part.Shape) else _shape_of(item)
+        if shape.isNull():
+            raise ValueError("cannot export an empty shape")
+        shapes.append(shape)
+    if not shapes:
+        raise ValueError("nothing to export")
+    shape = shapes[0] if len(shapes) == 1 else Part.makeCompound(shapes)
+    folder = os.path.dirname(os.path.abspath(path))
+    os.makedirs(folder, exist_ok=True)
+    model.native().write_step(shape.exportBrepToString(), path)
+    return path
+
+
+# --------------------------------------------------------------------------------------------
+# selection (shared by the GUI command and the tests)
+
+SELECTION_HINT = (
+    "Select exactly one face (the base surface) and, optionally, edges of sketches or other "
+    "shapes (the curves the sheet must pass through)."
+)
+
+
+def selection_to_sheet_args(selection_ex: Sequence):
+    """(base, curves) for make_sheet from Gui.Selection.getSelectionEx(), or ValueError.
+
+    Each item needs ``.Object`` and ``.SubElementNames``. A whole object (no sub-element) counts
+    as its face if it has exactly one, otherwise as all its edges if it has no face.
+    """
+    faces: List[Tuple[object, str]] = []
+    edges: List[Tuple[object, str]] = []
+    for sel in selection_ex or []:
+        obj = sel.Object
+        subs = [s for s in (getattr(sel, "SubElementNames", None) or ()) if s]
+        if not subs:
+            shape = getattr(obj, "Shape", None)
+            if shape is None or shape.isNull():
+                raise ValueError(f"{obj.Label} has no shape. {SELECTION_HINT}")
+            if len(shape.Faces) == 1:
+                faces.append((obj, "Face1"))
+            elif len(shape.Faces) > 1:
+                raise ValueError(
+                    f"{obj.Label} has {len(shape.Faces)} faces: select one of them in the 3D "
+                    f"view. {SELECTION_HINT}"
+                )
+            elif shape.Edges:
+                edges.extend((obj, f"Edge{i + 1}") for i in range(len(shape.Edges)))
+            else:
+                raise ValueError(f"{obj.Label} has neither a face nor an edge. {SELECTION_HINT}")
+            continue
+        for sub in subs:
+            element = sub.split(".")[-1]
+            if element.startswith("Face"):
+                faces.append((obj, element))
+            elif element.startswith("Edge"):
+                edges.append((obj, element))
+            elif element.startswith("Vertex"):
+                raise ValueError(
+                    f"{obj.Label}:{element} is a vertex; a sheet takes one face and edges, "
+                    f"not points. {SELECTION_HINT}"
+                )
+            else:
+                raise ValueError(f"{obj.Label}:{element} is not a face or an edge. {SELECTION_HINT}")
+    if not faces and not edges:
+        raise ValueError(f"Nothing is selected. {SELECTION_HINT}")
+    if not faces:
+        raise ValueError(f"No face is selected. {SELECTION_HINT}")
+    if len(faces) > 1:
+        listed = ", ".join(f"{o.Label}:{n}" for o, n in faces)
+        raise ValueError(f"{len(faces)} faces are selected ({listed}). {SELECTION_HINT}")
+    curves = _normalize_curves([(o, n) for o, n in edges])
+    return faces[0], curves
+
+
+def selection_problem(selection_ex) -> Optional[str]:
+    """None when the selection makes a sheet, otherwise why not."""
+    try:
+        selection_to_sheet_args(selection_ex)
+    except ValueError as error:
+        return str(error)
+    return None
+
+
+def _ref(obj) -> str:
+    return f"App.getDocument({obj.Document.Name!r}).getObject({obj.Name!r})"
+
+
+def sheet_command_lines(base, curves) -> List[str]:
+    """The macro lines that create and compute a sheet (what the GUI command records)."""
+    base_obj, face_name = _normalize_base(base)
+    curve_links = _normalize_curves(curves)
+    curve_text = ", ".join(f"({_ref(o)}, {tuple(names)!r})" for o, names in curve_links)
+    doc = base_obj.Document
+    return [
+        "import varsurf",
+        f"_sheet = varsurf.make_sheet(({_ref(base_obj)}, {face_name!r}), [{curve_text}])",
+        f"App.getDocument({doc.Name!r}).recompute()",
+    ]
+
+
+def _exec_line(line: str, namespace={}):  # noqa: B006 - one namespace, like the GUI console
+    if not namespace:
+        namespace.update({"App": FreeCAD, "FreeCAD": FreeCAD, "__name__": "__varsurf_macro__"})
+    exec(line, namespace)
+
+
+def create_sheet_from_selection(selection_ex, do_command=None):
+    """Validate the selection and create a sheet through macro lines, in one undo transaction.
+
+    do_command runs one line (FreeCADGui.doCommand in the GUI, so the lines are recorded in
+    macros); without it the lines are exec()'d. Raises ValueError for an unusable selection,
+    creating nothing. Returns the new Sheet object.
+    """
+    base, curves = selection_to_sheet_args(selection_ex)
+    doc = base[0].Document
+    run = do_command or _exec_line
+    before = set(o.Name for o in doc.Objects)
+    doc.openTransaction(TRANSACTION_CREATE)
+    try:
+        for line in sheet_command_lines(base, curves):
+            run(line)
+    except Exception:
+        doc.abortTransaction()
+        raise
+    doc.commitTransaction()
+    created = [o for o in doc.Objects if o.Name not in before and _is_sheet(o)]
+    return created[-1] if created else None
+
+
+def run_sheet_command(selection_ex, do_command=None, on_error=None):
+    """What the VarSurf_Sheet command does when activated (also usable headless).
+
+    A usable selection creates the sheet through recorded macro lines in one transaction; an
+    unusable one is reported in the report view (and through ``on_error``, e.g. a dialog) and
+    creates nothing. Returns the new Sheet or None.
+    """
+    try:
+        return create_sheet_from_selection(selection_ex, do_command=do_command)
+    except ValueError as error:
+        message = str(error)
+        FreeCAD.Console.PrintError(f"VarSurf: {message}\n")
+        if on_error is not None:
+            on_error(message)
+        return None
+
+
+def _is_sheet(obj) -> bool:
+    proxy = getattr(obj, "Proxy", None)
+    return getattr(proxy, "Type", None) == "VarSurf::Sheet"
+
+
+def is_sheet(obj) -> bool:
+    """True for VarSurf Sheet objects."""
+    return _is_sheet(obj)

@@ -1,0 +1,1 @@
+"""App-side (document) objects of VarSurf; no GUI imports here."""

@@ -1,0 +1,197 @@
+"""The Sheet feature: a variational B-spline sheet over a base face, through curves.
+
+A ``Part::FeaturePython`` whose ``Shape`` is the face that minimizes the thin-plate energy
+``Stretch * (first derivatives)^2 + Bend * (second derivatives)^2`` among the B-splines of the
+base face's space that contain the ``Curves`` (and, with ``FixBoundary``, keep the base face's
+boundary). App side only: no GUI import, so it computes in freecadcmd and headless scripts.
+"""
+
+from __future__ import annotations
+
+import FreeCAD
+
+from varsurf import model
+
+TYPE = "VarSurf::Sheet"
+STATE_VERSION = 1
+
+# Property status bits (App::PropertyType): read-only in the editor, output (does not touch).
+_PROP_READONLY = 1
+_PROP_OUTPUT = 8
+
+_FLOAT_MAX = 1.0e12
+
+# name, type, group, tooltip, output?
+_PROPERTIES = [
+    ("Base", "App::PropertyLinkSub", "Sheet", "The base face: its surface is the start shape and its boundary is kept when FixBoundary is on", False),
+    ("Curves", "App::PropertyLinkSubList", "Sheet", "Edges the sheet must pass through; each must lie over the base face", False),
+    ("Stretch", "App::PropertyFloatConstraint", "Sheet", "Stretching weight (alpha, >= 0): penalizes first derivatives, pulls toward a membrane of least area. Default 0", False),
+    ("Bend", "App::PropertyFloatConstraint", "Sheet", "Bending weight (beta, >= 0): penalizes second derivatives, pulls toward a fair thin plate. Default 1", False),
+    ("FixBoundary", "App::PropertyBool", "Sheet", "Keep the base face's boundary (its boundary poles are held)", False),
+    ("Tolerance", "App::PropertyLength", "Sheet", "Distance at which a curve counts as met; the sheet fits the curves this closely and leaves the rest to fairness", False),
+    ("MinSpans", "App::PropertyIntegerConstraint", "Sheet", "The base face is refined (knot insertion, shape unchanged) to at least this many spans per direction", False),
+    ("MaxSpans", "App::PropertyIntegerConstraint", "Sheet", "While the curves cannot be met within Tolerance, spans are doubled up to this count", False),
+    ("MaxDeviations", "App::PropertyFloatList", "Result", "Largest distance (mm) from each curve to the sheet, measured on the result", True),
+    ("CurveNames", "App::PropertyStringList", "Result", "The curves, in the order of MaxDeviations", True),
+    ("PoleCountU", "App::PropertyInteger", "Result", "Poles of the sheet along u", True),
+    ("PoleCountV", "App::PropertyInteger", "Result", "Poles of the sheet along v", True),
+    ("DegreeU", "App::PropertyInteger", "Result", "Degree of the sheet along u", True),
+    ("DegreeV", "App::PropertyInteger", "Result", "Degree of the sheet along v", True),
+    ("SolveTime", "App::PropertyFloat", "Result", "Time of the last solve (s)", True),
+    ("ConstraintRank", "App::PropertyInteger", "Result", "Independent constraint rows kept by the solver", True),
+    ("Status", "App::PropertyString", "Result", "Outcome of the last recompute", True),
+]
+
+
+class SheetComputeError(RuntimeError):
+    """Raised from execute() so that FreeCAD marks the Sheet in error; names object and curve."""
+
+
+def _add_missing_properties(obj):
+    for name, kind, group, tip, output in _PROPERTIES:
+        if name in obj.PropertiesList:
+            continue
+        attr = (_PROP_READONLY | _PROP_OUTPUT) if output else 0
+        obj.addProperty(kind, name, group, tip, attr)
+        if name == "Stretch":
+            obj.Stretch = (model.DEFAULT_STRETCH, 0.0, _FLOAT_MAX, 0.1)
+        elif name == "Bend":
+            obj.Bend = (model.DEFAULT_BEND, 0.0, _FLOAT_MAX, 0.1)
+        elif name == "FixBoundary":
+            obj.FixBoundary = True
+        elif name == "Tolerance":
+            obj.Tolerance = model.DEFAULT_TOLERANCE
+        elif name == "MinSpans":
+            obj.MinSpans = (model.DEFAULT_MIN_SPANS, 1, 512, 1)
+        elif name == "MaxSpans":
+            obj.MaxSpans = (model.DEFAULT_MAX_SPANS, 1, 512, 1)
+        elif name == "Status":
+            obj.Status = "Not computed"
+
+
+def _restore_constraints(obj):
+    # The bounds of a dynamic FloatConstraint are not written to the file; set them again.
+    for name in ("Stretch", "Bend"):
+        if name in obj.PropertiesList:
+            value = float(getattr(obj, name))
+            setattr(obj, name, (max(value, 0.0), 0.0, _FLOAT_MAX, 0.1))
+    for name in ("MinSpans", "MaxSpans"):
+        if name in obj.PropertiesList:
+            setattr(obj, name, (min(max(int(getattr(obj, name)), 1), 512), 1, 512, 1))
+    for name, _kind, _group, _tip, output in _PROPERTIES:
+        if output and name in obj.PropertiesList:
+            obj.setEditorMode(name, 1)
+
+
+def resolve_inputs(obj):
+    """(face, edges, names) of a Sheet's links, with placements applied; SheetError if broken."""
+    import Part
+
+    if obj.Base is None:
+        raise model.SheetError('no base face: set Base to (object, "FaceN")')
+    base_obj, base_subs = obj.Base
+    base_subs = [s for s in base_subs if s]
+    if len(base_subs) != 1 or not base_subs[0].startswith("Face"):
+        raise model.SheetError(f"Base must reference exactly one face of {base_obj.Label}")
+    face = _element(Part, base_obj, base_subs[0])
+    edges, names = [], []
+    for link_obj, subs in obj.Curves:
+        for sub in subs:
+            if not sub:
+                continue
+            name = f"{link_obj.Label}:{sub}"
+            if not sub.startswith("Edge"):
+                raise model.SheetError(f"{name} is not an edge")
+            edges.append(_element(Part, link_obj, sub))
+            names.append(name)
+    return face, edges, names
+
+
+def _element(Part, link_obj, sub):
+    try:
+        shape = Part.getShape(link_obj, sub, needSubElement=True)
+    except Exception as error:
+        raise model.SheetError(f"{link_obj.Label}:{sub} cannot be found ({error})") from error
+    if shape.isNull():
+        raise model.SheetError(f"{link_obj.Label}:{sub} does not exist (anymore)")
+    return shape
+
+
+def _clear_results(obj, status):
+    obj.MaxDeviations = []
+    obj.CurveNames = []
+    obj.ConstraintRank = 0
+    obj.SolveTime = 0.0
+    obj.Status = status
+
+
+class SheetFeature:
+    """Proxy of a VarSurf Sheet (Part::FeaturePython)."""
+
+    Type = TYPE
+
+    def __init__(self, obj):
+        obj.Proxy = self
+        self.Type = TYPE
+        _add_missing_properties(obj)
+        _restore_constraints(obj)
+
+    # -- persistence: a small versioned dict (both protocols: FreeCAD's and pickle's, which in
+    # Python 3.11 has a default object.__getstate__ that would otherwise be picked) --
+    def dumps(self):
+        return {"type": TYPE, "version": STATE_VERSION}
+
+    def loads(self, state):
+        self.Type = TYPE
+        if isinstance(state, dict):
+            self.state_version = int(state.get("version", STATE_VERSION))
+        return None
+
+    def __getstate__(self):
+        return self.dumps()
+
+    def __setstate__(self, state):
+        self.loads(state)
+
+    def onDocumentRestored(self, obj):
+        self.Type = TYPE
+        _add_missing_properties(obj)
+        _restore_constraints(obj)
+
+    def onChanged(self, obj, prop):
+        pass
+
+    def execute(self, obj):
+        try:
+            face, edges, names = resolve_inputs(obj)
+            outcome = model.solve_sheet_on_face(
+                face,
+                edges,
+                stretch=float(obj.Stretch),
+                bend=float(obj.Bend),
+                fix_boundary=bool(obj.FixBoundary),
+                tolerance=float(obj.Tolerance),
+                min_spans=int(obj.MinSpans),
+                max_spans=int(obj.MaxSpans),
+                names=names,
+            )
+        except Exception as error:  # report, then fail the recompute of this object
+            message = f"{obj.Label}: {error}"
+            _clear_results(obj, f"Error: {error}")
+            FreeCAD.Console.PrintError(f"VarSurf: {message}\n")
+            raise SheetComputeError(message) from error
+
+        obj.Shape = outcome.shape
+        obj.MaxDeviations = [float(d) for d in outcome.max_deviations]
+        obj.CurveNames = list(outcome.curve_names)
+        obj.PoleCountU = outcome.pole_count_u
+        obj.PoleCountV = outcome.pole_count_v
+        obj.DegreeU = outcome.degree_u
+        obj.DegreeV = outcome.degree_v
+        obj.SolveTime = outcome.solve_seconds
+        obj.ConstraintRank = outcome.constraint_rank
+        n = len(outcome.max_deviations)
+        obj.Status = (
+            f"OK: {outcome.pole_count_u} x {outcome.pole_count_v} poles, {n} curve"
+            f"{'' if n == 1 else 's'}, max deviation {outcome.max_deviation:.3g} mm"
+        )

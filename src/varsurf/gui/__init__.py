@@ -1,0 +1,1 @@
+"""GUI side of VarSurf: commands, view providers and task panels (needs FreeCADGui)."""

@@ -1,0 +1,111 @@
+"""View providers of VarSurf objects."""
+
+from __future__ import annotations
+
+import FreeCAD as App
+import FreeCADGui as Gui
+
+from varsurf.gui import resources
+
+TYPE = "VarSurf::ViewProviderSheet"
+STATE_VERSION = 1
+
+
+def _input_objects(obj):
+    """The objects a Sheet links to: base first, then the curves' objects, without repeats."""
+    found = []
+    base = getattr(obj, "Base", None)
+    if base:
+        found.append(base[0])
+    for link_obj, _subs in getattr(obj, "Curves", None) or []:
+        found.append(link_obj)
+    unique = []
+    for item in found:
+        if item is not None and item is not obj and item not in unique:
+            unique.append(item)
+    return unique
+
+
+class ViewProviderSheet:
+    """Tree icon, children (base and curves), double click to edit."""
+
+    def __init__(self, vobj):
+        vobj.Proxy = self
+        self.attach(vobj)
+
+    def attach(self, vobj):
+        self.ViewObject = vobj
+        self.Object = vobj.Object
+
+    def getIcon(self):
+        return resources.icon("VarSurf_Sheet.svg")
+
+    def claimChildren(self):
+        obj = getattr(self, "Object", None)
+        return _input_objects(obj) if obj is not None else []
+
+    def on_created(self, vobj):
+        """Hide the base face's object, as FreeCAD features hide the shapes they consume."""
+        base = getattr(vobj.Object, "Base", None)
+        if base and base[0] is not None and base[0].ViewObject is not None:
+            base[0].ViewObject.Visibility = False
+
+    def onDelete(self, vobj, subelements):
+        base = getattr(vobj.Object, "Base", None)
+        if base and base[0] is not None and base[0].ViewObject is not None:
+            base[0].ViewObject.Visibility = True
+        return True
+
+    def updateData(self, obj, prop):
+        pass
+
+    def onChanged(self, vobj, prop):
+        pass
+
+    def doubleClicked(self, vobj):
+        Gui.ActiveDocument.setEdit(vobj.Object.Name, 0)
+        return True
+
+    def setupContextMenu(self, vobj, menu):
+        from PySide import QtGui
+
+        action = QtGui.QAction(
+            QtGui.QIcon(self.getIcon()),
+            QtGui.QApplication.translate("VarSurf_Sheet", "Edit sheet"),
+            menu,
+        )
+        action.triggered.connect(lambda: Gui.ActiveDocument.setEdit(vobj.Object.Name, 0))
+        menu.addAction(action)
+
+    def setEdit(self, vobj, mode=0):
+        if mode != 0:
+            return False  # let FreeCAD handle Transform etc.
+        from varsurf.gui.task_sheet import TaskPanelSheet
+
+        Gui.Control.showDialog(TaskPanelSheet(vobj.Object))
+        return True
+
+    def unsetEdit(self, vobj, mode=0):
+        if mode != 0:
+            return False
+        Gui.Control.closeDialog()
+        return True
+
+    # -- persistence (see app/sheet.py for why both protocols) --
+    def dumps(self):
+        return {"type": TYPE, "version": STATE_VERSION}
+
+    def loads(self, state):
+        return None
+
+    def __getstate__(self):
+        return self.dumps()
+
+    def __setstate__(self, state):
+        self.loads(state)
+
+
+def ensure_view_provider(obj):
+    """Give a Sheet created without GUI (or restored without a proxy) its view provider."""
+    if App.GuiUp and obj.ViewObject is not None and obj.ViewObject.Proxy is None:
+        ViewProviderSheet(obj.ViewObject)

@@ -1,0 +1,268 @@
+"""The variational sheet as a computation, without a document.
+
+``solve_sheet_on_face`` takes a Part face (the base surface and its boundary) and Part edges (the
+curves the sheet must pass through), builds the native ``SheetProblem`` and returns the solved face
+together with what a user wants to know about it: how far each curve is from the result (measured
+independently of the solver), the size of the B-spline, the solve time and the constraint rank.
+
+Shapes cross into the native extension as BREP strings, so FreeCAD and the extension need only
+share OpenCASCADE, not any C++ types.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+from typing import List, Optional, Sequence
+
+#: Thin plate by default: no stretching term, unit bending. Stretch (alpha) pulls the sheet toward
+#: the smallest area (a membrane), bend (beta) toward the smallest curvature.
+DEFAULT_STRETCH = 0.0
+DEFAULT_BEND = 1.0
+#: Largest distance (mm) at which a curve counts as met. The solver fits each group of curves
+#: only until its RMS residual is a quarter of this (the discrepancy principle: max deviations
+#: run 1-3x the RMS) and leaves the remaining directions to the energy, so the sheet stays fair
+#: instead of chasing data its space can hold only with wild poles.
+DEFAULT_TOLERANCE = 0.01
+FIT_TO_TOLERANCE = 0.25
+#: The base face's knot vectors are refined (knot insertion: the base shape is unchanged) to at
+#: least this many spans per direction; curves off the iso lines need that freedom.
+DEFAULT_MIN_SPANS = 16
+#: Bases of lower degree (planes and ruled faces convert to degree 1) are elevated to cubic so
+#: the sheet can bend smoothly.
+SHEET_MIN_DEGREE = 3
+#: When the curves cannot be held within the tolerance even with wild poles (the solver's
+#: "conflict"), the spans are doubled up to this count before giving up.
+DEFAULT_MAX_SPANS = 64
+#: Relative singular value below which constraint rows are numerically dependent.
+DEFAULT_RANK_TOLERANCE = 1e-9
+#: Points per curve at which the result's distance to the curve is measured.
+DEVIATION_SAMPLES = 200
+
+try:  # the extension is optional at import time so that the workbench still loads and explains
+    from varsurf import _native
+except ImportError as _error:  # pragma: no cover - exercised only without a build
+    _native = None
+    _NATIVE_IMPORT_ERROR: Optional[BaseException] = _error
+else:
+    _NATIVE_IMPORT_ERROR = None
+
+
+class SheetError(ValueError):
+    """A sheet cannot be built from its inputs; the message names the offending input."""
+
+
+def native():
+    """The compiled extension, or an ImportError that says how to build it."""
+    if _native is None:
+        raise ImportError(
+            "The VarSurf native extension (varsurf._native) is not built: run tools/build.sh "
+            f"in the VarSurf folder ({_NATIVE_IMPORT_ERROR})"
+        )
+    return _native
+
+
+@dataclass
+class SheetOutcome:
+    """A solved sheet and its figures of merit."""
+
+    shape: object  # Part.Face of the result, in the base face's coordinates
+    surface: object  # _native.BSplineSurface
+    curve_names: List[str] = field(default_factory=list)
+    max_deviations: List[float] = field(default_factory=list)  # mm, one per curve
+    pole_count_u: int = 0
+    pole_count_v: int = 0
+    degree_u: int = 0
+    degree_v: int = 0
+    solve_seconds: float = 0.0  # native solve
+    total_seconds: float = 0.0  # conversion + solve + result face + measurement
+    constraint_rank: int = 0
+    unknowns: int = 0
+    report: object = None  # _native.SolveReport
+
+    @property
+    def max_deviation(self) -> float:
+        return max(self.max_deviations, default=0.0)
+
+    def summary(self) -> str:
+        lines = [
+            f"poles {self.pole_count_u} x {self.pole_count_v}, degree {self.degree_u} x {self.degree_v}",
+            f"unknowns {self.unknowns}, constraint rank {self.constraint_rank}",
+            f"solve {self.solve_seconds:.3f} s, total {self.total_seconds:.3f} s",
+        ]
+        for name, dev in zip(self.curve_names, self.max_deviations):
+            lines.append(f"{name}: max deviation {dev:.3g} mm")
+        return "\n".join(lines)
+
+
+def _build(cls, *args, **attrs):
+    """Construct a native value type from keyword attributes."""
+    try:
+        return cls(**attrs)
+    except TypeError:
+        obj = cls()
+        for key, value in attrs.items():
+            setattr(obj, key, value)
+        return obj
+
+
+def _int(value) -> int:
+    """An int from an attribute or a no-argument method (SplineSpace.nu() is a method)."""
+    return int(value() if callable(value) else value)
+
+
+def _part():
+    import Part  # FreeCAD's Part module; imported late so this module loads without FreeCAD
+
+    return Part
+
+
+def shape_from_brep(text: str):
+    Part = _part()
+    shape = Part.Shape()
+    shape.importBrepFromString(text)
+    return shape
+
+
+def _spans(space) -> int:
+    """Fewest polynomial spans of the space over its two directions."""
+    return min(len(set(space.knots_u)) - 1, len(set(space.knots_v)) - 1)
+
+
+def _single_face(shape):
+    faces = shape.Faces
+    if len(faces) != 1:
+        raise SheetError(f"expected one face from the extension, got {len(faces)}")
+    return faces[0]
+
+
+def solve_sheet_on_face(
+    face,
+    edges: Sequence,
+    stretch: float = DEFAULT_STRETCH,
+    bend: float = DEFAULT_BEND,
+    fix_boundary: bool = True,
+    tolerance: float = DEFAULT_TOLERANCE,
+    min_spans: int = DEFAULT_MIN_SPANS,
+    max_spans: int = DEFAULT_MAX_SPANS,
+    names: Optional[Sequence[str]] = None,
+    rank_tolerance: float = DEFAULT_RANK_TOLERANCE,
+) -> SheetOutcome:
+    """Solve the variational sheet over ``face`` that passes through ``edges``.
+
+    face: a Part.Face (any surface type; non-B-spline surfaces are converted to NURBS, and the
+        surface is cut to the face's parameter bounds). Its poles are the start shape and, with
+        ``fix_boundary``, its boundary poles are held so the sheet keeps the base face's boundary.
+    edges: Part.Edge objects the sheet must contain; each is projected onto the base face to find
+        its pre-image, so each must lie over the face.
+    stretch, bend: isotropic thin-plate weights (alpha, beta), both >= 0 and not both 0.
+    tolerance: distance (mm) at which a curve counts as met.
+    min_spans, max_spans: the base face is refined to at least min_spans spans per direction;
+        while the curves contradict each other by more than the tolerance, the spans are doubled
+        up to max_spans. A conflict that survives refinement (curves crossing at different
+        heights, a curve the fixed boundary cannot reach) is an error naming the curves.
+    names: one label per edge for messages and reports ("Sketch001:Edge2").
+
+    Raises SheetError (a ValueError) naming the curve or parameter at fault, and lets the
+    extension's SolveFailure / GeometryError through for numerical or kernel failures.
+    """
+    nat = native()
+    t0 = time.perf_counter()
+    edges = list(edges)
+    if names is None:
+        names = [f"Edge{i + 1}" for i in range(len(edges))]
+    names = [str(n) for n in names]
+    if len(names) != len(edges):
+        raise SheetError(f"{len(edges)} edges but {len(names)} names")
+    for label, value in (("Stretch", stretch), ("Bend", bend)):
+        if not value >= 0.0:  # also rejects NaN
+            raise SheetError(f"{label} must be >= 0 (got {value})")
+    if stretch == 0.0 and bend == 0.0:
+        raise SheetError("Stretch and Bend are both 0: the sheet would have no energy to minimize")
+    if not (tolerance > 0.0 and math.isfinite(tolerance)):
+        raise SheetError(f"Tolerance must be a positive length (got {tolerance})")
+    if not 1 <= int(min_spans) <= int(max_spans) <= 512:
+        raise SheetError(f"spans must satisfy 1 <= MinSpans <= MaxSpans <= 512 (got {min_spans}, {max_spans})")
+    if not 0.0 < rank_tolerance < 1.0:
+        raise SheetError(f"rank tolerance must be in (0, 1) (got {rank_tolerance})")
+    if getattr(face, "ShapeType", None) != "Face":
+        raise SheetError("the base must be a face")
+
+    try:
+        base = nat.surface_from_face_brep(face.exportBrepToString())
+    except nat.InvalidInput as error:
+        raise SheetError(f"the base face cannot be used: {error}") from error
+
+    constraints = []
+    targets = []
+    for edge, name in zip(edges, names):
+        if getattr(edge, "ShapeType", None) != "Edge":
+            raise SheetError(f"{name} is not an edge")
+        try:
+            curve = nat.curve_from_edge_brep(edge.exportBrepToString())
+        except (nat.InvalidInput, nat.GeometryError) as error:
+            raise SheetError(f"{name} cannot be converted to a B-spline curve: {error}") from error
+        try:
+            pre = nat.project_curve(base, curve)
+        except nat.InvalidInput as error:
+            raise SheetError(
+                f"{name} runs beyond the base face (it must lie over the face to be projected "
+                f"onto it): {error}"
+            ) from error
+        except nat.GeometryError as error:
+            raise SheetError(f"{name} cannot be projected onto the base face: {error}") from error
+        constraints.append(_build(nat.CurveConstraint, preimage=pre.curve, target=curve, weight=1.0))
+        targets.append(curve)
+
+    # Pre-images stay valid on every refinement: knot insertion keeps the parametrization.
+    spans = max(int(min_spans), _spans(base.space))
+    options = _build(nat.SolveOptions)
+    options.rank_tolerance = float(rank_tolerance)
+    options.fit_tolerance = FIT_TO_TOLERANCE * float(tolerance)
+    while True:
+        sheet = nat.refine_surface(base, spans, spans, SHEET_MIN_DEGREE)
+        space = sheet.space
+        problem = _build(
+            nat.SheetProblem,
+            space=space,
+            initial_poles=sheet.poles,
+            energy=nat.ThinPlateWeights.isotropic(float(stretch), float(bend)),
+            points=[],
+            curves=constraints,
+            fixed_poles=list(nat.boundary_pole_indices(space)) if fix_boundary else [],
+        )
+        result = nat.solve_sheet(problem, options)
+        conflict = float(result.report.conflict)
+        if conflict <= tolerance or 2 * spans > max_spans:
+            break
+        spans *= 2
+
+    surface = _build(nat.BSplineSurface, space=space, poles=result.poles)
+    if conflict > tolerance:
+        deviations = [float(nat.max_deviation(surface, c, DEVIATION_SAMPLES)) for c in targets]
+        worst = [f"{n} ({d:.3g} mm)" for n, d in zip(names, deviations) if d > tolerance]
+        raise SheetError(
+            f"the curves cannot all be met: they contradict each other by {conflict:.3g} mm "
+            f"(RMS) even with {spans} spans per direction. Curves off by more than the tolerance: "
+            f"{', '.join(worst) or 'none individually'}. Curves that cross must meet in space; "
+            "curves close to a kept boundary must reach it smoothly (or turn FixBoundary off)."
+        )
+    shape = _single_face(shape_from_brep(nat.face_brep(surface)))
+    deviations = [float(nat.max_deviation(surface, c, DEVIATION_SAMPLES)) for c in targets]
+    report = result.report
+    return SheetOutcome(
+        shape=shape,
+        surface=surface,
+        curve_names=list(names),
+        max_deviations=deviations,
+        pole_count_u=_int(space.nu),
+        pole_count_v=_int(space.nv),
+        degree_u=int(space.degree_u),
+        degree_v=int(space.degree_v),
+        solve_seconds=float(report.total_seconds),
+        total_seconds=time.perf_counter() - t0,
+        constraint_rank=int(report.constraint_rank),
+        unknowns=int(report.unknowns),
+        report=report,
+    )

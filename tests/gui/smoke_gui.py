@@ -1,0 +1,168 @@
+"""GUI smoke test, run inside the real FreeCAD GUI (under Xvfb):
+
+    xvfb-run -a -s "-screen 0 1280x1024x24" freecad tests/gui/smoke_gui.py
+
+Activates the VarSurf workbench, tries the command with a bad selection (nothing may be created),
+selects a B-spline face and sketch edges, runs VarSurf_Sheet, recomputes, opens and cancels the
+task panel, saves a screenshot and checks that it is not blank. Writes the outcome as JSON to
+$VARSURF_GUI_OUT/smoke.json (default: a folder next to this file's repository's out/) and quits.
+"""
+
+import json
+import os
+import sys
+import time
+import traceback
+
+import FreeCAD as App
+import FreeCADGui as Gui
+from PySide import QtCore, QtGui
+
+OUT = os.environ.get("VARSURF_GUI_OUT") or os.path.join(os.getcwd(), "out", "gui-smoke")
+os.makedirs(OUT, exist_ok=True)
+RESULT = os.path.join(OUT, "smoke.json")
+
+
+def image_stats(path):
+    image = QtGui.QImage(path)
+    if image.isNull():
+        return {"width": 0, "height": 0, "variance": 0.0, "non_white": 0.0}
+    w, h = image.width(), image.height()
+    values = []
+    non_white = 0
+    step = 4
+    for y in range(0, h, step):
+        for x in range(0, w, step):
+            c = QtGui.QColor(image.pixel(x, y))
+            gray = 0.299 * c.red() + 0.587 * c.green() + 0.114 * c.blue()
+            values.append(gray)
+            if gray < 245:
+                non_white += 1
+    mean = sum(values) / len(values)
+    variance = sum((v - mean) ** 2 for v in values) / len(values)
+    return {"width": w, "height": h, "variance": variance, "non_white": non_white / len(values)}
+
+
+def report_view_text():
+    widget = Gui.getMainWindow().findChild(QtGui.QTextEdit, "Report view")
+    return widget.toPlainText() if widget is not None else ""
+
+
+def run(result):
+    Gui.activateWorkbench("VarSurfWorkbench")
+    result["workbench"] = Gui.activeWorkbench().name()
+    result["command_registered"] = "VarSurf_Sheet" in Gui.listCommands()
+
+    import varsurf
+
+    repo = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(varsurf.__file__))))
+    sys.path.insert(0, os.path.join(repo, "tests", "python"))
+    import scenes
+
+    doc = App.newDocument("Smoke")
+    surface = scenes.add_face(doc, scenes.flat_face())  # a bicubic B-spline face, 11 x 11 poles
+    rail = scenes.add_line_sketch(doc, "Rail", 14.0, (25.0, 20.0), (75.0, 60.0))
+    arc = scenes.add_line_sketch(doc, "Side", 6.0, (60.0, 12.0), (88.0, 34.0))
+    doc.recompute()
+    Gui.updateGui()
+
+    # 1. a bad selection (edges only): the command is inactive and creates nothing
+    count = len(doc.Objects)
+    Gui.Selection.clearSelection()
+    Gui.Selection.addSelection(doc.Name, rail.Name, "Edge1")
+    result["active_with_edges_only"] = bool(Gui.Command.get("VarSurf_Sheet").isActive())
+    Gui.runCommand("VarSurf_Sheet")  # if it runs at all, it must refuse
+    Gui.updateGui()
+    result["created_on_bad_selection"] = len(doc.Objects) - count
+
+    # 2. the real thing: one face and edges of two sketches
+    Gui.Selection.clearSelection()
+    Gui.Selection.addSelection(doc.Name, surface.Name, "Face1")
+    Gui.Selection.addSelection(doc.Name, rail.Name, "Edge1")
+    Gui.Selection.addSelection(doc.Name, arc.Name, "Edge1")
+    result["selection"] = [
+        (s.ObjectName, list(s.SubElementNames)) for s in Gui.Selection.getSelectionEx()
+    ]
+    result["active_with_face_and_edges"] = bool(Gui.Command.get("VarSurf_Sheet").isActive())
+    t0 = time.time()
+    Gui.runCommand("VarSurf_Sheet")
+    doc.recompute()
+    Gui.updateGui()
+    result["command_seconds"] = time.time() - t0
+    sheets = [o for o in doc.Objects if varsurf.is_sheet(o)]
+    result["sheets"] = len(sheets)
+    if not sheets:
+        result["report_view"] = report_view_text()[-2000:]
+        raise RuntimeError("VarSurf_Sheet created no sheet")
+    sheet = sheets[0]
+    result["sheet_state"] = list(sheet.State)
+    result["sheet_valid"] = sheet.isValid() and not sheet.Shape.isNull()
+    result["max_deviations"] = list(sheet.MaxDeviations)
+    result["curve_names"] = list(sheet.CurveNames)
+    result["status"] = sheet.Status
+    result["base_hidden"] = not surface.ViewObject.Visibility
+    result["undo_names"] = list(doc.UndoNames)
+    result["children"] = [o.Name for o in sheet.ViewObject.Proxy.claimChildren()]
+    result["icon"] = sheet.ViewObject.Proxy.getIcon()
+
+    # 3. the task panel: opens, shows the results, Cancel restores the values
+    Gui.ActiveDocument.setEdit(sheet.Name, 0)
+    Gui.updateGui()
+    result["task_panel_open"] = bool(Gui.Control.activeDialog())
+    bend_before = sheet.Bend
+    widgets = {w.objectName(): w for w in QtGui.QApplication.allWidgets() if w.objectName()}
+    table_rows = widgets["deviationTable"].rowCount()
+    widgets["bendSpin"].setValue(5.0)
+    widgets["updateButton"].click()  # preview with the new value
+    Gui.updateGui()
+    result["task_panel_rows"] = table_rows
+    window_shot = os.path.join(OUT, "task_panel.png")  # the whole window, panel included
+    Gui.getMainWindow().grab().save(window_shot)
+    result["task_panel_image"] = window_shot
+    result["bend_during_edit"] = sheet.Bend
+    for widget in QtGui.QApplication.allWidgets():
+        if isinstance(widget, QtGui.QDialogButtonBox):
+            button = widget.button(QtGui.QDialogButtonBox.Cancel)
+            if button is not None and button.isVisible():
+                button.click()
+                break
+    Gui.updateGui()
+    result["bend_after_cancel"] = sheet.Bend
+    result["bend_restored"] = sheet.Bend == bend_before
+    result["task_panel_closed"] = not Gui.Control.activeDialog()
+
+    # 4. picture
+    Gui.Selection.clearSelection()
+    view = Gui.ActiveDocument.ActiveView
+    view.viewIsometric()
+    Gui.SendMsgToActiveView("ViewFit")
+    Gui.updateGui()
+    image = os.path.join(OUT, "smoke.png")
+    view.saveImage(image, 800, 600, "White")
+    result["image"] = image
+    result["image_stats"] = image_stats(image)
+    result["report_view_errors"] = [
+        line for line in report_view_text().splitlines() if "VarSurf" in line
+    ][-10:]
+
+    path = os.path.join(OUT, "smoke.FCStd")
+    doc.saveAs(path)
+    result["saved"] = os.path.isfile(path)
+
+
+def main():
+    result = {"ok": False}
+    try:
+        run(result)
+        result["ok"] = True
+    except Exception:
+        result["error"] = traceback.format_exc()
+    with open(RESULT, "w") as handle:
+        json.dump(result, handle, indent=1, default=str)
+    sys.stdout.flush()
+    sys.stderr.flush()
+    os._exit(0)
+
+
+# run once the event loop is up (commands and the task panel need it)
+QtCore.QTimer.singleShot(0, main)

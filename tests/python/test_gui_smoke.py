@@ -1,0 +1,78 @@
+"""Runs tests/gui/smoke_gui.py in the real FreeCAD GUI under Xvfb and checks its JSON report."""
+
+import json
+import os
+import shutil
+import subprocess
+from pathlib import Path
+
+import pytest
+
+REPO = Path(__file__).resolve().parents[2]
+SCRIPT = REPO / "tests" / "gui" / "smoke_gui.py"
+OUT = REPO / "out" / "gui-smoke"  # kept after the run: smoke.png is worth a look
+
+
+@pytest.fixture(scope="module")
+def smoke(home, native):
+    for tool in ("xvfb-run", "freecad"):
+        assert shutil.which(tool), f"{tool} is needed for the GUI smoke test (tools/setup.sh)"
+    if OUT.exists():
+        shutil.rmtree(OUT)
+    OUT.mkdir(parents=True)
+    env = dict(os.environ)  # HOME is the temporary one with the Mod symlink (conftest)
+    env.update(
+        VARSURF_GUI_OUT=str(OUT),
+        VARSURF_NO_DIALOGS="1",
+        QTWEBENGINE_CHROMIUM_FLAGS="--no-sandbox",
+    )
+    env.pop("QT_QPA_PLATFORM", None)  # offscreen aborts FreeCAD; Xvfb is the display
+    cmd = ["xvfb-run", "-a", "-s", "-screen 0 1280x1024x24", "freecad", str(SCRIPT)]
+    run = subprocess.run(cmd, env=env, capture_output=True, text=True, timeout=300, cwd=OUT)
+    (OUT / "freecad.log").write_text(run.stdout + "\n--- stderr ---\n" + run.stderr)
+    result_file = OUT / "smoke.json"
+    assert result_file.is_file(), f"no smoke.json (exit {run.returncode}):\n{run.stdout[-3000:]}\n{run.stderr[-3000:]}"
+    return json.loads(result_file.read_text())
+
+
+def test_gui_run_completed(smoke):
+    assert smoke["ok"], smoke.get("error")
+
+
+def test_workbench_and_command(smoke):
+    assert smoke["workbench"] == "VarSurfWorkbench"
+    assert smoke["command_registered"]
+
+
+def test_bad_selection_creates_nothing(smoke):
+    assert smoke["active_with_edges_only"] is False
+    assert smoke["created_on_bad_selection"] == 0
+
+
+def test_command_creates_a_valid_sheet(smoke):
+    assert smoke["active_with_face_and_edges"] is True
+    assert smoke["selection"] == [["Surface", ["Face1"]], ["Rail", ["Edge1"]], ["Side", ["Edge1"]]]
+    assert smoke["sheets"] == 1
+    assert smoke["sheet_valid"], smoke.get("sheet_state")
+    assert smoke["curve_names"] == ["Rail:Edge1", "Side:Edge1"]
+    assert max(smoke["max_deviations"]) < 1e-3
+    assert smoke["base_hidden"]
+    assert smoke["children"] == ["Surface", "Rail", "Side"]
+    assert smoke["icon"].endswith("VarSurf_Sheet.svg") and Path(smoke["icon"]).is_file()
+    assert "Create VarSurf sheet" in smoke["undo_names"]  # one transaction, undoable
+
+
+def test_task_panel_previews_and_cancel_restores(smoke):
+    assert smoke["task_panel_open"]
+    assert smoke["task_panel_rows"] == 2
+    assert smoke["bend_during_edit"] == 5.0
+    assert smoke["bend_restored"], (smoke["bend_during_edit"], smoke["bend_after_cancel"])
+    assert smoke["task_panel_closed"]
+
+
+def test_screenshot_is_not_blank(smoke):
+    stats = smoke["image_stats"]
+    assert (stats["width"], stats["height"]) == (800, 600)
+    assert stats["variance"] > 50.0, stats
+    assert stats["non_white"] > 0.03, stats
+    assert smoke["saved"]
