@@ -97,6 +97,7 @@ TEST(KnotVector, RejectsBadKnotVectors) {
   EXPECT_THROW(validate_knots({1, 1, 1, 1, 1, 1}, 2, 3, "t"), InvalidInput);  // empty domain
   EXPECT_THROW(validate_knots({0, 0, 0, .5, .5, .5, 1, 1, 1}, 2, 6, "t"), InvalidInput);
   EXPECT_THROW(flat_knots({0.0, 1.0}, {2}), InvalidInput);
+  EXPECT_THROW(find_span(uniform_clamped_knots(3, 4), 3, NAN), InvalidInput);
 }
 
 TEST(GaussLegendre, IntegratesPolynomialsExactly) {

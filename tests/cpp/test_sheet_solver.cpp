@@ -177,6 +177,22 @@ TEST(SheetSolver, FitToleranceKeepsCoarseSheetsFair) {
   EXPECT_LT(incidence_error(sp, some.poles, c, 2000), 3e-3);
 }
 
+TEST(SheetSolver, ReportsConflictOfContradictoryConstraints) {
+  // Two points at the same (u, v) with heights 1 and 3 (equal weights): no surface meets both,
+  // the best leaves each 1 away, and the RMS of that over the cluster's weight 2 is 1.
+  const SplineSpace sp = SplineSpace::uniform(3, 3, 4, 4);
+  const Eigen::MatrixX3d flat = flat_poles(sp);
+  SheetProblem pb = problem_with_fixed_boundary(sp, flat, flat);
+  PointConstraint p;
+  p.u = p.v = 0.5;
+  p.target = Eigen::Vector3d(0.5, 0.5, 1.0);
+  pb.points.push_back(p);
+  EXPECT_LT(solve_sheet(pb).report.conflict, 1e-12);
+  p.target.z() = 3.0;
+  pb.points.push_back(p);
+  EXPECT_NEAR(solve_sheet(pb).report.conflict, 1.0, 1e-12);
+}
+
 TEST(SheetSolver, PointPullGivesSymmetricBump) {
   const SplineSpace sp = SplineSpace::uniform(3, 3, 8, 8);
   const Eigen::MatrixX3d flat = flat_poles(sp);

@@ -140,7 +140,8 @@ ReducedConstraints reduce_constraints(const std::vector<ConstraintSamples>& bloc
       residual -= beta.row(rank).squaredNorm();
       ++rank;
     }
-    if (cluster_weight > 0.0) out.conflict = std::max(out.conflict, std::sqrt(best / cluster_weight));
+    if (cluster_weight > 0.0)
+      out.conflict = std::max(out.conflict, std::sqrt(best / cluster_weight));
     const Eigen::MatrixXd vr = svd.matrixV().leftCols(rank);
     const Eigen::MatrixX3d br = beta.topRows(rank).array().colwise() / s.head(rank).array();
     for (Eigen::Index r = 0; r < rank; ++r) {

@@ -169,7 +169,9 @@ ConstraintSamples sample_curve(const SplineSpace& space, const CurveConstraint& 
 double incidence_error(const SplineSpace& space, const Eigen::MatrixX3d& poles,
                        const CurveConstraint& c, int samples) {
   if (samples < 2) throw InvalidInput("incidence_error needs at least 2 samples");
-  if (poles.rows() != space.size()) throw InvalidInput("poles do not match the sheet's space");
+  BSplineSurface{space, poles}.validate();
+  c.preimage.validate("curve pre-image");
+  c.target.validate("target curve");
   double worst = 0.0;
   const double t0 = c.target.first(), t1 = c.target.last();
   for (int i = 0; i < samples; ++i) {

@@ -162,6 +162,10 @@ class Projector {
 // Least-squares fit of a clamped B-spline with the given knots through (t_k, uv_k), interpolating
 // both ends; the parameters are the samples' own t. Banded normal equations: B-spline least
 // squares with samples in every span is well conditioned.
+// Why not Geom2dAPI_PointsToBSpline: it chooses its own knots and raises the degree. Measured on
+// a diagonal line and an arc over a curved 8-span sheet, at the same 1e-7 fit tolerance, it gave
+// 66 and 144 degree-5 poles where knots at the sheet's knot-line crossings give 25 and 49 cubic
+// ones; every pre-image piece and degree multiplies the solver's constraint samples.
 BSplineCurve fit(const std::map<double, Sample>& samples, int degree,
                  const std::vector<double>& knots) {
   BSplineCurve c;

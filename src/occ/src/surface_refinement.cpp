@@ -22,7 +22,8 @@ std::vector<double> knots_to_insert(const std::vector<double>& flat, int degree,
   std::vector<double> added;
   using Interval = std::pair<double, double>;  // (length, start)
   std::priority_queue<Interval> longest;
-  for (size_t i = 0; i + 1 < breaks.size(); ++i) longest.push({breaks[i + 1] - breaks[i], breaks[i]});
+  for (size_t i = 0; i + 1 < breaks.size(); ++i)
+    longest.push({breaks[i + 1] - breaks[i], breaks[i]});
   for (int have = static_cast<int>(breaks.size()) - 1; have < spans; ++have) {
     const auto [length, start] = longest.top();
     longest.pop();
