@@ -47,6 +47,21 @@ Eigen::MatrixX3d flat_poles(const SplineSpace& sp) {
   return test::fit_poles(sp, [](double u, double v) { return Eigen::Vector3d(u, v, 0.0); });
 }
 
+// A wavy space curve over the diagonal of the unit square, z within +-0.25: no coarse sheet holds
+// it exactly.
+CurveConstraint wavy_diagonal_curve() {
+  const auto wave = [](double t) {
+    const double u = 0.1 + 0.8 * t, v = 0.15 + 0.7 * t;
+    return Eigen::VectorXd(Eigen::Vector3d(u, v, 0.2 * std::sin(6 * t) + 0.05 * std::cos(11 * t)));
+  };
+  std::vector<double> fine;
+  for (int i = 0; i <= 64; ++i) fine.push_back(i / 64.0);
+  CurveConstraint c;
+  c.target = test::fit_piecewise_curve(fine, 5, 3, wave);
+  c.preimage = test::line_curve(Eigen::Vector2d(0.1, 0.15), Eigen::Vector2d(0.9, 0.85));
+  return c;
+}
+
 }  // namespace
 
 TEST(SheetSolver, PlanarSheetWithFixedBoundaryStaysPlanar) {
@@ -125,15 +140,7 @@ INSTANTIATE_TEST_SUITE_P(Degrees, RepresentableCurve, ::testing::Values(2, 3, 4)
 TEST(SheetSolver, NonIsoparametricCurveConvergesUnderRefinement) {
   // A wavy space curve over the diagonal of a flat, boundary-fixed sheet: no coarse sheet holds
   // it, and the incidence error must fall as the spans are refined.
-  const auto wave = [](double t) {
-    const double u = 0.1 + 0.8 * t, v = 0.15 + 0.7 * t;
-    return Eigen::VectorXd(Eigen::Vector3d(u, v, 0.2 * std::sin(6 * t) + 0.05 * std::cos(11 * t)));
-  };
-  std::vector<double> fine;
-  for (int i = 0; i <= 64; ++i) fine.push_back(i / 64.0);
-  CurveConstraint c;
-  c.target = test::fit_piecewise_curve(fine, 5, 3, wave);
-  c.preimage = test::line_curve(Eigen::Vector2d(0.1, 0.15), Eigen::Vector2d(0.9, 0.85));
+  const CurveConstraint c = wavy_diagonal_curve();
   double previous = 1e300;
   std::vector<double> errors;
   for (int spans : {2, 4, 8, 16, 32}) {
@@ -155,15 +162,7 @@ TEST(SheetSolver, FitToleranceKeepsCoarseSheetsFair) {
   // The same wavy curve on an 8-span sheet: fitting every singular direction meets the curve
   // closely but throws poles far outside the curve's range (|z| <= 0.25); the discrepancy
   // principle stops at the fit tolerance and the sheet stays as calm as the curve.
-  const auto wave = [](double t) {
-    const double u = 0.1 + 0.8 * t, v = 0.15 + 0.7 * t;
-    return Eigen::VectorXd(Eigen::Vector3d(u, v, 0.2 * std::sin(6 * t) + 0.05 * std::cos(11 * t)));
-  };
-  std::vector<double> fine;
-  for (int i = 0; i <= 64; ++i) fine.push_back(i / 64.0);
-  CurveConstraint c;
-  c.target = test::fit_piecewise_curve(fine, 5, 3, wave);
-  c.preimage = test::line_curve(Eigen::Vector2d(0.1, 0.15), Eigen::Vector2d(0.9, 0.85));
+  const CurveConstraint c = wavy_diagonal_curve();
   const SplineSpace sp = SplineSpace::uniform(3, 3, 8, 8);
   const Eigen::MatrixX3d flat = flat_poles(sp);
   SheetProblem pb = problem_with_fixed_boundary(sp, flat, flat);

@@ -36,12 +36,26 @@ std::vector<double> knots_to_insert(const std::vector<double>& flat, int degree,
   return added;
 }
 
-void to_array(const std::vector<double>& values, TColStd_Array1OfReal& knots,
-              TColStd_Array1OfInteger& mults) {
+// OCCT (value, multiplicity) arrays for simple knots.
+void simple_knots(const std::vector<double>& values, TColStd_Array1OfReal& knots,
+                  TColStd_Array1OfInteger& mults) {
   for (size_t i = 0; i < values.size(); ++i) {
     knots.SetValue(static_cast<Standard_Integer>(i + 1), values[i]);
     mults.SetValue(static_cast<Standard_Integer>(i + 1), 1);
   }
+}
+
+void insert_knots(const Handle(Geom_BSplineSurface) & geom, const std::vector<double>& values,
+                  bool along_u) {
+  if (values.empty()) return;
+  const Standard_Integer n = static_cast<Standard_Integer>(values.size());
+  TColStd_Array1OfReal knots(1, n);
+  TColStd_Array1OfInteger mults(1, n);
+  simple_knots(values, knots, mults);
+  if (along_u)
+    geom->InsertUKnots(knots, mults, 0.0, Standard_True);
+  else
+    geom->InsertVKnots(knots, mults, 0.0, Standard_True);
 }
 
 }  // namespace
@@ -66,20 +80,8 @@ BSplineSurface refine_surface(const BSplineSurface& surface, int min_spans_u, in
     if (raise)
       geom->IncreaseDegree(std::max(surface.space.degree_u, min_degree),
                            std::max(surface.space.degree_v, min_degree));
-    if (!add_u.empty()) {
-      const Standard_Integer n = static_cast<Standard_Integer>(add_u.size());
-      TColStd_Array1OfReal knots(1, n);
-      TColStd_Array1OfInteger mults(1, n);
-      to_array(add_u, knots, mults);
-      geom->InsertUKnots(knots, mults, 0.0, Standard_True);
-    }
-    if (!add_v.empty()) {
-      const Standard_Integer n = static_cast<Standard_Integer>(add_v.size());
-      TColStd_Array1OfReal knots(1, n);
-      TColStd_Array1OfInteger mults(1, n);
-      to_array(add_v, knots, mults);
-      geom->InsertVKnots(knots, mults, 0.0, Standard_True);
-    }
+    insert_knots(geom, add_u, true);
+    insert_knots(geom, add_v, false);
     return from_geom(geom);
   });
 }
