@@ -7,6 +7,7 @@ namespace varsurf::binding {
 
 void bind_errors(pybind11::module_& m);          // exception classes and translators
 void bind_core_types(pybind11::module_& m);      // data types of the core
+void bind_operators(pybind11::module_& m);       // further constraints, external energies
 void bind_core_functions(pybind11::module_& m);  // solver and knot helpers
 void bind_occ_bridge(pybind11::module_& m);      // BREP/STEP bridge to FreeCAD
 

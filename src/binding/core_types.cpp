@@ -228,7 +228,15 @@ void bind_core_types(py::module_& m) {
       .def_readwrite("energy", &SheetProblem::energy)
       .def_readwrite("points", &SheetProblem::points)
       .def_readwrite("curves", &SheetProblem::curves)
-      .def_readwrite("fixed_poles", &SheetProblem::fixed_poles, "Flat indices held in place.");
+      .def_readwrite("fixed_poles", &SheetProblem::fixed_poles, "Flat indices held in place.")
+      .def_readwrite("rest_poles", &SheetProblem::rest_poles,
+                     "Rest shape (size x 3) or empty: the energy acts on p - rest_poles.")
+      .def_readwrite("tangents", &SheetProblem::tangents)
+      .def_readwrite("normals", &SheetProblem::normals)
+      .def_readwrite("plane_points", &SheetProblem::plane_points)
+      .def_readwrite("line_points", &SheetProblem::line_points)
+      .def_readwrite("attractors", &SheetProblem::attractors)
+      .def_readwrite("directors", &SheetProblem::directors);
 
   py::class_<SolveOptions>(m, "SolveOptions", "Numerical settings of solve_sheet.")
       .def(py::init([](double rank_tolerance, double fit_tolerance, double regularization,
@@ -256,7 +264,9 @@ void bind_core_types(py::module_& m) {
       .def_readwrite("refinement_steps", &SolveOptions::refinement_steps,
                      "Refinement sweeps of the KKT solve.")
       .def_readwrite("max_unknowns", &SolveOptions::max_unknowns,
-                     "Larger problems are refused with InvalidInput.");
+                     "Larger problems are refused with InvalidInput.")
+      .def_readwrite("force_coupled", &SolveOptions::force_coupled,
+                     "Solve one 3n system even when every term is separable.");
 
   py::class_<SolveReport>(m, "SolveReport", "Sizes, residuals and timings of a solve.")
       .def(py::init<>())
@@ -264,6 +274,7 @@ void bind_core_types(py::module_& m) {
       .def_readonly("constraint_samples", &SolveReport::constraint_samples)
       .def_readonly("constraint_rank", &SolveReport::constraint_rank)
       .def_readonly("clusters", &SolveReport::clusters)
+      .def_readonly("coupled", &SolveReport::coupled, "True if one 3n system was solved.")
       .def_readonly("conflict", &SolveReport::conflict,
                     "RMS distance by which the constraints contradict each other (near 0 when "
                     "compatible).")

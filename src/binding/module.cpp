@@ -7,6 +7,7 @@ PYBIND11_MODULE(_native, m) {
       "importBrepFromString).";
   m.attr("__version__") = "0.1.0";
   varsurf::binding::bind_errors(m);
+  varsurf::binding::bind_operators(m);
   varsurf::binding::bind_core_types(m);
   varsurf::binding::bind_core_functions(m);
   varsurf::binding::bind_occ_bridge(m);

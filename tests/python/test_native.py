@@ -362,3 +362,34 @@ def test_step_round_trip_with_freecad(Part, tmp_path):
     original.importBrepFromString(brep)
     imported = Part.read(path)
     assert imported.Area == pytest.approx(original.Area, rel=1e-6)
+
+
+def test_coupled_operators_through_the_binding():
+    # A flat unit sheet, boundary held: a normal constraint and a plane attractor switch the
+    # solve to the coupled 3n system, and the normal is met.
+    space = nat.SplineSpace.uniform(3, 3, 6, 6)
+    n = space.size() if callable(space.size) else space.size
+    nv = space.nv() if callable(space.nv) else space.nv
+    gu = [sum(space.knots_u[i + 1:i + 4]) / 3.0 for i in range(len(space.knots_u) - 4)]
+    gv = [sum(space.knots_v[i + 1:i + 4]) / 3.0 for i in range(len(space.knots_v) - 4)]
+    poles = np.array([[gu[k // nv], gv[k % nv], 0.0] for k in range(n)])
+    normal = np.array([0.2, -0.1, 1.0])
+    problem = nat.SheetProblem(space=space, initial_poles=poles,
+                               energy=nat.ThinPlateWeights.isotropic(0.1, 1.0),
+                               fixed_poles=list(nat.boundary_pole_indices(space)))
+    problem.points = [nat.PointConstraint(u=0.5, v=0.5, target=[0.5, 0.5, 0.2])]
+    problem.normals = [nat.NormalConstraint(u=0.5, v=0.5, normal=normal)]
+    problem.attractors = [nat.Attractor(kind=nat.AttractorKind.plane,
+                                        region=nat.Region(u0=0.1, u1=0.3, v0=0.1, v1=0.3),
+                                        origin=[0, 0, 0.05], direction=[0, 0, 1], strength=1e3)]
+    result = nat.solve_sheet(problem, nat.SolveOptions())
+    assert result.report.coupled
+    surface = nat.BSplineSurface(space=space, poles=result.poles)
+    h = 1e-6
+    wu = (surface.evaluate(0.5 + h, 0.5) - surface.evaluate(0.5 - h, 0.5)) / (2 * h)
+    wv = (surface.evaluate(0.5, 0.5 + h) - surface.evaluate(0.5, 0.5 - h)) / (2 * h)
+    assert abs(np.dot(wu, normal)) < 1e-6 * np.linalg.norm(wu)
+    assert abs(np.dot(wv, normal)) < 1e-6 * np.linalg.norm(wv)
+    with pytest.raises(nat.InvalidInput, match="normal constraint 0"):
+        problem.normals = [nat.NormalConstraint(u=0.5, v=0.5, normal=[0, 0, 0])]
+        nat.solve_sheet(problem, nat.SolveOptions())

@@ -33,20 +33,23 @@ struct DisjointSets {
 struct FreeRow {
   std::vector<int> cols;
   std::vector<double> vals;
-  Eigen::RowVector3d rhs;
-  double weight;  // the sample's weight: its basis values sum to one, so (sum of coeffs)^2
+  Eigen::RowVectorXd rhs;
+  double weight;
 };
 
 }  // namespace
 
 ReducedConstraints reduce_constraints(const std::vector<ConstraintSamples>& blocks,
                                       const std::vector<int>& free_index,
-                                      const Eigen::MatrixX3d& fixed, int free_count,
+                                      const Eigen::MatrixXd& fixed, int free_count,
                                       double rank_tolerance, double fit_tolerance) {
   if (!(rank_tolerance > 0.0 && rank_tolerance < 1.0))
     throw InvalidInput("rank tolerance must be in (0, 1)");
   if (!(fit_tolerance >= 0.0) || !std::isfinite(fit_tolerance))
     throw InvalidInput("fit tolerance must be a finite non-negative length");
+  const Eigen::Index width = fixed.cols();
+  for (const ConstraintSamples& block : blocks)
+    if (block.rhs.cols() != width) throw InvalidInput("constraint samples of mixed widths");
   ReducedConstraints out;
   std::vector<FreeRow> rows;
   DisjointSets sets(free_count);
@@ -56,7 +59,7 @@ ReducedConstraints reduce_constraints(const std::vector<ConstraintSamples>& bloc
       row.rhs = block.rhs.row(r);
       const auto& idx = block.index[static_cast<size_t>(r)];
       const Eigen::VectorXd& c = block.coeff[static_cast<size_t>(r)];
-      row.weight = c.sum() * c.sum();
+      row.weight = block.weight[static_cast<size_t>(r)];
       for (size_t k = 0; k < idx.size(); ++k) {
         const double v = c(static_cast<Eigen::Index>(k));
         if (v == 0.0) continue;
@@ -83,7 +86,7 @@ ReducedConstraints reduce_constraints(const std::vector<ConstraintSamples>& bloc
   std::sort(roots.begin(), roots.end());  // deterministic row order
 
   std::vector<Eigen::Triplet<double>> trip;
-  std::vector<Eigen::RowVector3d> rhs;
+  std::vector<Eigen::RowVectorXd> rhs;
   int rank_total = 0;
   std::vector<int> local(static_cast<size_t>(free_count), -1);
   for (int root : roots) {
@@ -102,7 +105,7 @@ ReducedConstraints reduce_constraints(const std::vector<ConstraintSamples>& bloc
     const Eigen::Index m = static_cast<Eigen::Index>(members.size());
     const Eigen::Index n = static_cast<Eigen::Index>(cols.size());
     Eigen::MatrixXd b = Eigen::MatrixXd::Zero(m, n);
-    Eigen::MatrixX3d d(m, 3);
+    Eigen::MatrixXd d(m, width);
     double cluster_weight = 0.0;
     for (Eigen::Index i = 0; i < m; ++i) {
       const FreeRow& row = rows[members[static_cast<size_t>(i)]];
@@ -116,7 +119,7 @@ ReducedConstraints reduce_constraints(const std::vector<ConstraintSamples>& bloc
     // Tall clusters (many samples, few poles) are compressed by QR first: same solution set,
     // and the SVD then works on an n x n matrix.
     Eigen::MatrixXd core = b;
-    Eigen::MatrixX3d core_rhs = d;
+    Eigen::MatrixXd core_rhs = d;
     if (m > n) {
       Eigen::HouseholderQR<Eigen::MatrixXd> qr(b);
       core = qr.matrixQR().topRows(n).triangularView<Eigen::Upper>();
@@ -126,7 +129,7 @@ ReducedConstraints reduce_constraints(const std::vector<ConstraintSamples>& bloc
     const Eigen::VectorXd& s = svd.singularValues();
     if (s.size() == 0 || !(s(0) > 0.0)) continue;
     if (!s.allFinite()) throw InvalidInput("constraint values are not finite");
-    const Eigen::MatrixX3d beta = svd.matrixU().transpose() * core_rhs;
+    const Eigen::MatrixXd beta = svd.matrixU().transpose() * core_rhs;
     Eigen::Index numeric_rank = 0;
     while (numeric_rank < s.size() && s(numeric_rank) > rank_tolerance * s(0)) ++numeric_rank;
     // Residual left by each truncation; the full-rank one is what no choice of poles removes:
@@ -143,7 +146,7 @@ ReducedConstraints reduce_constraints(const std::vector<ConstraintSamples>& bloc
     if (cluster_weight > 0.0)
       out.conflict = std::max(out.conflict, std::sqrt(best / cluster_weight));
     const Eigen::MatrixXd vr = svd.matrixV().leftCols(rank);
-    const Eigen::MatrixX3d br = beta.topRows(rank).array().colwise() / s.head(rank).array();
+    const Eigen::MatrixXd br = beta.topRows(rank).array().colwise() / s.head(rank).array();
     for (Eigen::Index r = 0; r < rank; ++r) {
       for (Eigen::Index k = 0; k < n; ++k) {
         if (vr(k, r) != 0.0)
@@ -157,7 +160,7 @@ ReducedConstraints reduce_constraints(const std::vector<ConstraintSamples>& bloc
   }
   out.rows.resize(rank_total, free_count);
   out.rows.setFromTriplets(trip.begin(), trip.end());
-  out.rhs.resize(rank_total, 3);
+  out.rhs.resize(rank_total, width);
   for (int r = 0; r < rank_total; ++r) out.rhs.row(r) = rhs[static_cast<size_t>(r)];
   return out;
 }

@@ -11,23 +11,24 @@ namespace varsurf {
 
 struct ReducedConstraints {
   Eigen::SparseMatrix<double, Eigen::RowMajor> rows;  // rank x free unknowns, orthonormal rows
-  Eigen::MatrixX3d rhs;                               // rank x 3
+  Eigen::MatrixXd rhs;                                // rank x width
   int samples = 0;
   int clusters = 0;
   double conflict = 0.0;  // largest RMS residual that no pole choice removes, over clusters
 };
 
-// `free_index[k]` is the unknown of pole k, or -1 for a fixed pole whose value `fixed.row(k)` moves
-// to the right-hand side. Rows touching no free pole are dropped. Within each cluster of rows that
-// share unknowns, B p = d (least squares) is replaced by V_r^T p = S_r^-1 U_r^T d from the SVD
-// B = U S V^T truncated at rank_tolerance * s_max: exactly the set of least-squares minimizers.
-// With fit_tolerance > 0 the truncation also stops at the first rank whose least-squares residual
-// (an RMS distance, since sample weights sum to each constraint's weight) is within fit_tolerance
-// of the best the cluster can reach: the discrepancy principle. Directions beyond it are left to the energy instead of being fitted
-// to data the space cannot hold, which is what makes coarse sheets go wild.
+// `free_index[k]` is the unknown of column k, or -1 for a fixed column whose value `fixed.row(k)`
+// (as wide as the samples' right-hand sides) moves to the right-hand side. Rows touching no free
+// pole are dropped. Within each cluster of rows that share unknowns, B p = d (least squares) is
+// replaced by V_r^T p = S_r^-1 U_r^T d from the SVD B = U S V^T truncated at rank_tolerance *
+// s_max: exactly the set of least-squares minimizers. With fit_tolerance > 0 the truncation also
+// stops at the first rank whose least-squares residual (an RMS distance, since sample weights sum
+// to each constraint's weight) is within fit_tolerance of the best the cluster can reach: the
+// discrepancy principle. Directions beyond it are left to the energy instead of being fitted to
+// data the space cannot hold, which is what makes coarse sheets go wild.
 ReducedConstraints reduce_constraints(const std::vector<ConstraintSamples>& blocks,
                                       const std::vector<int>& free_index,
-                                      const Eigen::MatrixX3d& fixed, int free_count,
+                                      const Eigen::MatrixXd& fixed, int free_count,
                                       double rank_tolerance, double fit_tolerance);
 
 }  // namespace varsurf

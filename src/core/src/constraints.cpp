@@ -22,11 +22,12 @@ void append_row(ConstraintSamples& out, const BasisSample& s, double sqrt_w,
                 const Eigen::Vector3d& target, std::vector<Eigen::RowVector3d>& rhs) {
   out.index.push_back(s.index);
   out.coeff.push_back(sqrt_w * s.values.row(0).transpose());
+  out.weight.push_back(sqrt_w * sqrt_w);
   rhs.push_back(sqrt_w * target.transpose());
 }
 
-Eigen::MatrixX3d stack(const std::vector<Eigen::RowVector3d>& rows) {
-  Eigen::MatrixX3d m(static_cast<Eigen::Index>(rows.size()), 3);
+Eigen::MatrixXd stack(const std::vector<Eigen::RowVector3d>& rows) {
+  Eigen::MatrixXd m(static_cast<Eigen::Index>(rows.size()), 3);
   for (size_t i = 0; i < rows.size(); ++i) m.row(static_cast<Eigen::Index>(i)) = rows[i];
   return m;
 }
@@ -83,6 +84,25 @@ void add_knot_crossings(const SplineSpace& space, const BSplineCurve& pre, doubl
 }
 
 }  // namespace
+
+ConstraintSamples to_coupled(const ConstraintSamples& sep) {
+  if (sep.rhs.cols() != 3) throw InvalidInput("to_coupled: samples are not separable");
+  ConstraintSamples out;
+  out.rhs.resize(3 * sep.rows(), 1);
+  for (int r = 0; r < sep.rows(); ++r) {
+    const std::vector<int>& idx = sep.index[static_cast<size_t>(r)];
+    for (int c = 0; c < 3; ++c) {
+      std::vector<int> cols(idx.size());
+      for (size_t k = 0; k < idx.size(); ++k) cols[k] = 3 * idx[k] + c;
+      out.index.push_back(std::move(cols));
+      out.coeff.push_back(sep.coeff[static_cast<size_t>(r)]);
+      out.rhs(3 * r + c, 0) = sep.rhs(r, c);
+      // A separable row's weight is shared by its three coordinate rows.
+      out.weight.push_back(sep.weight[static_cast<size_t>(r)] / 3.0);
+    }
+  }
+  return out;
+}
 
 ConstraintSamples sample_point(const SplineSpace& space, const PointConstraint& c) {
   if (!std::isfinite(c.u) || !std::isfinite(c.v) || !c.target.allFinite())

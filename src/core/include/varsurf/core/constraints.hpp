@@ -25,14 +25,21 @@ struct CurveConstraint {
   double weight = 1.0;  // relative importance if constraints contradict each other
 };
 
-// Weighted least-squares samples of constraints: row r says sqrt(w_r) * (b_r . p) = sqrt(w_r) *
-// d_r.
+// Weighted least-squares samples of constraints: row r says sqrt(w_r) * (b_r . x) = sqrt(w_r) *
+// d_r. Separable samples act on the poles (columns = pole indices) with one right-hand side per
+// coordinate (width 3); coupled samples act on the coordinates (column 3 k + c is coordinate c of
+// pole k) with one right-hand side (width 1).
 struct ConstraintSamples {
   std::vector<std::vector<int>> index;  // non-zero columns of each row
   std::vector<Eigen::VectorXd> coeff;   // their coefficients (already scaled by sqrt(w_r))
-  Eigen::MatrixX3d rhs;                 // scaled right-hand sides, one row per sample
+  Eigen::MatrixXd rhs;                  // scaled right-hand sides, rows x width
+  std::vector<double> weight;           // w_r: what the row counts for in an RMS residual
   int rows() const { return static_cast<int>(index.size()); }
+  bool coupled() const { return rhs.cols() == 1; }
 };
+
+// The same conditions on the coordinates: each separable row becomes three coupled rows.
+ConstraintSamples to_coupled(const ConstraintSamples& separable);
 
 // One row per point (weight as given).
 ConstraintSamples sample_point(const SplineSpace& space, const PointConstraint& c);

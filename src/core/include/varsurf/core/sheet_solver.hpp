@@ -12,6 +12,8 @@
 #include <vector>
 
 #include "varsurf/core/constraints.hpp"
+#include "varsurf/core/external_energy.hpp"
+#include "varsurf/core/point_constraints.hpp"
 #include "varsurf/core/spline_space.hpp"
 #include "varsurf/core/thin_plate_energy.hpp"
 
@@ -21,9 +23,19 @@ struct SheetProblem {
   SplineSpace space;
   Eigen::MatrixX3d initial_poles;  // size() x 3: start shape, values of fixed poles
   ThinPlateWeights energy;
+  // Rest shape p^ (size() x 3, or empty for none): the energy becomes (p - p^)^T H (p - p^), so
+  // the sheet keeps the rest shape's detail and only its deviation is made fair (Welch & Witkin
+  // eq. 6, Boier-Martin et al. 4.1).
+  Eigen::MatrixX3d rest_poles;
   std::vector<PointConstraint> points;
   std::vector<CurveConstraint> curves;
-  std::vector<int> fixed_poles;  // flat indices held at initial_poles
+  std::vector<TangentConstraint> tangents;
+  std::vector<NormalConstraint> normals;           // couples x, y, z
+  std::vector<PlanePointConstraint> plane_points;  // couples x, y, z
+  std::vector<LinePointConstraint> line_points;    // couples x, y, z
+  std::vector<Attractor> attractors;               // plane and line kinds couple x, y, z
+  std::vector<Director> directors;                 // couples x, y, z
+  std::vector<int> fixed_poles;                    // flat indices held at initial_poles
 };
 
 struct SolveOptions {
@@ -40,13 +52,17 @@ struct SolveOptions {
   // from every direction the problem determines.
   int refinement_steps = 6;
   int max_unknowns = 2000000;  // refuse larger problems with a clear message
+  // Solve the coupled 3n system even when every term is separable (the separable solve is
+  // cheaper and gives the same poles).
+  bool force_coupled = false;
 };
 
 struct SolveReport {
-  int unknowns = 0;                  // free poles (per coordinate)
-  int constraint_samples = 0;        // least-squares rows before reduction
-  int constraint_rank = 0;           // independent rows kept
-  int clusters = 0;                  // independent groups of constraints
+  int unknowns = 0;            // free poles (per coordinate), or free coordinates if coupled
+  bool coupled = false;        // one 3n system instead of three n systems sharing one
+  int constraint_samples = 0;  // least-squares rows before reduction
+  int constraint_rank = 0;     // independent rows kept
+  int clusters = 0;            // independent groups of constraints
   // RMS distance (model units) by which the constraints contradict each other: the least-squares
   // residual at full rank, largest over clusters. Near 0 when they are compatible.
   double conflict = 0.0;

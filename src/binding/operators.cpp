@@ -1,0 +1,111 @@
+// Point constraints beyond position, and the external energy operators.
+#include <pybind11/eigen.h>
+#include <pybind11/stl.h>
+
+#include "binding.hpp"
+#include "varsurf/core/external_energy.hpp"
+#include "varsurf/core/point_constraints.hpp"
+
+namespace py = pybind11;
+using namespace pybind11::literals;
+
+namespace varsurf::binding {
+
+void bind_operators(py::module_& m) {
+  py::class_<TangentConstraint>(m, "TangentConstraint",
+                                "The derivative w_u (direction 0) or w_v (direction 1) at (u, v) "
+                                "is target.")
+      .def(py::init([](double u, double v, int direction, Eigen::Vector3d target, double weight) {
+             return TangentConstraint{u, v, direction, target, weight};
+           }),
+           "u"_a = 0.0, "v"_a = 0.0, "direction"_a = 0, "target"_a = Eigen::Vector3d::UnitX(),
+           "weight"_a = 1.0)
+      .def_readwrite("u", &TangentConstraint::u)
+      .def_readwrite("v", &TangentConstraint::v)
+      .def_readwrite("direction", &TangentConstraint::direction)
+      .def_readwrite("target", &TangentConstraint::target)
+      .def_readwrite("weight", &TangentConstraint::weight);
+
+  py::class_<NormalConstraint>(m, "NormalConstraint",
+                               "The normal at (u, v) is parallel to normal (couples x, y, z).")
+      .def(py::init([](double u, double v, Eigen::Vector3d normal, double weight) {
+             return NormalConstraint{u, v, normal, weight};
+           }),
+           "u"_a = 0.0, "v"_a = 0.0, "normal"_a = Eigen::Vector3d::UnitZ(), "weight"_a = 1.0)
+      .def_readwrite("u", &NormalConstraint::u)
+      .def_readwrite("v", &NormalConstraint::v)
+      .def_readwrite("normal", &NormalConstraint::normal)
+      .def_readwrite("weight", &NormalConstraint::weight);
+
+  py::class_<PlanePointConstraint>(m, "PlanePointConstraint",
+                                   "The point at (u, v) lies in the plane (origin, normal).")
+      .def(py::init([](double u, double v, Eigen::Vector3d origin, Eigen::Vector3d normal,
+                       double weight) {
+             return PlanePointConstraint{u, v, origin, normal, weight};
+           }),
+           "u"_a = 0.0, "v"_a = 0.0, "origin"_a = Eigen::Vector3d::Zero(),
+           "normal"_a = Eigen::Vector3d::UnitZ(), "weight"_a = 1.0)
+      .def_readwrite("u", &PlanePointConstraint::u)
+      .def_readwrite("v", &PlanePointConstraint::v)
+      .def_readwrite("origin", &PlanePointConstraint::origin)
+      .def_readwrite("normal", &PlanePointConstraint::normal)
+      .def_readwrite("weight", &PlanePointConstraint::weight);
+
+  py::class_<LinePointConstraint>(m, "LinePointConstraint",
+                                  "The point at (u, v) lies on the line (origin, direction).")
+      .def(py::init([](double u, double v, Eigen::Vector3d origin, Eigen::Vector3d direction,
+                       double weight) {
+             return LinePointConstraint{u, v, origin, direction, weight};
+           }),
+           "u"_a = 0.0, "v"_a = 0.0, "origin"_a = Eigen::Vector3d::Zero(),
+           "direction"_a = Eigen::Vector3d::UnitZ(), "weight"_a = 1.0)
+      .def_readwrite("u", &LinePointConstraint::u)
+      .def_readwrite("v", &LinePointConstraint::v)
+      .def_readwrite("origin", &LinePointConstraint::origin)
+      .def_readwrite("direction", &LinePointConstraint::direction)
+      .def_readwrite("weight", &LinePointConstraint::weight);
+
+  py::class_<Region>(m, "Region", "The rectangle [u0, u1] x [v0, v1] of the parameter domain.")
+      .def(py::init([](double u0, double u1, double v0, double v1) {
+             return Region{u0, u1, v0, v1};
+           }),
+           "u0"_a = 0.0, "u1"_a = 1.0, "v0"_a = 0.0, "v1"_a = 1.0)
+      .def_readwrite("u0", &Region::u0)
+      .def_readwrite("u1", &Region::u1)
+      .def_readwrite("v0", &Region::v0)
+      .def_readwrite("v1", &Region::v1);
+
+  py::enum_<AttractorKind>(m, "AttractorKind")
+      .value("point", AttractorKind::point)
+      .value("plane", AttractorKind::plane)
+      .value("line", AttractorKind::line);
+
+  py::class_<Attractor>(m, "Attractor",
+                        "strength * integral over region of |P (w - origin)|^2: P = I (point), "
+                        "along direction (plane normal), or across direction (line).")
+      .def(py::init([](AttractorKind kind, Region region, Eigen::Vector3d origin,
+                       Eigen::Vector3d direction, double strength) {
+             return Attractor{kind, region, origin, direction, strength};
+           }),
+           "kind"_a = AttractorKind::point, "region"_a = Region(),
+           "origin"_a = Eigen::Vector3d::Zero(), "direction"_a = Eigen::Vector3d::UnitZ(),
+           "strength"_a = 1.0)
+      .def_readwrite("kind", &Attractor::kind)
+      .def_readwrite("region", &Attractor::region)
+      .def_readwrite("origin", &Attractor::origin)
+      .def_readwrite("direction", &Attractor::direction)
+      .def_readwrite("strength", &Attractor::strength);
+
+  py::class_<Director>(m, "Director",
+                       "strength * integral over region of (d . w_u)^2 + (d . w_v)^2: normals "
+                       "pushed toward direction d.")
+      .def(py::init([](Region region, Eigen::Vector3d direction, double strength) {
+             return Director{region, direction, strength};
+           }),
+           "region"_a = Region(), "direction"_a = Eigen::Vector3d::UnitZ(), "strength"_a = 1.0)
+      .def_readwrite("region", &Director::region)
+      .def_readwrite("direction", &Director::direction)
+      .def_readwrite("strength", &Director::strength);
+}
+
+}  // namespace varsurf::binding

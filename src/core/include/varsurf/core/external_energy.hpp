@@ -1,0 +1,55 @@
+// External energy operators (Veltkamp & Wesselink sec. 5): quadratic pulls on a region of the
+// sheet, added to the thin-plate energy with a strength each. A point attractor is separable in
+// x, y, z; plane and line attractors and the director couple the coordinates.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <vector>
+
+#include "varsurf/core/spline_space.hpp"
+
+namespace varsurf {
+
+// A rectangle [u0, u1] x [v0, v1] of the parameter domain.
+struct Region {
+  double u0 = 0.0, u1 = 1.0, v0 = 0.0, v1 = 1.0;
+};
+
+enum class AttractorKind { point, plane, line };
+
+// strength * integral over the region of |P (w - origin)|^2 dA, with P = I (point), the
+// projection onto `direction` taken as the plane's normal (plane), or the projection across the
+// line along `direction` (line).
+struct Attractor {
+  AttractorKind kind = AttractorKind::point;
+  Region region;
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();
+  Eigen::Vector3d direction = Eigen::Vector3d::UnitZ();
+  double strength = 1.0;
+};
+
+// strength * integral over the region of (d . w_u)^2 + (d . w_v)^2 dA: tangents pushed
+// perpendicular to d, i.e. the region's normals toward d.
+struct Director {
+  Region region;
+  Eigen::Vector3d direction = Eigen::Vector3d::UnitZ();
+  double strength = 1.0;
+};
+
+// Quadratic energy pieces beyond the thin plate, as E = x^T Q x - 2 f^T x (plus a constant).
+struct QuadraticTerms {
+  explicit QuadraticTerms(int poles);
+  std::vector<Eigen::Triplet<double>> separable;  // poles x poles, the same for x, y and z
+  Eigen::MatrixX3d separable_f;                   // poles x 3
+  std::vector<Eigen::Triplet<double>> coupled;    // 3 poles x 3 poles, column 3 k + c
+  Eigen::VectorXd coupled_f;                      // 3 poles
+  bool uses_coupled() const { return !coupled.empty(); }
+};
+
+// Throw InvalidInput for empty or out-of-domain regions, zero directions, non-finite or negative
+// strengths.
+void add_attractor(const SplineSpace& space, const Attractor& a, QuadraticTerms& terms);
+void add_director(const SplineSpace& space, const Director& d, QuadraticTerms& terms);
+
+}  // namespace varsurf

@@ -1,0 +1,124 @@
+#include "varsurf/core/external_energy.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "unit_vector.hpp"
+#include "varsurf/core/errors.hpp"
+#include "varsurf/core/gauss_legendre.hpp"
+#include "varsurf/core/knot_vector.hpp"
+
+namespace varsurf {
+
+QuadraticTerms::QuadraticTerms(int poles)
+    : separable_f(Eigen::MatrixX3d::Zero(poles, 3)), coupled_f(Eigen::VectorXd::Zero(3 * poles)) {}
+
+namespace {
+
+void check_region(const SplineSpace& space, const Region& r, const char* what) {
+  const std::string w(what);
+  if (!std::isfinite(r.u0) || !std::isfinite(r.u1) || !std::isfinite(r.v0) || !std::isfinite(r.v1))
+    throw InvalidInput(w + ": region bounds are not finite");
+  if (!(r.u0 < r.u1) || !(r.v0 < r.v1)) throw InvalidInput(w + ": region is empty");
+  if (r.u0 < space.u_first() || r.u1 > space.u_last() || r.v0 < space.v_first() ||
+      r.v1 > space.v_last())
+    throw InvalidInput(w + ": region lies outside the sheet's parameter domain");
+}
+
+void check_strength(double s, const char* what) {
+  if (!std::isfinite(s) || s < 0.0)
+    throw InvalidInput(std::string(what) + ": strength must be finite and non-negative");
+}
+
+// Breakpoints of one direction inside [a, b], with a and b: the pieces where the basis is
+// polynomial.
+std::vector<double> pieces(const std::vector<double>& knots, int degree, double a, double b) {
+  std::vector<double> out = {a};
+  for (double t : breakpoints(knots, degree))
+    if (t > a && t < b) out.push_back(t);
+  out.push_back(b);
+  return out;
+}
+
+// Calls f(basis sample with first derivatives, dA) at Gauss points covering the region, exact for
+// products of two basis functions (or derivatives) of a non-rational space.
+template <class F>
+void integrate_region(const SplineSpace& space, const Region& r, F&& f) {
+  const int extra = space.rational() ? 2 : 0;
+  const GaussRule& gu = gauss_legendre(space.degree_u + 1 + extra);
+  const GaussRule& gv = gauss_legendre(space.degree_v + 1 + extra);
+  const std::vector<double> pu = pieces(space.knots_u, space.degree_u, r.u0, r.u1);
+  const std::vector<double> pv = pieces(space.knots_v, space.degree_v, r.v0, r.v1);
+  for (size_t a = 0; a + 1 < pu.size(); ++a) {
+    const double hu = 0.5 * (pu[a + 1] - pu[a]);
+    for (size_t b = 0; b + 1 < pv.size(); ++b) {
+      const double hv = 0.5 * (pv[b + 1] - pv[b]);
+      for (size_t i = 0; i < gu.nodes.size(); ++i)
+        for (size_t j = 0; j < gv.nodes.size(); ++j)
+          f(space.basis(pu[a] + hu * (gu.nodes[i] + 1.0), pv[b] + hv * (gv.nodes[j] + 1.0), 1),
+            gu.weights[i] * gv.weights[j] * hu * hv);
+    }
+  }
+}
+
+// Adds w * (sum_k beta_k p_k - q)^T M (sum_k beta_k p_k - q), beta = row `d` of the sample.
+void add_coupled(QuadraticTerms& t, const BasisSample& s, int d, double w, const Eigen::Matrix3d& m,
+                 const Eigen::Vector3d& q) {
+  const Eigen::Vector3d mq = m * q;
+  for (size_t a = 0; a < s.index.size(); ++a) {
+    const double ba = w * s.values(d, static_cast<Eigen::Index>(a));
+    const int ka = s.index[a];
+    for (int c = 0; c < 3; ++c) t.coupled_f(3 * ka + c) += ba * mq(c);
+    for (size_t b = 0; b < s.index.size(); ++b) {
+      const double bb = ba * s.values(d, static_cast<Eigen::Index>(b));
+      const int kb = s.index[b];
+      for (int c = 0; c < 3; ++c)
+        for (int e = 0; e < 3; ++e)
+          if (m(c, e) != 0.0) t.coupled.emplace_back(3 * ka + c, 3 * kb + e, bb * m(c, e));
+    }
+  }
+}
+
+}  // namespace
+
+void add_attractor(const SplineSpace& space, const Attractor& at, QuadraticTerms& t) {
+  check_region(space, at.region, "attractor");
+  check_strength(at.strength, "attractor");
+  if (!at.origin.allFinite()) throw InvalidInput("attractor: origin is not finite");
+  if (at.strength == 0.0) return;
+  if (at.kind == AttractorKind::point) {
+    integrate_region(space, at.region, [&](const BasisSample& s, double dA) {
+      const double w = at.strength * dA;
+      for (size_t a = 0; a < s.index.size(); ++a) {
+        const double ba = w * s.values(0, static_cast<Eigen::Index>(a));
+        t.separable_f.row(s.index[a]) += ba * at.origin.transpose();
+        for (size_t b = 0; b < s.index.size(); ++b)
+          t.separable.emplace_back(s.index[a], s.index[b],
+                                   ba * s.values(0, static_cast<Eigen::Index>(b)));
+      }
+    });
+    return;
+  }
+  const Eigen::Vector3d d = unit_vector(at.direction, "attractor: the direction");
+  const Eigen::Matrix3d m = at.kind == AttractorKind::plane
+                                ? Eigen::Matrix3d(d * d.transpose())
+                                : Eigen::Matrix3d(Eigen::Matrix3d::Identity() - d * d.transpose());
+  integrate_region(space, at.region, [&](const BasisSample& s, double dA) {
+    add_coupled(t, s, 0, at.strength * dA, m, at.origin);
+  });
+}
+
+void add_director(const SplineSpace& space, const Director& dir, QuadraticTerms& t) {
+  check_region(space, dir.region, "director");
+  check_strength(dir.strength, "director");
+  const Eigen::Vector3d d = unit_vector(dir.direction, "director: the direction");
+  if (dir.strength == 0.0) return;
+  const Eigen::Matrix3d m = d * d.transpose();
+  integrate_region(space, dir.region, [&](const BasisSample& s, double dA) {
+    add_coupled(t, s, 1, dir.strength * dA, m, Eigen::Vector3d::Zero());
+    add_coupled(t, s, 2, dir.strength * dA, m, Eigen::Vector3d::Zero());
+  });
+}
+
+}  // namespace varsurf
