@@ -235,6 +235,7 @@ void bind_core_types(py::module_& m) {
       .def_readwrite("normals", &SheetProblem::normals)
       .def_readwrite("plane_points", &SheetProblem::plane_points)
       .def_readwrite("line_points", &SheetProblem::line_points)
+      .def_readwrite("ribbons", &SheetProblem::ribbons)
       .def_readwrite("attractors", &SheetProblem::attractors)
       .def_readwrite("directors", &SheetProblem::directors);
 

@@ -5,6 +5,7 @@
 #include "binding.hpp"
 #include "varsurf/core/external_energy.hpp"
 #include "varsurf/core/point_constraints.hpp"
+#include "varsurf/core/ribbon_constraint.hpp"
 
 namespace py = pybind11;
 using namespace pybind11::literals;
@@ -64,6 +65,24 @@ void bind_operators(py::module_& m) {
       .def_readwrite("origin", &LinePointConstraint::origin)
       .def_readwrite("direction", &LinePointConstraint::direction)
       .def_readwrite("weight", &LinePointConstraint::weight);
+
+  py::class_<RibbonConstraint>(m, "RibbonConstraint",
+                               "Along the 2D preimage, the sheet's normal follows the 3D field "
+                               "normals(t) (least squares over the curve; couples x, y, z).")
+      .def(py::init([](BSplineCurve preimage, BSplineCurve normals, double weight) {
+             return RibbonConstraint{std::move(preimage), std::move(normals), weight};
+           }),
+           "preimage"_a, "normals"_a, "weight"_a = 1.0)
+      .def_readwrite("preimage", &RibbonConstraint::preimage)
+      .def_readwrite("normals", &RibbonConstraint::normals)
+      .def_readwrite("weight", &RibbonConstraint::weight);
+
+  m.def(
+      "ribbon_angle_error",
+      [](const SplineSpace& space, const Eigen::MatrixX3d& poles, const RibbonConstraint& c,
+         int samples) { return ribbon_angle_error(space, poles, c, samples); },
+      "space"_a, "poles"_a, "ribbon"_a, "samples"_a = 200,
+      "Largest angle (radians) between the sheet's normal and the ribbon's field.");
 
   py::class_<Region>(m, "Region", "The rectangle [u0, u1] x [v0, v1] of the parameter domain.")
       .def(py::init([](double u0, double u1, double v0, double v1) {

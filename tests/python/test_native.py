@@ -393,3 +393,27 @@ def test_coupled_operators_through_the_binding():
     with pytest.raises(nat.InvalidInput, match="normal constraint 0"):
         problem.normals = [nat.NormalConstraint(u=0.5, v=0.5, normal=[0, 0, 0])]
         nat.solve_sheet(problem, nat.SolveOptions())
+
+
+def test_ribbon_through_the_binding_tilts_the_sheet():
+    # Boundary on the plane z = 0.4 x, interior started flat: a ribbon asking for that plane's
+    # normal along a diagonal brings the sheet onto the plane.
+    space = nat.SplineSpace.uniform(3, 3, 5, 5)
+    n = space.size() if callable(space.size) else space.size
+    nv = space.nv() if callable(space.nv) else space.nv
+    g = [sum(space.knots_u[i + 1:i + 4]) / 3.0 for i in range(len(space.knots_u) - 4)]
+    poles = np.array([[g[k // nv], g[k % nv], 0.4 * g[k // nv]] for k in range(n)])
+    fixed = list(nat.boundary_pole_indices(space))
+    start = poles.copy()
+    start[[k for k in range(n) if k not in set(fixed)], 2] = 0.0
+    line = nat.BSplineCurve(degree=1, knots=[0, 0, 1, 1], poles=np.array([[0.2, 0.3], [0.8, 0.6]]))
+    field = nat.BSplineCurve(degree=1, knots=[0, 0, 1, 1],
+                             poles=np.array([[-0.4, 0.0, 1.0], [-0.4, 0.0, 1.0]]))
+    ribbon = nat.RibbonConstraint(preimage=line, normals=field)
+    problem = nat.SheetProblem(space=space, initial_poles=start,
+                               energy=nat.ThinPlateWeights.isotropic(0.1, 1.0), fixed_poles=fixed)
+    problem.ribbons = [ribbon]
+    result = nat.solve_sheet(problem, nat.SolveOptions())
+    assert result.report.coupled
+    assert nat.ribbon_angle_error(space, result.poles, ribbon) < 1e-9
+    assert np.abs(result.poles - poles).max() < 1e-9

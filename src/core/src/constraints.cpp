@@ -5,6 +5,7 @@
 #include <sstream>
 #include <string>
 
+#include "curve_pieces.hpp"
 #include "varsurf/core/errors.hpp"
 #include "varsurf/core/gauss_legendre.hpp"
 #include "varsurf/core/knot_vector.hpp"
@@ -30,57 +31,6 @@ Eigen::MatrixXd stack(const std::vector<Eigen::RowVector3d>& rows) {
   Eigen::MatrixXd m(static_cast<Eigen::Index>(rows.size()), 3);
   for (size_t i = 0; i < rows.size(); ++i) m.row(static_cast<Eigen::Index>(i)) = rows[i];
   return m;
-}
-
-// Keeps a pre-image point inside the sheet's domain; tiny overshoot from fitting is clipped, a
-// real excursion is an input error.
-Eigen::Vector2d clamp_to_domain(const SplineSpace& space, const Eigen::Vector2d& uv, double t) {
-  const double tol_u = 1e-7 * (space.u_last() - space.u_first());
-  const double tol_v = 1e-7 * (space.v_last() - space.v_first());
-  if (!uv.allFinite() || uv(0) < space.u_first() - tol_u || uv(0) > space.u_last() + tol_u ||
-      uv(1) < space.v_first() - tol_v || uv(1) > space.v_last() + tol_v) {
-    std::ostringstream msg;
-    msg << "the curve's pre-image leaves the sheet's parameter domain at t = " << t << " (u, v) = ("
-        << uv(0) << ", " << uv(1) << "), domain [" << space.u_first() << ", " << space.u_last()
-        << "] x [" << space.v_first() << ", " << space.v_last() << "]";
-    throw InvalidInput(msg.str());
-  }
-  return {std::clamp(uv(0), space.u_first(), space.u_last()),
-          std::clamp(uv(1), space.v_first(), space.v_last())};
-}
-
-// Parameters in (a, b) where the pre-image crosses an interior knot line of the sheet: the
-// integrand is a different polynomial on each side.
-void add_knot_crossings(const SplineSpace& space, const BSplineCurve& pre, double a, double b,
-                        std::vector<double>& cuts) {
-  const std::vector<double> ku = breakpoints(space.knots_u, space.degree_u);
-  const std::vector<double> kv = breakpoints(space.knots_v, space.degree_v);
-  const int m = 4 * (pre.degree + 1);
-  Eigen::MatrixXd uv(m + 1, 2);
-  for (int i = 0; i <= m; ++i) uv.row(i) = pre.evaluate(a + (b - a) * i / m).transpose();
-  auto crossings = [&](int coord, const std::vector<double>& knots) {
-    for (size_t k = 1; k + 1 < knots.size(); ++k) {
-      const double line = knots[k];
-      for (int i = 0; i < m; ++i) {
-        double f0 = uv(i, coord) - line, f1 = uv(i + 1, coord) - line;
-        if (f0 == 0.0 || f0 * f1 >= 0.0) continue;
-        double lo = a + (b - a) * i / m, hi = a + (b - a) * (i + 1) / m;
-        for (int it = 0; it < 60 && hi - lo > 1e-15 * (1.0 + std::abs(hi)); ++it) {
-          const double mid = 0.5 * (lo + hi);
-          const double fm = pre.evaluate(mid)(coord) - line;
-          if ((fm < 0.0) == (f0 < 0.0)) {
-            lo = mid;
-            f0 = fm;
-          } else {
-            hi = mid;
-          }
-        }
-        cuts.push_back(0.5 * (lo + hi));
-      }
-    }
-  };
-  crossings(0, ku);
-  crossings(1, kv);
 }
 
 }  // namespace
@@ -127,32 +77,8 @@ ConstraintSamples sample_curve(const SplineSpace& space, const CurveConstraint& 
   if (std::abs(c.preimage.first() - t0) > tol || std::abs(c.preimage.last() - t1) > tol)
     throw InvalidInput("curve pre-image and target must share their parameter range");
 
-  // Polynomial pieces: breakpoints of both curves, then the sheet's knot lines.
-  std::vector<double> cuts = breakpoints(c.preimage.knots, c.preimage.degree);
-  for (double t : breakpoints(c.target.knots, c.target.degree)) cuts.push_back(t);
-  std::sort(cuts.begin(), cuts.end());
-  std::vector<double> pieces;
-  for (double t : cuts) {
-    if (t < t0 || t > t1) continue;
-    if (pieces.empty() || t - pieces.back() > tol) pieces.push_back(t);
-  }
-  pieces.front() = t0;
-  pieces.back() = t1;
-  std::vector<double> all = pieces;
-  for (size_t i = 0; i + 1 < pieces.size(); ++i)
-    add_knot_crossings(space, c.preimage, pieces[i], pieces[i + 1], all);
-  std::sort(all.begin(), all.end());
-  pieces.clear();
-  for (double t : all)
-    if (pieces.empty() || t - pieces.back() > tol) pieces.push_back(t);
-  pieces.back() = t1;
-
-  // b(c(t)) has degree (p_u + p_v) k on a piece with a degree-k polynomial pre-image: this many
-  // Gauss points integrate its square exactly and sample it at full rank.
-  const int extra = (space.rational() || c.preimage.rational()) ? 2 : 0;
-  const int n_gauss =
-      std::min(40, (space.degree_u + space.degree_v) * c.preimage.degree + 1 + extra);
-  const GaussRule& g = gauss_legendre(n_gauss);
+  const std::vector<double> pieces = curve_pieces(space, c.preimage, &c.target);
+  const GaussRule& g = gauss_legendre(gauss_points_along(space, c.preimage));
 
   struct Sample {
     Eigen::Vector2d uv;

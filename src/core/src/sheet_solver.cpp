@@ -224,6 +224,8 @@ SolveResult solve_sheet(const SheetProblem& pb, const SolveOptions& opt) {
   sample_all(
       pb.line_points, "point-on-line constraint",
       [&](const auto& c) { return sample_line_point(sp, c); }, coupled);
+  sample_all(
+      pb.ribbons, "ribbon", [&](const auto& c) { return sample_ribbon(sp, c); }, coupled);
 
   Quadratic quad;
   rep.coupled = opt.force_coupled || !coupled.empty() || terms.uses_coupled();

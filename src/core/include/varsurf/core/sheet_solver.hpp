@@ -14,6 +14,7 @@
 #include "varsurf/core/constraints.hpp"
 #include "varsurf/core/external_energy.hpp"
 #include "varsurf/core/point_constraints.hpp"
+#include "varsurf/core/ribbon_constraint.hpp"
 #include "varsurf/core/spline_space.hpp"
 #include "varsurf/core/thin_plate_energy.hpp"
 
@@ -33,6 +34,7 @@ struct SheetProblem {
   std::vector<NormalConstraint> normals;           // couples x, y, z
   std::vector<PlanePointConstraint> plane_points;  // couples x, y, z
   std::vector<LinePointConstraint> line_points;    // couples x, y, z
+  std::vector<RibbonConstraint> ribbons;           // couples x, y, z
   std::vector<Attractor> attractors;               // plane and line kinds couple x, y, z
   std::vector<Director> directors;                 // couples x, y, z
   std::vector<int> fixed_poles;                    // flat indices held at initial_poles

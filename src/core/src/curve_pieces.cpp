@@ -1,0 +1,98 @@
+#include "curve_pieces.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "varsurf/core/errors.hpp"
+#include "varsurf/core/knot_vector.hpp"
+
+namespace varsurf {
+
+namespace {
+
+// Parameters in (a, b) where the pre-image crosses an interior knot line of the sheet: the
+// integrand is a different polynomial on each side.
+void add_knot_crossings(const SplineSpace& space, const BSplineCurve& pre, double a, double b,
+                        std::vector<double>& cuts) {
+  const std::vector<double> ku = breakpoints(space.knots_u, space.degree_u);
+  const std::vector<double> kv = breakpoints(space.knots_v, space.degree_v);
+  const int m = 4 * (pre.degree + 1);
+  Eigen::MatrixXd uv(m + 1, 2);
+  for (int i = 0; i <= m; ++i) uv.row(i) = pre.evaluate(a + (b - a) * i / m).transpose();
+  auto crossings = [&](int coord, const std::vector<double>& knots) {
+    for (size_t k = 1; k + 1 < knots.size(); ++k) {
+      const double line = knots[k];
+      for (int i = 0; i < m; ++i) {
+        double f0 = uv(i, coord) - line, f1 = uv(i + 1, coord) - line;
+        if (f0 == 0.0 || f0 * f1 >= 0.0) continue;
+        double lo = a + (b - a) * i / m, hi = a + (b - a) * (i + 1) / m;
+        for (int it = 0; it < 60 && hi - lo > 1e-15 * (1.0 + std::abs(hi)); ++it) {
+          const double mid = 0.5 * (lo + hi);
+          const double fm = pre.evaluate(mid)(coord) - line;
+          if ((fm < 0.0) == (f0 < 0.0)) {
+            lo = mid;
+            f0 = fm;
+          } else {
+            hi = mid;
+          }
+        }
+        cuts.push_back(0.5 * (lo + hi));
+      }
+    }
+  };
+  crossings(0, ku);
+  crossings(1, kv);
+}
+
+}  // namespace
+
+// Keeps a pre-image point inside the sheet's domain; tiny overshoot from fitting is clipped, a
+// real excursion is an input error.
+Eigen::Vector2d clamp_to_domain(const SplineSpace& space, const Eigen::Vector2d& uv, double t) {
+  const double tol_u = 1e-7 * (space.u_last() - space.u_first());
+  const double tol_v = 1e-7 * (space.v_last() - space.v_first());
+  if (!uv.allFinite() || uv(0) < space.u_first() - tol_u || uv(0) > space.u_last() + tol_u ||
+      uv(1) < space.v_first() - tol_v || uv(1) > space.v_last() + tol_v) {
+    std::ostringstream msg;
+    msg << "the curve's pre-image leaves the sheet's parameter domain at t = " << t << " (u, v) = ("
+        << uv(0) << ", " << uv(1) << "), domain [" << space.u_first() << ", " << space.u_last()
+        << "] x [" << space.v_first() << ", " << space.v_last() << "]";
+    throw InvalidInput(msg.str());
+  }
+  return {std::clamp(uv(0), space.u_first(), space.u_last()),
+          std::clamp(uv(1), space.v_first(), space.v_last())};
+}
+
+std::vector<double> curve_pieces(const SplineSpace& space, const BSplineCurve& pre,
+                                 const BSplineCurve* other) {
+  const double t0 = pre.first(), t1 = pre.last();
+  const double tol = 1e-9 * (t1 - t0);
+  std::vector<double> cuts = breakpoints(pre.knots, pre.degree);
+  if (other != nullptr)
+    for (double t : breakpoints(other->knots, other->degree)) cuts.push_back(t);
+  std::sort(cuts.begin(), cuts.end());
+  std::vector<double> pieces;
+  for (double t : cuts) {
+    if (t < t0 || t > t1) continue;
+    if (pieces.empty() || t - pieces.back() > tol) pieces.push_back(t);
+  }
+  pieces.front() = t0;
+  pieces.back() = t1;
+  std::vector<double> all = pieces;
+  for (size_t i = 0; i + 1 < pieces.size(); ++i)
+    add_knot_crossings(space, pre, pieces[i], pieces[i + 1], all);
+  std::sort(all.begin(), all.end());
+  pieces.clear();
+  for (double t : all)
+    if (pieces.empty() || t - pieces.back() > tol) pieces.push_back(t);
+  pieces.back() = t1;
+  return pieces;
+}
+
+int gauss_points_along(const SplineSpace& space, const BSplineCurve& pre) {
+  const int extra = (space.rational() || pre.rational()) ? 2 : 0;
+  return std::min(40, (space.degree_u + space.degree_v) * pre.degree + 1 + extra);
+}
+
+}  // namespace varsurf

@@ -1,0 +1,27 @@
+// Splitting a curve's parameter range into the pieces on which integrands along its pre-image are
+// polynomial, for exact Gauss quadrature of constraints along curves.
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "varsurf/core/bspline_curve.hpp"
+#include "varsurf/core/spline_space.hpp"
+
+namespace varsurf {
+
+// Keeps a pre-image point inside the sheet's domain; tiny overshoot from fitting is clipped, a
+// real excursion is an input error (InvalidInput naming t and the domain).
+Eigen::Vector2d clamp_to_domain(const SplineSpace& space, const Eigen::Vector2d& uv, double t);
+
+// Sorted parameters from preimage.first() to preimage.last(): breakpoints of the pre-image and of
+// `other` (a curve sharing the parameter, or null), and where the pre-image crosses an interior
+// knot line of the sheet.
+std::vector<double> curve_pieces(const SplineSpace& space, const BSplineCurve& preimage,
+                                 const BSplineCurve* other);
+
+// Gauss points per piece: b(c(t)) has degree (p_u + p_v) k on a piece with a degree-k polynomial
+// pre-image, and this many points integrate its square exactly and sample it at full rank.
+int gauss_points_along(const SplineSpace& space, const BSplineCurve& preimage);
+
+}  // namespace varsurf
