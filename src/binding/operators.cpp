@@ -94,6 +94,9 @@ void bind_operators(py::module_& m) {
       .def_readwrite("v0", &Region::v0)
       .def_readwrite("v1", &Region::v1);
 
+  m.def("poles_in_region", &poles_in_region, "space"_a, "region"_a,
+        "Flat indices of the poles supported inside the region (to freeze it).");
+
   py::enum_<AttractorKind>(m, "AttractorKind")
       .value("point", AttractorKind::point)
       .value("plane", AttractorKind::plane)

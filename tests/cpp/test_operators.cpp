@@ -208,6 +208,24 @@ TEST(Attractors, DirectorTurnsTheRegionsNormalsTowardIt) {
   EXPECT_LT(previous, 0.05);
 }
 
+TEST(FrozenRegion, HoldsExactlyTheRegionAndLetsTheRestMove) {
+  SheetProblem pb = flat_problem();
+  pb.rest_poles = wavy_poles(pb.space);
+  pb.initial_poles = pb.rest_poles;
+  const Region frozen{0.0, 0.5, 0.0, 1.0};
+  const std::vector<int> held = poles_in_region(pb.space, frozen);
+  // Uniform 8 spans, cubic: supports [k_i, k_i+4] overlap u < 0.5 for i = 0..6 (k_7 = 0.5).
+  EXPECT_EQ(static_cast<int>(held.size()), 7 * pb.space.nv());
+  pb.fixed_poles.insert(pb.fixed_poles.end(), held.begin(), held.end());
+  pb.points.push_back(pull(0.75, 0.5, {0.75, 0.5, 0.5}));
+  const SolveResult r = solve_sheet(pb);
+  for (double u : {0.0, 0.2, 0.45, 0.5})
+    for (double v : {0.1, 0.5, 0.9})
+      EXPECT_LT((point_at(pb, r.poles, u, v) - point_at(pb, pb.rest_poles, u, v)).norm(), 1e-12);
+  EXPECT_NEAR(point_at(pb, r.poles, 0.75, 0.5)(2), 0.5, 1e-10);
+  EXPECT_THROW(poles_in_region(pb.space, Region{0.5, 0.4, 0.0, 1.0}), InvalidInput);
+}
+
 TEST(Operators, RejectBadInput) {
   auto fails = [](const std::function<void(SheetProblem&)>& edit, const char* text) {
     SheetProblem pb = flat_problem(4);

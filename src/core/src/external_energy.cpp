@@ -82,6 +82,23 @@ void add_coupled(QuadraticTerms& t, const BasisSample& s, int d, double w, const
 
 }  // namespace
 
+std::vector<int> poles_in_region(const SplineSpace& space, const Region& r) {
+  space.validate();
+  check_region(space, r, "frozen region");
+  // Pole i along a direction is supported on [knots[i], knots[i + degree + 1]]; it acts on the
+  // region if that interval overlaps [a, b] in more than a point.
+  auto inside = [](const std::vector<double>& k, int p, int i, double a, double b) {
+    return k[static_cast<size_t>(i)] < b && k[static_cast<size_t>(i + p + 1)] > a;
+  };
+  std::vector<int> out;
+  for (int i = 0; i < space.nu(); ++i)
+    for (int j = 0; j < space.nv(); ++j)
+      if (inside(space.knots_u, space.degree_u, i, r.u0, r.u1) &&
+          inside(space.knots_v, space.degree_v, j, r.v0, r.v1))
+        out.push_back(space.index(i, j));
+  return out;
+}
+
 void add_attractor(const SplineSpace& space, const Attractor& at, QuadraticTerms& t) {
   check_region(space, at.region, "attractor");
   check_strength(at.strength, "attractor");

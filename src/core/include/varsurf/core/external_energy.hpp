@@ -16,6 +16,11 @@ struct Region {
   double u0 = 0.0, u1 = 1.0, v0 = 0.0, v1 = 1.0;
 };
 
+// Flat indices of the poles whose basis functions do not vanish on the region: holding them fixed
+// keeps the surface over the region exactly as it is. InvalidInput for an empty or out-of-domain
+// region.
+std::vector<int> poles_in_region(const SplineSpace& space, const Region& region);
+
 enum class AttractorKind { point, plane, line };
 
 // strength * integral over the region of |P (w - origin)|^2 dA, with P = I (point), the
