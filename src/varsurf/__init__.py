@@ -6,6 +6,7 @@ App-side public API (importable headless, without any GUI module):
     export_step(objects, path)                                           -> path
     selection_to_sheet_args(selection_ex)                                -> (base, curves)
     solve_sheet_on_face(face, edges, ...)                                -> SheetOutcome
+    solve_sheet_from_curves(edges, ...)                                  -> SheetOutcome
 """
 
 __version__ = "0.1.0"
@@ -20,6 +21,8 @@ from varsurf.model import (  # noqa: E402
     SheetError,
     SheetOutcome,
     solve_sheet_on_face,
+    solve_sheet_from_curves,
+    plane_face_for_curves,
 )
 
 
@@ -46,6 +49,8 @@ __all__ = [
     "SheetError",
     "SheetOutcome",
     "solve_sheet_on_face",
+    "solve_sheet_from_curves",
+    "plane_face_for_curves",
     "make_sheet",
     "export_step",
     "selection_to_sheet_args",

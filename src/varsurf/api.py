@@ -93,6 +93,7 @@ def make_sheet(
     """Add a VarSurf Sheet to the document (it is computed at the next recompute).
 
     base: (object, "FaceN"), the base surface; its boundary is kept when fix_boundary is True.
+        None: the sheet starts from the best-fit plane of the curves, with a free boundary.
     curves: [(object, "EdgeN") or (object, ("EdgeN", ...)) or object (all its edges), ...], the
         curves the sheet must pass through; they must lie over the base face.
     stretch, bend: thin-plate weights alpha and beta (default: pure thin plate, 0 and 1).
@@ -102,13 +103,17 @@ def make_sheet(
     """
     from varsurf.app.sheet import SheetFeature
 
-    base_obj, face_name = _normalize_base(base)
     curve_links = _normalize_curves(curves)
+    if base is not None:
+        base_obj, face_name = _normalize_base(base)
+    elif not curve_links:
+        raise ValueError("a sheet without a base face needs curves")
     if doc is None:
-        doc = base_obj.Document
+        doc = (base_obj if base is not None else curve_links[0][0]).Document
     obj = doc.addObject("Part::FeaturePython", name)
     SheetFeature(obj)
-    obj.Base = (base_obj, face_name)
+    if base is not None:
+        obj.Base = (base_obj, face_name)
     obj.Curves = [(o, names) for o, names in curve_links]
     obj.Stretch = float(stretch)
     obj.Bend = float(bend)

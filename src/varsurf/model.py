@@ -137,6 +137,71 @@ def _single_face(shape):
     return faces[0]
 
 
+#: Points per curve for the best-fit plane of a sheet made from curves alone, and the margin
+#: (fraction of the curves' extent) by which its rectangle overhangs them.
+PLANE_FIT_SAMPLES = 64
+PLANE_MARGIN = 0.1
+
+
+def plane_face_for_curves(edges: Sequence, spans: int = DEFAULT_MIN_SPANS, margin: float = PLANE_MARGIN):
+    """A planar bicubic B-spline face for a sheet made from curves alone (Michalik & Bruderlin's
+    interpolation mode): the least-squares plane of points sampled on the curves, as a rectangle
+    covering their projection with ``margin`` overhang, with ``spans`` spans per direction.
+
+    Raises SheetError without curves, or when the curves do not span a plane (all on one line).
+    """
+    import numpy as np
+
+    Part = _part()
+    points = []
+    for edge in edges:
+        points.extend((p.x, p.y, p.z) for p in edge.discretize(PLANE_FIT_SAMPLES))
+    if not points:
+        raise SheetError("a sheet without a base face needs at least one curve")
+    pts = np.asarray(points, dtype=float)
+    if not np.all(np.isfinite(pts)):
+        raise SheetError("the curves have non-finite points")
+    center = pts.mean(axis=0)
+    # Principal axes: the two largest spread directions span the plane, the smallest is its normal.
+    _, sing, axes = np.linalg.svd(pts - center, full_matrices=False)
+    extent = float(np.ptp(pts, axis=0).max())
+    if extent <= 0.0 or sing[1] <= 1e-9 * max(sing[0], 1e-300):
+        raise SheetError(
+            "the curves lie on one line: they do not define a surface without a base face"
+        )
+    e1, e2 = axes[0], axes[1]
+    s, t = (pts - center) @ e1, (pts - center) @ e2
+    grow = margin * max(np.ptp(s), np.ptp(t))
+    s0, s1 = s.min() - grow, s.max() + grow
+    t0, t1 = t.min() - grow, t.max() + grow
+    knots = [k / spans for k in range(spans + 1)]
+    mults = [4] + [1] * (spans - 1) + [4]
+    flat = [0.0] * 4 + knots[1:-1] + [1.0] * 4
+    greville = [sum(flat[i + 1:i + 4]) / 3.0 for i in range(len(flat) - 4)]
+    V = _freecad_vector()
+    poles = [
+        [V(*(center + (s0 + a * (s1 - s0)) * e1 + (t0 + b * (t1 - t0)) * e2)) for b in greville]
+        for a in greville
+    ]
+    surface = Part.BSplineSurface()
+    surface.buildFromPolesMultsKnots(poles, mults, mults, knots, knots, False, False, 3, 3)
+    return surface.toShape()
+
+
+def _freecad_vector():
+    import FreeCAD
+
+    return FreeCAD.Vector
+
+
+def solve_sheet_from_curves(edges: Sequence, **options) -> SheetOutcome:
+    """``solve_sheet_on_face`` on the best-fit plane of the curves (``plane_face_for_curves``),
+    with a free boundary: the sheet is shaped by the curves and its energy alone."""
+    options["fix_boundary"] = False
+    spans = int(options.get("min_spans", DEFAULT_MIN_SPANS))
+    return solve_sheet_on_face(plane_face_for_curves(list(edges), spans=spans), edges, **options)
+
+
 def solve_sheet_on_face(
     face,
     edges: Sequence,

@@ -23,7 +23,7 @@ _FLOAT_MAX = 1.0e12
 
 # name, type, group, tooltip, output?
 _PROPERTIES = [
-    ("Base", "App::PropertyLinkSub", "Sheet", "The base face: its surface is the start shape and its boundary is kept when FixBoundary is on", False),
+    ("Base", "App::PropertyLinkSub", "Sheet", "The base face: its surface is the start shape and its boundary is kept when FixBoundary is on. Empty: the sheet starts from the best-fit plane of the curves, with a free boundary", False),
     ("Curves", "App::PropertyLinkSubList", "Sheet", "Edges the sheet must pass through; each must lie over the base face", False),
     ("Stretch", "App::PropertyFloatConstraint", "Sheet", "Stretching weight (alpha, >= 0): penalizes first derivatives, pulls toward a membrane of least area. Default 0", False),
     ("Bend", "App::PropertyFloatConstraint", "Sheet", "Bending weight (beta, >= 0): penalizes second derivatives, pulls toward a fair thin plate. Default 1", False),
@@ -87,13 +87,13 @@ def resolve_inputs(obj):
     """(face, edges, names) of a Sheet's links, with placements applied; SheetError if broken."""
     import Part
 
-    if obj.Base is None:
-        raise model.SheetError('no base face: set Base to (object, "FaceN")')
-    base_obj, base_subs = obj.Base
-    base_subs = [s for s in base_subs if s]
-    if len(base_subs) != 1 or not base_subs[0].startswith("Face"):
-        raise model.SheetError(f"Base must reference exactly one face of {base_obj.Label}")
-    face = _element(Part, base_obj, base_subs[0])
+    face = None  # no base: the sheet starts from the curves' best-fit plane
+    if obj.Base is not None:
+        base_obj, base_subs = obj.Base
+        base_subs = [s for s in base_subs if s]
+        if len(base_subs) != 1 or not base_subs[0].startswith("Face"):
+            raise model.SheetError(f"Base must reference exactly one face of {base_obj.Label}")
+        face = _element(Part, base_obj, base_subs[0])
     edges, names = [], []
     for link_obj, subs in obj.Curves:
         for sub in subs:
@@ -164,9 +164,7 @@ class SheetFeature:
     def execute(self, obj):
         try:
             face, edges, names = resolve_inputs(obj)
-            outcome = model.solve_sheet_on_face(
-                face,
-                edges,
+            options = dict(
                 stretch=float(obj.Stretch),
                 bend=float(obj.Bend),
                 fix_boundary=bool(obj.FixBoundary),
@@ -175,6 +173,10 @@ class SheetFeature:
                 max_spans=int(obj.MaxSpans),
                 names=names,
             )
+            if face is None:
+                outcome = model.solve_sheet_from_curves(edges, **options)
+            else:
+                outcome = model.solve_sheet_on_face(face, edges, **options)
         except Exception as error:  # report, then fail the recompute of this object
             message = f"{obj.Label}: {error}"
             _clear_results(obj, f"Error: {error}")

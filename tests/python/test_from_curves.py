@@ -1,0 +1,67 @@
+"""A Sheet without a base face: it starts from the best-fit plane of its curves (free boundary)."""
+
+import FreeCAD
+import Part
+import pytest
+
+import varsurf
+from varsurf import model
+
+V = FreeCAD.Vector
+
+
+def hypar(x, y):
+    # An antisymmetric saddle over 100 x 80 mm: z(100 - x, y) = -z(x, y).
+    return (x - 50.0) * (y - 40.0) / 100.0
+
+
+def frame(doc):
+    """Four straight edges of the saddle's boundary (straight lines lie on a hyperbolic paraboloid)."""
+    corners = [(0, 0), (100, 0), (100, 80), (0, 80)]
+    edges = []
+    for k in range(4):
+        (x0, y0), (x1, y1) = corners[k], corners[(k + 1) % 4]
+        edges.append(Part.LineSegment(V(x0, y0, hypar(x0, y0)), V(x1, y1, hypar(x1, y1))).toShape())
+    obj = doc.addObject("Part::Feature", "Frame")
+    obj.Shape = Part.Compound(edges)
+    doc.recompute()
+    return obj
+
+
+def test_sheet_from_a_saddle_frame_meets_it_and_respects_its_symmetry(doc, native):
+    obj = frame(doc)
+    sheet = varsurf.make_sheet(None, [obj])
+    doc.recompute()
+    assert sheet.isValid(), sheet.getStatusString()
+    assert len(sheet.MaxDeviations) == 4
+    assert max(sheet.MaxDeviations) <= model.DEFAULT_TOLERANCE, list(sheet.MaxDeviations)
+    face = sheet.Shape.Faces[0]
+    assert face.isValid()
+    # The frame is antisymmetric under x -> 100 - x (z -> -z), so the fair sheet is too: zero at
+    # the centre. The best-fit plane is z = 0 and covers the frame with a margin.
+    u, v = face.Surface.parameter(V(50.0, 40.0, 0.0))
+    centre = face.Surface.value(u, v)
+    assert abs(centre.x - 50.0) < 1e-6 and abs(centre.y - 40.0) < 1e-6
+    assert abs(centre.z) < 1e-6, centre
+    bb = sheet.Shape.BoundBox
+    assert bb.XMin < -1.0 and bb.XMax > 101.0 and bb.YMin < -1.0 and bb.YMax > 81.0, bb
+    # Between the frame's edges the sheet follows the saddle's sign pattern.
+    for x, y in ((25.0, 20.0), (75.0, 60.0), (25.0, 60.0), (75.0, 20.0)):
+        u, v = face.Surface.parameter(V(x, y, 0.0))
+        assert face.Surface.value(u, v).z * hypar(x, y) > 0.0, (x, y)
+
+
+def test_curves_on_one_line_cannot_make_a_sheet(doc, native):
+    obj = doc.addObject("Part::Feature", "Line")
+    obj.Shape = Part.Compound([Part.LineSegment(V(0, 0, 0), V(10, 0, 0)).toShape(),
+                               Part.LineSegment(V(20, 0, 0), V(30, 0, 0)).toShape()])
+    doc.recompute()
+    sheet = varsurf.make_sheet(None, [obj])
+    doc.recompute()
+    assert not sheet.isValid()
+    assert "lie on one line" in sheet.getStatusString()
+
+
+def test_make_sheet_without_base_or_curves_is_refused(doc, native):
+    with pytest.raises(ValueError, match="needs curves"):
+        varsurf.make_sheet(None, [])
