@@ -96,6 +96,16 @@ void bind_core_types(py::module_& m) {
             return s.evaluate(u, v);
           },
           "u"_a, "v"_a, "Surface point at (u, v) (clamped into the domain).")
+      .def(
+          "derivatives",
+          [](const BSplineSurface& s, double u, double v, int order) {
+            s.validate();
+            check_finite(u, "u");
+            check_finite(v, "v");
+            return evaluate_surface(s.space, s.poles, u, v, order);
+          },
+          "u"_a, "v"_a, "order"_a = 1,
+          "Rows w, w_u, w_v (order >= 1), w_uu, w_uv, w_vv (order 2) at (u, v).")
       .def("validate", &BSplineSurface::validate,
            "Raise InvalidInput if space and poles are inconsistent or not finite.")
       .def("__repr__", [](const BSplineSurface& s) {
@@ -266,6 +276,8 @@ void bind_core_types(py::module_& m) {
                      "Refinement sweeps of the KKT solve.")
       .def_readwrite("max_unknowns", &SolveOptions::max_unknowns,
                      "Larger problems are refused with InvalidInput.")
+      .def_readwrite("keep_tolerance", &SolveOptions::keep_tolerance,
+                     "Singular directions at least this fraction of the largest are always kept.")
       .def_readwrite("force_coupled", &SolveOptions::force_coupled,
                      "Solve one 3n system even when every term is separable.");
 

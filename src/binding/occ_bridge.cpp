@@ -11,6 +11,7 @@
 #include "varsurf/occ/deviation.hpp"
 #include "varsurf/occ/face_builder.hpp"
 #include "varsurf/occ/geom_convert.hpp"
+#include "varsurf/occ/point_projection.hpp"
 #include "varsurf/occ/shape_check.hpp"
 #include "varsurf/occ/single_shape.hpp"
 #include "varsurf/occ/step_io.hpp"
@@ -30,6 +31,15 @@ void bind_occ_bridge(py::module_& m) {
                     "Largest distance from the sampled target to the sheet.")
       .def_readonly("fit_error", &occ::PreImage::fit_error,
                     "Largest |preimage(t_k) - projected (u, v)_k| over the samples.");
+
+  py::class_<occ::PointOnSheet>(m, "PointOnSheet", "Result of project_point.")
+      .def(py::init<>())
+      .def_readonly("u", &occ::PointOnSheet::u)
+      .def_readonly("v", &occ::PointOnSheet::v)
+      .def_readonly("distance", &occ::PointOnSheet::distance);
+
+  m.def("project_point", &occ::project_point, "surface"_a, "point"_a,
+        "Closest point of the sheet to a 3D point, as (u, v) and the distance.");
 
   py::class_<occ::ShapeCheck>(m, "ShapeCheck", "Result of check_brep (BRepCheck_Analyzer).")
       .def(py::init<>())

@@ -129,6 +129,52 @@ def make_sheet(
     return obj
 
 
+def make_constraint(
+    sheet,
+    kind: str,
+    location=None,
+    uv=None,
+    vector=None,
+    origin=None,
+    region=None,
+    weight: float = 1.0,
+    name: str = "Constraint",
+):
+    """Add a Constraint of ``kind`` (see ``varsurf.constraints.KINDS``) to ``sheet``.
+
+    location: (object, "VertexN"), whose projection onto the base gives the (u, v) (and, for a
+        Point, the target); or uv=(u, v), normalized to [0, 1].
+    vector: tangent, normal, plane normal, line or director direction (FreeCAD.Vector or tuple).
+    origin: plane, line or attractor point; for a Point, the target instead of the location.
+    region: normalized (u0, u1, v0, v1) of an operator or a frozen region.
+    weight: the constraint's weight or the operator's strength.
+    """
+    from varsurf import constraints
+    from varsurf.app.constraint import ConstraintFeature
+
+    if kind not in constraints.KINDS:
+        raise ValueError(f"unknown constraint kind {kind!r}: one of {', '.join(constraints.KINDS)}")
+    doc = sheet.Document
+    obj = doc.addObject("App::FeaturePython", name)
+    ConstraintFeature(obj)
+    obj.Kind = kind
+    if location is not None:
+        link, sub = location
+        obj.Location = (link, sub)
+    if uv is not None:
+        obj.U, obj.V = float(uv[0]), float(uv[1])
+    if vector is not None:
+        obj.Vector = FreeCAD.Vector(*vector)
+    if origin is not None:
+        obj.Origin = FreeCAD.Vector(*origin)
+        obj.UseOrigin = location is not None
+    if region is not None:
+        obj.RegionU0, obj.RegionU1, obj.RegionV0, obj.RegionV1 = (float(x) for x in region)
+    obj.Weight = float(weight)
+    sheet.Constraints = list(sheet.Constraints) + [obj]
+    return obj
+
+
 def export_step(objects, path: str) -> str:
     """Write the shapes of ``objects`` (document objects or Part shapes) to an AP214 STEP file.
 

@@ -16,6 +16,8 @@ import time
 from dataclasses import dataclass, field
 from typing import List, Optional, Sequence
 
+from varsurf import constraints as constraint_specs
+
 #: Thin plate by default: no stretching term, unit bending. Stretch (alpha) pulls the sheet toward
 #: the smallest area (a membrane), bend (beta) toward the smallest curvature.
 DEFAULT_STRETCH = 0.0
@@ -80,6 +82,9 @@ class SheetOutcome:
     constraint_rank: int = 0
     unknowns: int = 0
     report: object = None  # _native.SolveReport
+    constraint_names: List[str] = field(default_factory=list)
+    constraint_residuals: List[float] = field(default_factory=list)  # in constraint_units
+    constraint_units: List[str] = field(default_factory=list)  # "mm" or "deg"
 
     @property
     def max_deviation(self) -> float:
@@ -93,6 +98,8 @@ class SheetOutcome:
         ]
         for name, dev in zip(self.curve_names, self.max_deviations):
             lines.append(f"{name}: max deviation {dev:.3g} mm")
+        for name, res, unit in zip(self.constraint_names, self.constraint_residuals, self.constraint_units):
+            lines.append(f"{name}: residual {res:.3g} {unit}")
         return "\n".join(lines)
 
 
@@ -213,6 +220,7 @@ def solve_sheet_on_face(
     max_spans: int = DEFAULT_MAX_SPANS,
     names: Optional[Sequence[str]] = None,
     rank_tolerance: float = DEFAULT_RANK_TOLERANCE,
+    constraints: Sequence = (),
 ) -> SheetOutcome:
     """Solve the variational sheet over ``face`` that passes through ``edges``.
 
@@ -228,6 +236,8 @@ def solve_sheet_on_face(
         up to max_spans. A conflict that survives refinement (curves crossing at different
         heights, a curve the fixed boundary cannot reach) is an error naming the curves.
     names: one label per edge for messages and reports ("Sketch001:Edge2").
+    constraints: ConstraintSpec objects (varsurf.constraints): point, tangent, normal,
+        point-in-plane and point-on-line constraints, attractors, directors, frozen regions.
 
     Raises SheetError (a ValueError) naming the curve or parameter at fault, and lets the
     extension's SolveFailure / GeometryError through for numerical or kernel failures.
@@ -259,7 +269,7 @@ def solve_sheet_on_face(
     except nat.InvalidInput as error:
         raise SheetError(f"the base face cannot be used: {error}") from error
 
-    constraints = []
+    curve_constraints = []
     targets = []
     for edge, name in zip(edges, names):
         if getattr(edge, "ShapeType", None) != "Edge":
@@ -277,10 +287,18 @@ def solve_sheet_on_face(
             ) from error
         except nat.GeometryError as error:
             raise SheetError(f"{name} cannot be projected onto the base face: {error}") from error
-        constraints.append(_build(nat.CurveConstraint, preimage=pre.curve, target=curve, weight=1.0))
+        curve_constraints.append(_build(nat.CurveConstraint, preimage=pre.curve, target=curve, weight=1.0))
         targets.append(curve)
 
-    # Pre-images stay valid on every refinement: knot insertion keeps the parametrization.
+    try:
+        placed = constraint_specs.place(list(constraints), base, nat)
+    except constraint_specs.ConstraintError as error:
+        raise SheetError(str(error)) from error
+    except (nat.InvalidInput, nat.GeometryError) as error:
+        raise SheetError(f"a constraint's location cannot be placed on the base face: {error}") from error
+
+    # Pre-images and constraint (u, v) stay valid on every refinement: knot insertion keeps the
+    # parametrization.
     spans = max(int(min_spans), _spans(base.space))
     options = _build(nat.SolveOptions)
     options.rank_tolerance = float(rank_tolerance)
@@ -288,16 +306,23 @@ def solve_sheet_on_face(
     while True:
         sheet = nat.refine_surface(base, spans, spans, SHEET_MIN_DEGREE)
         space = sheet.space
+        terms = constraint_specs.native_terms(placed, space, nat)
+        fixed = list(nat.boundary_pole_indices(space)) if fix_boundary else []
+        fixed = sorted(set(fixed) | set(terms.frozen_poles))
         problem = _build(
             nat.SheetProblem,
             space=space,
             initial_poles=sheet.poles,
             energy=nat.ThinPlateWeights.isotropic(float(stretch), float(bend)),
             points=[],
-            curves=constraints,
-            fixed_poles=list(nat.boundary_pole_indices(space)) if fix_boundary else [],
+            curves=curve_constraints,
+            fixed_poles=fixed,
         )
-        result = nat.solve_sheet(problem, options)
+        terms.apply(problem)
+        try:
+            result = nat.solve_sheet(problem, options)
+        except nat.InvalidInput as error:
+            raise SheetError(str(error)) from error
         conflict = float(result.report.conflict)
         if conflict <= tolerance or 2 * spans > max_spans:
             break
@@ -315,6 +340,7 @@ def solve_sheet_on_face(
         )
     shape = _single_face(shape_from_brep(nat.face_brep(surface)))
     deviations = [float(nat.max_deviation(surface, c, DEVIATION_SAMPLES)) for c in targets]
+    residuals = [float(constraint_specs.residual(p, surface, base)) for p in placed]
     report = result.report
     return SheetOutcome(
         shape=shape,
@@ -329,5 +355,8 @@ def solve_sheet_on_face(
         total_seconds=time.perf_counter() - t0,
         constraint_rank=int(report.constraint_rank),
         unknowns=int(report.unknowns),
+        constraint_names=[p.spec.name for p in placed],
+        constraint_residuals=residuals,
+        constraint_units=[constraint_specs.KINDS[p.spec.kind][1] for p in placed],
         report=report,
     )

@@ -1,6 +1,7 @@
 // The OpenCASCADE layer: conversions, face/edge extraction, projection, face building, STEP, and
 // deviation, each checked against OCCT's own evaluation or a known geometric answer.
 #include <gtest/gtest.h>
+#include <Eigen/Geometry>
 #include <BRepBuilderAPI_MakeEdge.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
 #include <BRepGProp.hxx>
@@ -37,6 +38,7 @@
 #include "varsurf/occ/single_shape.hpp"
 #include "varsurf/occ/step_io.hpp"
 #include "varsurf/occ/surface_refinement.hpp"
+#include "varsurf/occ/point_projection.hpp"
 
 namespace varsurf {
 namespace {
@@ -632,4 +634,21 @@ TEST(RefineSurface, KeepsTheSurfaceAndReachesTheSpanCounts) {
   EXPECT_EQ(same.space.knots_u, r.space.knots_u);
   EXPECT_THROW(varsurf::occ::refine_surface(s, 0, 4), varsurf::InvalidInput);
   EXPECT_THROW(varsurf::occ::refine_surface(s, 4, 4, 12), varsurf::InvalidInput);
+}
+
+TEST(ProjectPoint, FindsTheParametersAndDistanceOfAPointAboveACurvedSheet) {
+  varsurf::BSplineSurface s;
+  s.space = varsurf::SplineSpace::uniform(3, 3, 3, 3);
+  s.poles = varsurf::test::fit_poles(s.space, [](double u, double v) {
+    return Eigen::Vector3d(10 * u, 8 * v, std::sin(u) + 0.5 * v * v);
+  });
+  const double u = 0.3, v = 0.7;
+  const Eigen::MatrixXd d = varsurf::evaluate_surface(s.space, s.poles, u, v, 1);
+  const Eigen::Vector3d n = Eigen::Vector3d(d.row(1)).cross(Eigen::Vector3d(d.row(2))).normalized();
+  const varsurf::occ::PointOnSheet p =
+      varsurf::occ::project_point(s, Eigen::Vector3d(d.row(0)) + 2.0 * n);
+  EXPECT_NEAR(p.u, u, 1e-7);
+  EXPECT_NEAR(p.v, v, 1e-7);
+  EXPECT_NEAR(p.distance, 2.0, 1e-7);
+  EXPECT_THROW(varsurf::occ::project_point(s, Eigen::Vector3d(NAN, 0, 0)), varsurf::InvalidInput);
 }

@@ -146,9 +146,10 @@ TEST(PointConstraints, PointInPlaneAndOnLine) {
 }
 
 TEST(Attractors, PointPullGrowsWithStrengthAndInterpolatesInTheLimit) {
+  // Strengths are relative to the sheet's stiffness: 1 is comparable, 1e3 dominates.
   const Eigen::Vector3d target(0.5, 0.5, 1.0);
   double previous = 1e300;
-  for (double strength : {1e1, 1e3, 1e5, 1e7, 1e9}) {
+  for (double strength : {1e-2, 1e-1, 1.0, 1e1, 1e2, 1e3}) {
     SheetProblem pb = flat_problem();
     Attractor a;
     a.region = Region{0.45, 0.55, 0.45, 0.55};
@@ -173,7 +174,7 @@ TEST(Attractors, PlaneAndLinePullTheRegionOntoThem) {
     a.origin = Eigen::Vector3d(0.5, 0.5, 0.3);
     a.direction = kind == AttractorKind::plane ? Eigen::Vector3d(0.0, 0.3, 1.0)
                                                : Eigen::Vector3d(1.0, 0.0, 0.0);
-    a.strength = 1e8;
+    a.strength = 1e3;
     pb.attractors.push_back(a);
     const SolveResult r = solve_sheet(pb);
     EXPECT_TRUE(r.report.coupled);
@@ -189,7 +190,7 @@ TEST(Attractors, PlaneAndLinePullTheRegionOntoThem) {
 TEST(Attractors, DirectorTurnsTheRegionsNormalsTowardIt) {
   // A pulled point makes a bump; a director along z over the bump flattens its slopes.
   double previous = 1e300;
-  for (double strength : {0.0, 1e2, 1e4, 1e6}) {
+  for (double strength : {0.0, 1e-1, 1e1, 1e3}) {
     SheetProblem pb = flat_problem();
     pb.points.push_back(pull(0.5, 0.5, {0.5, 0.5, 0.3}));
     Director d;

@@ -42,9 +42,12 @@ struct FreeRow {
 ReducedConstraints reduce_constraints(const std::vector<ConstraintSamples>& blocks,
                                       const std::vector<int>& free_index,
                                       const Eigen::MatrixXd& fixed, int free_count,
-                                      double rank_tolerance, double fit_tolerance) {
+                                      double rank_tolerance, double fit_tolerance,
+                                      double keep_tolerance) {
   if (!(rank_tolerance > 0.0 && rank_tolerance < 1.0))
     throw InvalidInput("rank tolerance must be in (0, 1)");
+  if (!(keep_tolerance >= rank_tolerance && keep_tolerance <= 1.0))
+    throw InvalidInput("keep tolerance must be in [rank tolerance, 1]");
   if (!(fit_tolerance >= 0.0) || !std::isfinite(fit_tolerance))
     throw InvalidInput("fit tolerance must be a finite non-negative length");
   const Eigen::Index width = fixed.cols();
@@ -118,29 +121,40 @@ ReducedConstraints reduce_constraints(const std::vector<ConstraintSamples>& bloc
 
     // Tall clusters (many samples, few poles) are compressed by QR first: same solution set,
     // and the SVD then works on an n x n matrix.
+    // The start shape's residual decides how many directions to fit: a homogeneous constraint
+    // (a normal, rhs 0) is far from met by a start that violates it, not already met.
+    Eigen::MatrixXd start(n, width);
+    for (Eigen::Index k = 0; k < n; ++k) start.row(k) = fixed.row(cols[static_cast<size_t>(k)]);
+    const Eigen::MatrixXd d_start = d - b * start;
     Eigen::MatrixXd core = b;
-    Eigen::MatrixXd core_rhs = d;
+    Eigen::MatrixXd core_rhs = d, core_start = d_start;
     if (m > n) {
       Eigen::HouseholderQR<Eigen::MatrixXd> qr(b);
       core = qr.matrixQR().topRows(n).triangularView<Eigen::Upper>();
       core_rhs = (qr.householderQ().transpose() * d).topRows(n);
+      core_start = (qr.householderQ().transpose() * d_start).topRows(n);
     }
     Eigen::BDCSVD<Eigen::MatrixXd> svd(core, Eigen::ComputeThinU | Eigen::ComputeThinV);
     const Eigen::VectorXd& s = svd.singularValues();
     if (s.size() == 0 || !(s(0) > 0.0)) continue;
     if (!s.allFinite()) throw InvalidInput("constraint values are not finite");
     const Eigen::MatrixXd beta = svd.matrixU().transpose() * core_rhs;
+    const Eigen::MatrixXd gain = svd.matrixU().transpose() * core_start;
     Eigen::Index numeric_rank = 0;
     while (numeric_rank < s.size() && s(numeric_rank) > rank_tolerance * s(0)) ++numeric_rank;
     // Residual left by each truncation; the full-rank one is what no choice of poles removes:
     // constraints that contradict each other (curves crossing at different heights).
-    double residual = d.squaredNorm();
-    const double best = std::max(0.0, residual - beta.topRows(numeric_rank).squaredNorm());
+    double residual = d_start.squaredNorm();
+    const double best = std::max(0.0, residual - gain.topRows(numeric_rank).squaredNorm());
     const double allowed = best + fit_tolerance * fit_tolerance * cluster_weight;
+    // Well-conditioned directions are always kept: they cannot throw poles far (|coefficient| <=
+    // |data| / (keep_tolerance s_max)), and dropping one that the start happens to meet would let
+    // the solve drift off it. Only the weak ones are left to the discrepancy test.
     Eigen::Index rank = 0;
     while (rank < numeric_rank) {
-      if (fit_tolerance > 0.0 && residual <= allowed) break;
-      residual -= beta.row(rank).squaredNorm();
+      const bool strong = s(rank) >= keep_tolerance * s(0);
+      if (!strong && fit_tolerance > 0.0 && residual <= allowed) break;
+      residual -= gain.row(rank).squaredNorm();
       ++rank;
     }
     if (cluster_weight > 0.0)

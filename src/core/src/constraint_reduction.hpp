@@ -22,13 +22,16 @@ struct ReducedConstraints {
 // pole are dropped. Within each cluster of rows that share unknowns, B p = d (least squares) is
 // replaced by V_r^T p = S_r^-1 U_r^T d from the SVD B = U S V^T truncated at rank_tolerance *
 // s_max: exactly the set of least-squares minimizers. With fit_tolerance > 0 the truncation also
-// stops at the first rank whose least-squares residual (an RMS distance, since sample weights sum
-// to each constraint's weight) is within fit_tolerance of the best the cluster can reach: the
-// discrepancy principle. Directions beyond it are left to the energy instead of being fitted to
+// stops at the first rank whose least-squares residual, counted from the start values
+// (fixed.row(k) holds them for free columns too; an RMS distance, since sample weights sum to each
+// constraint's weight), is within fit_tolerance of the best the cluster can reach: the
+// discrepancy principle; directions with singular values of at least keep_tolerance * s_max are
+// kept regardless. Directions beyond it are left to the energy instead of being fitted to
 // data the space cannot hold, which is what makes coarse sheets go wild.
 ReducedConstraints reduce_constraints(const std::vector<ConstraintSamples>& blocks,
                                       const std::vector<int>& free_index,
                                       const Eigen::MatrixXd& fixed, int free_count,
-                                      double rank_tolerance, double fit_tolerance);
+                                      double rank_tolerance, double fit_tolerance,
+                                      double keep_tolerance);
 
 }  // namespace varsurf

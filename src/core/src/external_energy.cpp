@@ -99,14 +99,29 @@ std::vector<int> poles_in_region(const SplineSpace& space, const Region& r) {
   return out;
 }
 
-void add_attractor(const SplineSpace& space, const Attractor& at, QuadraticTerms& t) {
+OperatorScales operator_scales(const SplineSpace& space, const Eigen::SparseMatrix<double>& h) {
+  double mass = 0.0, gradient = 0.0;
+  const Region all{space.u_first(), space.u_last(), space.v_first(), space.v_last()};
+  integrate_region(space, all, [&](const BasisSample& s, double dA) {
+    mass += dA * s.values.row(0).squaredNorm();
+    gradient += dA * (s.values.row(1).squaredNorm() + s.values.row(2).squaredNorm());
+  });
+  const double n = space.size();
+  const double stiffness = h.diagonal().sum() / n;
+  OperatorScales out;
+  if (mass > 0.0) out.value = stiffness / (mass / n);
+  if (gradient > 0.0) out.gradient = stiffness / (gradient / n);
+  return out;
+}
+
+void add_attractor(const SplineSpace& space, const Attractor& at, double scale, QuadraticTerms& t) {
   check_region(space, at.region, "attractor");
   check_strength(at.strength, "attractor");
   if (!at.origin.allFinite()) throw InvalidInput("attractor: origin is not finite");
   if (at.strength == 0.0) return;
   if (at.kind == AttractorKind::point) {
     integrate_region(space, at.region, [&](const BasisSample& s, double dA) {
-      const double w = at.strength * dA;
+      const double w = scale * at.strength * dA;
       for (size_t a = 0; a < s.index.size(); ++a) {
         const double ba = w * s.values(0, static_cast<Eigen::Index>(a));
         t.separable_f.row(s.index[a]) += ba * at.origin.transpose();
@@ -122,19 +137,19 @@ void add_attractor(const SplineSpace& space, const Attractor& at, QuadraticTerms
                                 ? Eigen::Matrix3d(d * d.transpose())
                                 : Eigen::Matrix3d(Eigen::Matrix3d::Identity() - d * d.transpose());
   integrate_region(space, at.region, [&](const BasisSample& s, double dA) {
-    add_coupled(t, s, 0, at.strength * dA, m, at.origin);
+    add_coupled(t, s, 0, scale * at.strength * dA, m, at.origin);
   });
 }
 
-void add_director(const SplineSpace& space, const Director& dir, QuadraticTerms& t) {
+void add_director(const SplineSpace& space, const Director& dir, double scale, QuadraticTerms& t) {
   check_region(space, dir.region, "director");
   check_strength(dir.strength, "director");
   const Eigen::Vector3d d = unit_vector(dir.direction, "director: the direction");
   if (dir.strength == 0.0) return;
   const Eigen::Matrix3d m = d * d.transpose();
   integrate_region(space, dir.region, [&](const BasisSample& s, double dA) {
-    add_coupled(t, s, 1, dir.strength * dA, m, Eigen::Vector3d::Zero());
-    add_coupled(t, s, 2, dir.strength * dA, m, Eigen::Vector3d::Zero());
+    add_coupled(t, s, 1, scale * dir.strength * dA, m, Eigen::Vector3d::Zero());
+    add_coupled(t, s, 2, scale * dir.strength * dA, m, Eigen::Vector3d::Zero());
   });
 }
 

@@ -99,8 +99,8 @@ Eigen::MatrixXd solve_quadratic(const Quadratic& pb, const SolveOptions& opt, So
   const Eigen::Index width = pb.x0.cols();
 
   auto t = Clock::now();
-  const ReducedConstraints red =
-      reduce_constraints(pb.blocks, free_index, pb.x0, n, opt.rank_tolerance, opt.fit_tolerance);
+  const ReducedConstraints red = reduce_constraints(
+      pb.blocks, free_index, pb.x0, n, opt.rank_tolerance, opt.fit_tolerance, opt.keep_tolerance);
   const int r = static_cast<int>(red.rows.rows());
   rep.constraint_samples = red.samples;
   rep.constraint_rank = r;
@@ -187,16 +187,18 @@ SolveResult solve_sheet(const SheetProblem& pb, const SolveOptions& opt) {
   Sparse h = assemble_thin_plate(sp, pb.energy);
   QuadraticTerms terms(poles);
   if (pb.rest_poles.rows() != 0) terms.separable_f += h * pb.rest_poles;
+  OperatorScales scales;
+  if (!pb.attractors.empty() || !pb.directors.empty()) scales = operator_scales(sp, h);
   for (size_t i = 0; i < pb.attractors.size(); ++i) {
     try {
-      add_attractor(sp, pb.attractors[i], terms);
+      add_attractor(sp, pb.attractors[i], scales.value, terms);
     } catch (const InvalidInput& e) {
       throw InvalidInput("attractor " + std::to_string(i) + ": " + e.what());
     }
   }
   for (size_t i = 0; i < pb.directors.size(); ++i) {
     try {
-      add_director(sp, pb.directors[i], terms);
+      add_director(sp, pb.directors[i], scales.gradient, terms);
     } catch (const InvalidInput& e) {
       throw InvalidInput("director " + std::to_string(i) + ": " + e.what());
     }

@@ -11,6 +11,7 @@ from __future__ import annotations
 import FreeCAD
 
 from varsurf import model
+from varsurf.app.constraint import spec_of
 
 TYPE = "VarSurf::Sheet"
 STATE_VERSION = 1
@@ -25,6 +26,7 @@ _FLOAT_MAX = 1.0e12
 _PROPERTIES = [
     ("Base", "App::PropertyLinkSub", "Sheet", "The base face: its surface is the start shape and its boundary is kept when FixBoundary is on. Empty: the sheet starts from the best-fit plane of the curves, with a free boundary", False),
     ("Curves", "App::PropertyLinkSubList", "Sheet", "Edges the sheet must pass through; each must lie over the base face", False),
+    ("Constraints", "App::PropertyLinkList", "Sheet", "Constraint objects (points, tangents, normals, planes, lines, attractors, directors, frozen regions)", False),
     ("Stretch", "App::PropertyFloatConstraint", "Sheet", "Stretching weight (alpha, >= 0): penalizes first derivatives, pulls toward a membrane of least area. Default 0", False),
     ("Bend", "App::PropertyFloatConstraint", "Sheet", "Bending weight (beta, >= 0): penalizes second derivatives, pulls toward a fair thin plate. Default 1", False),
     ("FixBoundary", "App::PropertyBool", "Sheet", "Keep the base face's boundary (its boundary poles are held)", False),
@@ -40,6 +42,9 @@ _PROPERTIES = [
     ("SolveTime", "App::PropertyFloat", "Result", "Time of the last solve (s)", True),
     ("ConstraintRank", "App::PropertyInteger", "Result", "Independent constraint rows kept by the solver", True),
     ("Status", "App::PropertyString", "Result", "Outcome of the last recompute", True),
+    ("ConstraintNames", "App::PropertyStringList", "Result", "The enabled constraints, in the order of ConstraintResiduals", True),
+    ("ConstraintResiduals", "App::PropertyFloatList", "Result", "How far each enabled constraint is from met, measured on the result, in ConstraintUnits", True),
+    ("ConstraintUnits", "App::PropertyStringList", "Result", "Unit of each of ConstraintResiduals (mm or deg)", True),
 ]
 
 
@@ -121,6 +126,9 @@ def _clear_results(obj, status):
     obj.MaxDeviations = []
     obj.CurveNames = []
     obj.ConstraintRank = 0
+    for name in ("ConstraintNames", "ConstraintResiduals", "ConstraintUnits"):
+        if name in obj.PropertiesList:
+            setattr(obj, name, [])
     obj.SolveTime = 0.0
     obj.Status = status
 
@@ -173,6 +181,9 @@ class SheetFeature:
                 max_spans=int(obj.MaxSpans),
                 names=names,
             )
+            options["constraints"] = [
+                spec_of(c) for c in (getattr(obj, "Constraints", None) or []) if c.Enabled
+            ]
             if face is None:
                 outcome = model.solve_sheet_from_curves(edges, **options)
             else:
@@ -192,6 +203,9 @@ class SheetFeature:
         obj.DegreeV = outcome.degree_v
         obj.SolveTime = outcome.solve_seconds
         obj.ConstraintRank = outcome.constraint_rank
+        obj.ConstraintNames = list(outcome.constraint_names)
+        obj.ConstraintResiduals = [float(r) for r in outcome.constraint_residuals]
+        obj.ConstraintUnits = list(outcome.constraint_units)
         n = len(outcome.max_deviations)
         obj.Status = (
             f"OK: {outcome.pole_count_u} x {outcome.pole_count_v} poles, {n} curve"

@@ -23,7 +23,8 @@ std::vector<int> poles_in_region(const SplineSpace& space, const Region& region)
 
 enum class AttractorKind { point, plane, line };
 
-// strength * integral over the region of |P (w - origin)|^2 dA, with P = I (point), the
+// strength (relative, see OperatorScales) * integral over the region of |P (w - origin)|^2 dA,
+// with P = I (point), the
 // projection onto `direction` taken as the plane's normal (plane), or the projection across the
 // line along `direction` (line).
 struct Attractor {
@@ -34,7 +35,7 @@ struct Attractor {
   double strength = 1.0;
 };
 
-// strength * integral over the region of (d . w_u)^2 + (d . w_v)^2 dA: tangents pushed
+// strength (relative) * integral over the region of (d . w_u)^2 + (d . w_v)^2 dA: tangents pushed
 // perpendicular to d, i.e. the region's normals toward d.
 struct Director {
   Region region;
@@ -52,9 +53,20 @@ struct QuadraticTerms {
   bool uses_coupled() const { return !coupled.empty(); }
 };
 
-// Throw InvalidInput for empty or out-of-domain regions, zero directions, non-finite or negative
-// strengths.
-void add_attractor(const SplineSpace& space, const Attractor& a, QuadraticTerms& terms);
-void add_director(const SplineSpace& space, const Director& d, QuadraticTerms& terms);
+// Factors that make strengths relative to the sheet: mean diagonal of the sheet's energy matrix
+// over the mean diagonal of the mass matrix (integral of b_k^2, for attractors) or of the
+// gradient matrix (integral of |grad b_k|^2, for directors). Strength 1 then pulls about as hard
+// as the sheet resists, whatever its size, units or spans.
+struct OperatorScales {
+  double value = 1.0;
+  double gradient = 1.0;
+};
+OperatorScales operator_scales(const SplineSpace& space, const Eigen::SparseMatrix<double>& energy);
+
+// Add strength * scale * (the operator's integral). Throw InvalidInput for empty or out-of-domain
+// regions, zero directions, non-finite or negative strengths.
+void add_attractor(const SplineSpace& space, const Attractor& a, double scale,
+                   QuadraticTerms& terms);
+void add_director(const SplineSpace& space, const Director& d, double scale, QuadraticTerms& terms);
 
 }  // namespace varsurf

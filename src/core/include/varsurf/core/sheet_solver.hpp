@@ -47,6 +47,9 @@ struct SolveOptions {
   // fit keeps only as many singular directions as it needs to get there (discrepancy principle)
   // and leaves the rest to the energy. 0 fits every direction above rank_tolerance.
   double fit_tolerance = 0.0;
+  // Singular directions at least this fraction of the largest are kept whatever fit_tolerance
+  // says: they are well conditioned, and a dropped one would no longer hold the sheet.
+  double keep_tolerance = 1e-2;
   // Tikhonov pull toward initial_poles, relative to the energy's scale: keeps directions that
   // neither energy nor constraints determine (e.g. a free affine motion) where they started.
   double regularization = 1e-10;

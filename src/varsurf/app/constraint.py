@@ -1,0 +1,122 @@
+"""The Constraint feature: one constraint or energy operator of a Sheet, as a document object.
+
+An ``App::FeaturePython`` listed in its Sheet's ``Constraints``. Its position on the sheet is a
+picked vertex (``Location``, projected onto the sheet's base) or normalized ``U``/``V``; operators
+act on a normalized region. ``Weight`` is the constraint's weight or the operator's strength. App
+side only: no GUI import.
+"""
+
+from __future__ import annotations
+
+import FreeCAD
+
+from varsurf import constraints
+
+TYPE = "VarSurf::Constraint"
+STATE_VERSION = 1
+
+# name, type, group, tooltip
+_PROPERTIES = [
+    ("Kind", "App::PropertyEnumeration", "Constraint", "What the constraint asks of the sheet"),
+    ("Enabled", "App::PropertyBool", "Constraint", "Off: the Sheet ignores this constraint"),
+    ("Location", "App::PropertyLinkSub", "Constraint", "A vertex: its projection onto the base gives (u, v); for Point it is also the target"),
+    ("U", "App::PropertyFloat", "Constraint", "Normalized u in [0, 1], used when there is no Location"),
+    ("V", "App::PropertyFloat", "Constraint", "Normalized v in [0, 1], used when there is no Location"),
+    ("Vector", "App::PropertyVector", "Constraint", "Tangent, normal, plane normal, line or director direction"),
+    ("Origin", "App::PropertyVector", "Constraint", "Plane, line or attractor point (Point: the target when there is no Location)"),
+    ("UseOrigin", "App::PropertyBool", "Constraint", "Use Origin even when a Location is set"),
+    ("RegionU0", "App::PropertyFloat", "Region", "Normalized region start along u (operators, frozen region)"),
+    ("RegionU1", "App::PropertyFloat", "Region", "Normalized region end along u"),
+    ("RegionV0", "App::PropertyFloat", "Region", "Normalized region start along v"),
+    ("RegionV1", "App::PropertyFloat", "Region", "Normalized region end along v"),
+    ("Weight", "App::PropertyFloat", "Constraint", "Weight of a constraint, or strength of an operator (>= 0)"),
+]
+
+
+def _add_missing_properties(obj):
+    for name, kind, group, tip in _PROPERTIES:
+        if name in obj.PropertiesList:
+            continue
+        obj.addProperty(kind, name, group, tip)
+        if name == "Kind":
+            obj.Kind = list(constraints.KINDS)
+        elif name == "Enabled":
+            obj.Enabled = True
+        elif name in ("U", "V"):
+            setattr(obj, name, 0.5)
+        elif name == "Vector":
+            obj.Vector = FreeCAD.Vector(0, 0, 1)
+        elif name == "RegionU1" or name == "RegionV1":
+            setattr(obj, name, 1.0)
+        elif name == "Weight":
+            obj.Weight = 1.0
+
+
+def _location_point(obj):
+    if obj.Location is None:
+        return None
+    link, subs = obj.Location
+    subs = [s for s in subs if s]
+    import Part
+
+    shape = Part.getShape(link, subs[0], needSubElement=True) if subs else link.Shape
+    if shape.isNull() or not shape.Vertexes:
+        raise constraints.ConstraintError(f"{obj.Label}: Location must be a vertex")
+    p = shape.Vertexes[0].Point
+    return (p.x, p.y, p.z)
+
+
+def spec_of(obj) -> constraints.ConstraintSpec:
+    """The ConstraintSpec a Constraint object describes (validated)."""
+    location = _location_point(obj)
+    origin = None
+    if obj.UseOrigin or location is None:
+        origin = (obj.Origin.x, obj.Origin.y, obj.Origin.z)
+    spec = constraints.ConstraintSpec(
+        kind=str(obj.Kind),
+        name=obj.Label,
+        location=location,
+        uv=None if location is not None else (float(obj.U), float(obj.V)),
+        vector=(obj.Vector.x, obj.Vector.y, obj.Vector.z),
+        origin=origin,
+        region=(float(obj.RegionU0), float(obj.RegionU1), float(obj.RegionV0), float(obj.RegionV1)),
+        weight=float(obj.Weight),
+    )
+    spec.validate()
+    return spec
+
+
+class ConstraintFeature:
+    """Proxy of a VarSurf Constraint (App::FeaturePython)."""
+
+    Type = TYPE
+
+    def __init__(self, obj):
+        obj.Proxy = self
+        self.Type = TYPE
+        _add_missing_properties(obj)
+
+    def dumps(self):
+        return {"type": TYPE, "version": STATE_VERSION}
+
+    def loads(self, state):
+        self.Type = TYPE
+        return None
+
+    def __getstate__(self):
+        return self.dumps()
+
+    def __setstate__(self, state):
+        self.loads(state)
+
+    def onDocumentRestored(self, obj):
+        self.Type = TYPE
+        _add_missing_properties(obj)
+
+    def execute(self, obj):
+        # Check the constraint's own data now, so a bad one is marked itself, not only its Sheet.
+        try:
+            spec_of(obj)
+        except Exception as error:
+            FreeCAD.Console.PrintError(f"VarSurf: {error}\n")
+            raise

@@ -1,0 +1,232 @@
+"""Constraints and energy operators of a sheet as plain data, and their residuals.
+
+A ``ConstraintSpec`` says what a Constraint document object asks of a sheet; ``native_terms``
+turns specs into the solver's terms for one spline space, and ``residual`` measures on the solved
+surface how well each was met. No document and no GUI here.
+
+Positions on the sheet are given either by a 3D ``location`` (projected onto the base surface to
+find its (u, v)) or by normalized parameters ``uv`` in [0, 1]^2; regions are normalized
+rectangles (u0, u1, v0, v1).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Dict, List, Optional, Sequence, Tuple
+
+#: Kind -> (what it does, unit of its residual).
+KINDS: Dict[str, Tuple[str, str]] = {
+    "Point": ("the sheet passes through the location (or Origin) at its (u, v)", "mm"),
+    "TangentU": ("the derivative along u at (u, v) is Vector", "mm"),
+    "TangentV": ("the derivative along v at (u, v) is Vector", "mm"),
+    "Normal": ("the normal at (u, v) is parallel to Vector", "deg"),
+    "PointInPlane": ("the point at (u, v) lies in the plane (Origin, normal Vector)", "mm"),
+    "PointOnLine": ("the point at (u, v) lies on the line (Origin, direction Vector)", "mm"),
+    "PointAttractor": ("the region is pulled toward Origin with strength Weight", "mm"),
+    "PlaneAttractor": ("the region is pulled onto the plane (Origin, normal Vector)", "mm"),
+    "LineAttractor": ("the region is pulled onto the line (Origin, direction Vector)", "mm"),
+    "Director": ("the region's normals are pushed toward Vector", "deg"),
+    "FrozenRegion": ("the sheet over the region keeps the base shape", "mm"),
+}
+POINT_KINDS = ("Point", "TangentU", "TangentV", "Normal", "PointInPlane", "PointOnLine")
+REGION_KINDS = ("PointAttractor", "PlaneAttractor", "LineAttractor", "Director", "FrozenRegion")
+#: Grid (per direction) on which region residuals are sampled.
+REGION_SAMPLES = 7
+
+
+class ConstraintError(ValueError):
+    """A constraint's own data is unusable; the message starts with its name."""
+
+
+@dataclass
+class ConstraintSpec:
+    kind: str
+    name: str = "Constraint"
+    location: Optional[Tuple[float, float, float]] = None
+    uv: Optional[Tuple[float, float]] = None
+    vector: Tuple[float, float, float] = (0.0, 0.0, 1.0)
+    origin: Optional[Tuple[float, float, float]] = None
+    region: Tuple[float, float, float, float] = (0.0, 1.0, 0.0, 1.0)
+    weight: float = 1.0
+
+    def validate(self):
+        fail = lambda why: ConstraintError(f"{self.name}: {why}")  # noqa: E731
+        if self.kind not in KINDS:
+            raise fail(f"unknown kind {self.kind!r} (one of {', '.join(KINDS)})")
+        if not (math.isfinite(self.weight) and self.weight >= 0.0):
+            raise fail(f"weight/strength must be finite and >= 0 (got {self.weight})")
+        if self.kind in POINT_KINDS:
+            if self.weight == 0.0:
+                raise fail("a constraint's weight must be > 0")
+            if self.location is None and self.uv is None:
+                raise fail("needs a location (a vertex) or (u, v)")
+            if self.uv is not None and not all(0.0 <= t <= 1.0 for t in self.uv):
+                raise fail(f"(u, v) must lie in [0, 1] x [0, 1] (got {self.uv})")
+        if self.kind in REGION_KINDS:
+            u0, u1, v0, v1 = self.region
+            if not (0.0 <= u0 < u1 <= 1.0 and 0.0 <= v0 < v1 <= 1.0):
+                raise fail(f"the region must satisfy 0 <= u0 < u1 <= 1 and 0 <= v0 < v1 <= 1 (got {self.region})")
+        needs_vector = self.kind not in ("Point", "PointAttractor", "FrozenRegion")
+        vec = self.vector
+        if needs_vector and not (all(math.isfinite(c) for c in vec) and math.hypot(*vec) > 0.0):
+            raise fail(f"Vector must be a finite non-zero direction (got {tuple(vec)})")
+        if self.kind in ("PointInPlane", "PointOnLine", "PointAttractor", "PlaneAttractor", "LineAttractor"):
+            if self.origin is None and self.location is None:
+                raise fail("needs an Origin (or a location)")
+        if self.kind == "Point" and self.location is None and self.origin is None:
+            raise fail("needs a location (a vertex) or an Origin to pass through")
+
+
+@dataclass
+class PlacedSpec:
+    """A spec with its (u, v) in the sheet's own parameters and its region in them."""
+
+    spec: ConstraintSpec
+    u: float = 0.0
+    v: float = 0.0
+    region: Tuple[float, float, float, float] = (0.0, 1.0, 0.0, 1.0)
+    start_distance: float = 0.0  # location to base surface, when a location was given
+
+    @property
+    def origin(self):
+        s = self.spec
+        return s.origin if s.origin is not None else s.location
+
+
+def place(specs: Sequence[ConstraintSpec], base, nat) -> List[PlacedSpec]:
+    """Validate specs and find their (u, v) on the base surface (a native BSplineSurface)."""
+    space = base.space
+    uf, ul = space.knots_u[0], space.knots_u[-1]
+    vf, vl = space.knots_v[0], space.knots_v[-1]
+    placed = []
+    for spec in specs:
+        spec.validate()
+        p = PlacedSpec(spec)
+        if spec.kind in POINT_KINDS:
+            if spec.location is not None:
+                hit = nat.project_point(base, list(spec.location))
+                p.u, p.v, p.start_distance = hit.u, hit.v, hit.distance
+            else:
+                p.u, p.v = uf + spec.uv[0] * (ul - uf), vf + spec.uv[1] * (vl - vf)
+        u0, u1, v0, v1 = spec.region
+        p.region = (uf + u0 * (ul - uf), uf + u1 * (ul - uf), vf + v0 * (vl - vf), vf + v1 * (vl - vf))
+        placed.append(p)
+    return placed
+
+
+@dataclass
+class NativeTerms:
+    points: list = field(default_factory=list)
+    tangents: list = field(default_factory=list)
+    normals: list = field(default_factory=list)
+    plane_points: list = field(default_factory=list)
+    line_points: list = field(default_factory=list)
+    attractors: list = field(default_factory=list)
+    directors: list = field(default_factory=list)
+    frozen_poles: list = field(default_factory=list)
+
+    def apply(self, problem):
+        for name in ("points", "tangents", "normals", "plane_points", "line_points", "attractors", "directors"):
+            setattr(problem, name, list(getattr(problem, name)) + getattr(self, name))
+
+
+def native_terms(placed: Sequence[PlacedSpec], space, nat) -> NativeTerms:
+    """The solver's terms for the specs on one spline space (frozen poles depend on the space)."""
+    out = NativeTerms()
+    for p in placed:
+        s, kind = p.spec, p.spec.kind
+        vec = list(s.vector)
+        region = nat.Region(u0=p.region[0], u1=p.region[1], v0=p.region[2], v1=p.region[3])
+        if kind == "Point":
+            out.points.append(nat.PointConstraint(u=p.u, v=p.v, target=list(p.origin), weight=s.weight))
+        elif kind in ("TangentU", "TangentV"):
+            out.tangents.append(nat.TangentConstraint(u=p.u, v=p.v, direction=0 if kind == "TangentU" else 1,
+                                                      target=vec, weight=s.weight))
+        elif kind == "Normal":
+            out.normals.append(nat.NormalConstraint(u=p.u, v=p.v, normal=vec, weight=s.weight))
+        elif kind == "PointInPlane":
+            out.plane_points.append(nat.PlanePointConstraint(u=p.u, v=p.v, origin=list(p.origin), normal=vec,
+                                                             weight=s.weight))
+        elif kind == "PointOnLine":
+            out.line_points.append(nat.LinePointConstraint(u=p.u, v=p.v, origin=list(p.origin), direction=vec,
+                                                           weight=s.weight))
+        elif kind in ("PointAttractor", "PlaneAttractor", "LineAttractor"):
+            attractor_kind = {"PointAttractor": nat.AttractorKind.point, "PlaneAttractor": nat.AttractorKind.plane,
+                              "LineAttractor": nat.AttractorKind.line}[kind]
+            out.attractors.append(nat.Attractor(kind=attractor_kind, region=region, origin=list(p.origin),
+                                                direction=vec, strength=s.weight))
+        elif kind == "Director":
+            out.directors.append(nat.Director(region=region, direction=vec, strength=s.weight))
+        elif kind == "FrozenRegion":
+            out.frozen_poles.extend(int(k) for k in nat.poles_in_region(space, region))
+    return out
+
+
+def _unit(v):
+    n = math.sqrt(sum(c * c for c in v))
+    return [c / n for c in v]
+
+
+def _cross(a, b):
+    return [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+
+
+def _dot(a, b):
+    return sum(x * y for x, y in zip(a, b))
+
+
+def _sub(a, b):
+    return [x - y for x, y in zip(a, b)]
+
+
+def _norm(a):
+    return math.sqrt(_dot(a, a))
+
+
+def _angle_deg(normal, direction):
+    """Unsigned angle between a surface normal and a direction (a normal has no preferred side)."""
+    c = abs(_dot(_unit(normal), _unit(direction)))
+    return math.degrees(math.acos(min(1.0, c)))
+
+
+def residual(p: PlacedSpec, surface, base) -> float:
+    """How far the solved ``surface`` is from what the spec asks, in KINDS' unit."""
+    s, kind = p.spec, p.spec.kind
+    if kind in POINT_KINDS:
+        d = surface.derivatives(p.u, p.v, 1)
+        w, wu, wv = list(d[0]), list(d[1]), list(d[2])
+        if kind == "Point":
+            return _norm(_sub(w, p.origin))
+        if kind == "TangentU":
+            return _norm(_sub(wu, s.vector))
+        if kind == "TangentV":
+            return _norm(_sub(wv, s.vector))
+        if kind == "Normal":
+            return _angle_deg(_cross(wu, wv), s.vector)
+        if kind == "PointInPlane":
+            return abs(_dot(_unit(s.vector), _sub(w, p.origin)))
+        if kind == "PointOnLine":
+            return _norm(_cross(_sub(w, p.origin), _unit(s.vector)))
+    # Region kinds: RMS over a grid of the region (max for a frozen region).
+    u0, u1, v0, v1 = p.region
+    values = []
+    for i in range(REGION_SAMPLES):
+        for j in range(REGION_SAMPLES):
+            u = u0 + (u1 - u0) * i / (REGION_SAMPLES - 1)
+            v = v0 + (v1 - v0) * j / (REGION_SAMPLES - 1)
+            d = surface.derivatives(u, v, 1)
+            w = list(d[0])
+            if kind == "PointAttractor":
+                values.append(_norm(_sub(w, p.origin)))
+            elif kind == "PlaneAttractor":
+                values.append(abs(_dot(_unit(s.vector), _sub(w, p.origin))))
+            elif kind == "LineAttractor":
+                values.append(_norm(_cross(_sub(w, p.origin), _unit(s.vector))))
+            elif kind == "Director":
+                values.append(_angle_deg(_cross(list(d[1]), list(d[2])), s.vector))
+            elif kind == "FrozenRegion":
+                values.append(_norm(_sub(w, list(base.evaluate(u, v)))))
+    if kind == "FrozenRegion":
+        return max(values)
+    return math.sqrt(sum(x * x for x in values) / len(values))

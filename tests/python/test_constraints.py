@@ -1,0 +1,176 @@
+"""Constraint objects of a Sheet: every kind through the API, residuals measured on the result,
+Enabled, save/reopen, and bad input."""
+
+import math
+
+import FreeCAD
+import Part
+import pytest
+
+import varsurf
+from varsurf import constraints
+from scenes import add_face, add_line_sketch, flat_face, poles_of
+
+V = FreeCAD.Vector
+
+
+@pytest.fixture
+def sheet(doc, native):
+    """A flat 100 x 80 mm base at z = 0 with its boundary kept, and a low rail 5 mm up."""
+    surface = add_face(doc, flat_face())
+    rail = add_line_sketch(doc, "Rail", 5.0, (20.0, 15.0), (40.0, 20.0))
+    doc.recompute()
+    s = varsurf.make_sheet((surface, "Face1"), [(rail, "Edge1")])
+    doc.recompute()
+    assert s.isValid(), s.getStatusString()
+    return s
+
+
+def residual_of(sheet, constraint):
+    names = list(sheet.ConstraintNames)
+    assert constraint.Label in names, names
+    return sheet.ConstraintResiduals[names.index(constraint.Label)]
+
+
+def vertex(doc, name, point):
+    obj = doc.addObject("Part::Vertex", name)
+    obj.X, obj.Y, obj.Z = point
+    return obj
+
+
+def test_point_at_a_vertex_is_met_and_the_sheet_passes_through_it(sheet):
+    doc = sheet.Document
+    v = vertex(doc, "Pin", (60.0, 50.0, 12.0))
+    c = varsurf.make_constraint(sheet, "Point", location=(v, "Vertex1"))
+    doc.recompute()
+    assert sheet.isValid(), sheet.getStatusString()
+    assert residual_of(sheet, c) < 1e-6
+    assert sheet.ConstraintUnits[0] == "mm"
+    assert sheet.Shape.distToShape(v.Shape)[0] < 1e-6
+    assert sheet.Shape.BoundBox.ZMax > 11.9
+
+
+@pytest.mark.parametrize("kind, vector, origin, bound", [
+    ("Normal", (0.3, -0.2, 1.0), None, 1e-6),           # degrees
+    ("TangentU", (100.0, 0.0, 30.0), None, 1e-6),       # mm per unit u
+    ("TangentV", (0.0, 80.0, -20.0), None, 1e-6),
+    ("PointInPlane", (0.2, 0.1, 1.0), (0.0, 0.0, 7.0), 1e-6),
+    ("PointOnLine", (0.0, 0.3, 1.0), (70.0, 40.0, 0.0), 1e-6),
+])
+def test_point_kinds_are_met_at_normalized_parameters(sheet, kind, vector, origin, bound):
+    doc = sheet.Document
+    before = poles_of(sheet)
+    c = varsurf.make_constraint(sheet, kind, uv=(0.65, 0.55), vector=vector, origin=origin)
+    doc.recompute()
+    assert sheet.isValid(), sheet.getStatusString()
+    assert residual_of(sheet, c) < bound, (kind, list(sheet.ConstraintResiduals))
+    # the constraint really changed the sheet
+    assert max(math.dist(p, q) for p, q in zip(before, poles_of(sheet))) > 0.01
+    assert max(sheet.MaxDeviations) <= varsurf.DEFAULT_TOLERANCE  # the rail still holds
+
+
+@pytest.mark.parametrize("kind, vector", [
+    ("PointAttractor", (0.0, 0.0, 1.0)),
+    ("PlaneAttractor", (0.0, 0.0, 1.0)),
+    ("LineAttractor", (1.0, 0.0, 0.0)),
+])
+def test_attractor_pull_grows_with_strength(sheet, kind, vector):
+    doc = sheet.Document
+    c = varsurf.make_constraint(sheet, kind, origin=(60.0, 40.0, 10.0), vector=vector,
+                                region=(0.5, 0.7, 0.4, 0.6), weight=1e-3)
+    doc.recompute()
+    weak = residual_of(sheet, c)
+    c.Weight = 1e2
+    doc.recompute()
+    strong = residual_of(sheet, c)
+    assert sheet.isValid(), sheet.getStatusString()
+    assert strong < 0.5 * weak, (weak, strong)
+
+
+def test_director_turns_normals_toward_it(sheet):
+    doc = sheet.Document
+    v = vertex(doc, "Pin", (50.0, 40.0, 15.0))
+    varsurf.make_constraint(sheet, "Point", location=(v, "Vertex1"))
+    d = varsurf.make_constraint(sheet, "Director", vector=(0, 0, 1), region=(0.35, 0.65, 0.35, 0.65),
+                                weight=1e-3)
+    doc.recompute()
+    weak = residual_of(sheet, d)
+    d.Weight = 10.0
+    doc.recompute()
+    strong = residual_of(sheet, d)
+    assert sheet.ConstraintUnits[1] == "deg"
+    assert strong < 0.5 * weak, (weak, strong)
+
+
+def test_frozen_region_keeps_the_base_there(sheet):
+    doc = sheet.Document
+    v = vertex(doc, "Pin", (75.0, 40.0, 10.0))
+    varsurf.make_constraint(sheet, "Point", location=(v, "Vertex1"))
+    f = varsurf.make_constraint(sheet, "FrozenRegion", region=(0.0, 0.5, 0.0, 1.0))
+    doc.recompute()
+    assert sheet.isValid(), sheet.getStatusString()
+    assert residual_of(sheet, f) < 1e-9
+    assert sheet.Shape.distToShape(v.Shape)[0] < 1e-6
+
+
+def test_disabled_constraints_are_ignored(sheet):
+    doc = sheet.Document
+    before = poles_of(sheet)
+    c = varsurf.make_constraint(sheet, "Normal", uv=(0.5, 0.5), vector=(1, 0, 1))
+    c.Enabled = False
+    doc.recompute()
+    assert list(sheet.ConstraintNames) == []
+    assert max(math.dist(p, q) for p, q in zip(before, poles_of(sheet))) < 1e-9
+
+
+def test_constraints_survive_save_and_reopen(sheet, tmp_path):
+    doc = sheet.Document
+    varsurf.make_constraint(sheet, "Normal", uv=(0.6, 0.4), vector=(0.2, 0.2, 1.0))
+    varsurf.make_constraint(sheet, "PointAttractor", origin=(30, 60, 8), region=(0.2, 0.4, 0.6, 0.8))
+    doc.recompute()
+    poles = poles_of(sheet)
+    path = str(tmp_path / "constraints.FCStd")
+    doc.saveAs(path)
+    sheet_name = sheet.Name
+    FreeCAD.closeDocument(doc.Name)
+    again = FreeCAD.openDocument(path)
+    try:
+        s = again.getObject(sheet_name)
+        assert [c.Kind for c in s.Constraints] == ["Normal", "PointAttractor"]
+        s.touch()
+        again.recompute()
+        assert s.isValid(), s.getStatusString()
+        assert max(math.dist(p, q) for p, q in zip(poles, poles_of(s))) < 1e-9
+    finally:
+        FreeCAD.closeDocument(again.Name)
+
+
+@pytest.mark.parametrize("kind, edit, text", [
+    ("Normal", dict(Vector=V(0, 0, 0)), "non-zero direction"),
+    ("PointAttractor", dict(RegionU0=0.8, RegionU1=0.2), "region"),
+    ("PointAttractor", dict(Weight=float("nan")), "weight"),
+    ("PointInPlane", dict(U=1.5), "[0, 1]"),
+])
+def test_bad_constraints_put_constraint_and_sheet_in_error(sheet, kind, edit, text, console_errors):
+    doc = sheet.Document
+    c = varsurf.make_constraint(sheet, kind, uv=(0.5, 0.5), origin=(50, 40, 5))
+    for prop, value in edit.items():
+        setattr(c, prop, value)
+    doc.recompute()
+    # The constraint is in error with a message naming it; FreeCAD does not recompute the Sheet
+    # on top of a failed input (it stays touched, like a Pad on a broken sketch).
+    assert not c.isValid()
+    assert text in c.getStatusString() and c.Label in c.getStatusString(), c.getStatusString()
+    assert text in console_errors()
+    assert "Touched" in sheet.State or not sheet.isValid(), sheet.State
+    # removing the bad constraint heals the sheet
+    sheet.Constraints = []
+    doc.removeObject(c.Name)
+    doc.recompute()
+    assert sheet.isValid(), sheet.getStatusString()
+
+
+def test_unknown_kind_is_refused(sheet):
+    with pytest.raises(ValueError, match="unknown constraint kind"):
+        varsurf.make_constraint(sheet, "Magnet")
+    assert set(constraints.KINDS) >= {"Point", "Normal", "Director", "FrozenRegion"}
