@@ -4,6 +4,7 @@ App-side public API (importable headless, without any GUI module):
 
     make_sheet(base, curves, stretch=0.0, bend=1.0, fix_boundary=True)  -> Sheet object
     make_constraint(sheet, kind, location=None, uv=None, vector=None, ...) -> Constraint object
+    install_rest_shape(sheet), melt(sheet)                              -> sheet
     export_step(objects, path)                                           -> path
     selection_to_sheet_args(selection_ex)                                -> (base, curves)
     solve_sheet_on_face(face, edges, ...)                                -> SheetOutcome
@@ -30,7 +31,7 @@ from varsurf.model import (  # noqa: E402
 def __getattr__(name):
     # The document-level API needs FreeCAD; load it on first use so that `import varsurf` also
     # works where only the native extension and the math are wanted.
-    if name in ("make_sheet", "make_constraint", "export_step", "selection_to_sheet_args", "selection_problem",
+    if name in ("make_sheet", "make_constraint", "install_rest_shape", "melt", "export_step", "selection_to_sheet_args", "selection_problem",
                 "create_sheet_from_selection", "sheet_command_lines", "is_sheet",
                 "run_sheet_command"):
         from varsurf import api
@@ -54,6 +55,8 @@ __all__ = [
     "plane_face_for_curves",
     "make_sheet",
     "make_constraint",
+    "install_rest_shape",
+    "melt",
     "export_step",
     "selection_to_sheet_args",
     "selection_problem",

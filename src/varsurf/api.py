@@ -175,6 +175,21 @@ def make_constraint(
     return obj
 
 
+def install_rest_shape(sheet):
+    """Make the Sheet's current result its rest shape: later edits keep this shape's detail."""
+    if sheet.Shape.isNull() or len(sheet.Shape.Faces) != 1:
+        raise ValueError(f"{sheet.Label} has no result to install: recompute it first")
+    sheet.InstalledRest = sheet.Shape.Faces[0].copy()
+    sheet.RestShape = "Installed"
+    return sheet
+
+
+def melt(sheet):
+    """Drop the Sheet's rest shape: back to pure fairness (the thin-plate energy of the shape)."""
+    sheet.RestShape = "None"
+    return sheet
+
+
 def export_step(objects, path: str) -> str:
     """Write the shapes of ``objects`` (document objects or Part shapes) to an AP214 STEP file.
 

@@ -132,6 +132,27 @@ def shape_from_brep(text: str):
     return shape
 
 
+def _rest_poles_in(rest_surface, space, nat, spans):
+    """Poles of an installed rest shape in the sheet's space (refined alike), or SheetError."""
+    refined = nat.refine_surface(rest_surface, spans, spans, SHEET_MIN_DEGREE)
+    same = (
+        refined.space.degree_u == space.degree_u
+        and refined.space.degree_v == space.degree_v
+        and _close(refined.space.knots_u, space.knots_u)
+        and _close(refined.space.knots_v, space.knots_v)
+    )
+    if not same:
+        raise SheetError(
+            "the installed rest shape does not match the sheet's spline space any more (spans or "
+            "base changed): install the rest shape again, or melt it"
+        )
+    return refined.poles
+
+
+def _close(a, b, tol=1e-9):
+    return len(a) == len(b) and all(abs(x - y) <= tol * (1.0 + abs(x)) for x, y in zip(a, b))
+
+
 def _spans(space) -> int:
     """Fewest polynomial spans of the space over its two directions."""
     return min(len(set(space.knots_u)) - 1, len(set(space.knots_v)) - 1)
@@ -221,6 +242,7 @@ def solve_sheet_on_face(
     names: Optional[Sequence[str]] = None,
     rank_tolerance: float = DEFAULT_RANK_TOLERANCE,
     constraints: Sequence = (),
+    rest=None,
 ) -> SheetOutcome:
     """Solve the variational sheet over ``face`` that passes through ``edges``.
 
@@ -238,6 +260,9 @@ def solve_sheet_on_face(
     names: one label per edge for messages and reports ("Sketch001:Edge2").
     constraints: ConstraintSpec objects (varsurf.constraints): point, tangent, normal,
         point-in-plane and point-on-line constraints, attractors, directors, frozen regions.
+    rest: None (pure fairness), "base" (the base face is the rest shape: the energy acts on the
+        displacement from it, so edits keep its detail), or a Part face whose B-spline has the
+        sheet's own spline space (an installed rest shape).
 
     Raises SheetError (a ValueError) naming the curve or parameter at fault, and lets the
     extension's SolveFailure / GeometryError through for numerical or kernel failures.
@@ -297,6 +322,13 @@ def solve_sheet_on_face(
     except (nat.InvalidInput, nat.GeometryError) as error:
         raise SheetError(f"a constraint's location cannot be placed on the base face: {error}") from error
 
+    rest_surface = None
+    if rest is not None and not (isinstance(rest, str) and rest == "base"):
+        try:
+            rest_surface = nat.surface_from_face_brep(rest.exportBrepToString())
+        except (nat.InvalidInput, nat.GeometryError, AttributeError) as error:
+            raise SheetError(f"the installed rest shape cannot be used: {error}") from error
+
     # Pre-images and constraint (u, v) stay valid on every refinement: knot insertion keeps the
     # parametrization.
     spans = max(int(min_spans), _spans(base.space))
@@ -319,6 +351,10 @@ def solve_sheet_on_face(
             fixed_poles=fixed,
         )
         terms.apply(problem)
+        if rest == "base":
+            problem.rest_poles = sheet.poles
+        elif rest_surface is not None:
+            problem.rest_poles = _rest_poles_in(rest_surface, space, nat, spans)
         try:
             result = nat.solve_sheet(problem, options)
         except nat.InvalidInput as error:

@@ -14,6 +14,7 @@ from varsurf import model
 from varsurf.app.constraint import spec_of
 
 TYPE = "VarSurf::Sheet"
+REST_SHAPES = ("Base", "None", "Installed")
 STATE_VERSION = 1
 
 # Property status bits (App::PropertyType): read-only in the editor, output (does not touch).
@@ -27,6 +28,8 @@ _PROPERTIES = [
     ("Base", "App::PropertyLinkSub", "Sheet", "The base face: its surface is the start shape and its boundary is kept when FixBoundary is on. Empty: the sheet starts from the best-fit plane of the curves, with a free boundary", False),
     ("Curves", "App::PropertyLinkSubList", "Sheet", "Edges the sheet must pass through; each must lie over the base face", False),
     ("Constraints", "App::PropertyLinkList", "Sheet", "Constraint objects (points, tangents, normals, planes, lines, attractors, directors, frozen regions)", False),
+    ("RestShape", "App::PropertyEnumeration", "Sheet", "Base: the energy acts on the displacement from the base face, so edits keep its detail. None: pure fairness (melted). Installed: the displacement from an installed shape", False),
+    ("InstalledRest", "Part::PropertyPartShape", "Sheet", "The shape installed as rest shape (install_rest_shape)", False),
     ("Stretch", "App::PropertyFloatConstraint", "Sheet", "Stretching weight (alpha, >= 0): penalizes first derivatives, pulls toward a membrane of least area. Default 0", False),
     ("Bend", "App::PropertyFloatConstraint", "Sheet", "Bending weight (beta, >= 0): penalizes second derivatives, pulls toward a fair thin plate. Default 1", False),
     ("FixBoundary", "App::PropertyBool", "Sheet", "Keep the base face's boundary (its boundary poles are held)", False),
@@ -64,6 +67,9 @@ def _add_missing_properties(obj):
             obj.Bend = (model.DEFAULT_BEND, 0.0, _FLOAT_MAX, 0.1)
         elif name == "FixBoundary":
             obj.FixBoundary = True
+        elif name == "RestShape":
+            obj.RestShape = list(REST_SHAPES)
+            obj.RestShape = "Base"
         elif name == "Tolerance":
             obj.Tolerance = model.DEFAULT_TOLERANCE
         elif name == "MinSpans":
@@ -110,6 +116,19 @@ def resolve_inputs(obj):
             edges.append(_element(Part, link_obj, sub))
             names.append(name)
     return face, edges, names
+
+
+def _rest_of(obj, face):
+    """The model's rest argument for the Sheet's RestShape."""
+    mode = str(getattr(obj, "RestShape", "None"))
+    if mode == "Base":
+        return "base" if face is not None else None  # a best-fit plane has no detail to keep
+    if mode == "Installed":
+        shape = obj.InstalledRest
+        if shape.isNull() or len(shape.Faces) != 1:
+            raise model.SheetError("RestShape is Installed but no rest shape was installed")
+        return shape.Faces[0]
+    return None
 
 
 def _element(Part, link_obj, sub):
@@ -184,6 +203,7 @@ class SheetFeature:
             options["constraints"] = [
                 spec_of(c) for c in (getattr(obj, "Constraints", None) or []) if c.Enabled
             ]
+            options["rest"] = _rest_of(obj, face)
             if face is None:
                 outcome = model.solve_sheet_from_curves(edges, **options)
             else:
