@@ -45,8 +45,11 @@ class VarSurfWorkbench(FreeCADGui.Workbench):
         import varsurf.gui.commands  # registers the commands
 
         commands = varsurf.gui.commands.COMMANDS
+        constraints = varsurf.gui.commands.CONSTRAINTS
         self.appendToolbar("VarSurf", commands)
+        self.appendToolbar("VarSurf constraints", constraints)
         self.appendMenu("&VarSurf", commands)
+        self.appendMenu(["&VarSurf", "Constraints"], constraints)
 
     def Activated(self):
         pass
@@ -57,7 +60,7 @@ class VarSurfWorkbench(FreeCADGui.Workbench):
     def ContextMenu(self, recipient):
         import varsurf.gui.commands
 
-        self.appendContextMenu("VarSurf", varsurf.gui.commands.COMMANDS)
+        self.appendContextMenu("VarSurf", varsurf.gui.commands.COMMANDS + varsurf.gui.commands.CONSTRAINTS)
 
     def GetClassName(self):
         return "Gui::PythonWorkbench"

@@ -354,3 +354,99 @@ def _is_sheet(obj) -> bool:
 def is_sheet(obj) -> bool:
     """True for VarSurf Sheet objects."""
     return _is_sheet(obj)
+
+
+# --------------------------------------------------------------------------------------------
+# constraints from a selection (what the constraint commands run)
+
+TRANSACTION_CONSTRAINT = "Add VarSurf constraint"
+CONSTRAINT_HINT = "Select a Sheet and, for a point constraint, a vertex the sheet must pass through."
+#: Kinds that need a picked vertex from the GUI (their target is a location).
+VERTEX_KINDS = ("Point",)
+
+
+def constraint_selection_to_args(kind: str, selection_ex: Sequence):
+    """(sheet, location or None) for make_constraint from a selection, or ValueError.
+
+    Exactly one Sheet (the whole object or any of its elements); at most one vertex of another
+    object, which becomes the constraint's location.
+    """
+    from varsurf import constraints
+
+    if kind not in constraints.KINDS:
+        raise ValueError(f"unknown constraint kind {kind!r}")
+    sheets, vertices = [], []
+    for sel in selection_ex or []:
+        obj = sel.Object
+        subs = [s.split(".")[-1] for s in (getattr(sel, "SubElementNames", None) or ()) if s]
+        if _is_sheet(obj):
+            if obj not in sheets:
+                sheets.append(obj)
+            continue
+        for sub in subs:
+            if not sub.startswith("Vertex"):
+                raise ValueError(f"{obj.Label}:{sub} is not a vertex. {CONSTRAINT_HINT}")
+            vertices.append((obj, sub))
+        if not subs:
+            raise ValueError(f"{obj.Label} is not a Sheet: pick a vertex of it instead. {CONSTRAINT_HINT}")
+    if len(sheets) != 1:
+        raise ValueError(f"{len(sheets)} Sheets selected: select exactly one. {CONSTRAINT_HINT}")
+    if len(vertices) > 1:
+        raise ValueError(f"{len(vertices)} vertices selected: select at most one. {CONSTRAINT_HINT}")
+    if kind in VERTEX_KINDS and not vertices:
+        raise ValueError(f"a {kind} constraint needs a vertex. {CONSTRAINT_HINT}")
+    return sheets[0], (vertices[0] if vertices else None)
+
+
+def constraint_command_lines(kind: str, sheet, location) -> List[str]:
+    """Macro lines that add a constraint with editable defaults and recompute."""
+    args = [_ref(sheet), repr(kind)]
+    if location is not None:
+        args.append(f"location=({_ref(location[0])}, {location[1]!r})")
+    else:
+        args.append("uv=(0.5, 0.5)")
+    if kind not in VERTEX_KINDS:
+        # planes, lines and attractors start through the sheet's middle, operators on its middle half
+        centre = _sheet_centre(sheet)
+        args.append(f"origin=({centre[0]:.6g}, {centre[1]:.6g}, {centre[2]:.6g})")
+        args.append("region=(0.25, 0.75, 0.25, 0.75)")
+    return [
+        "import varsurf",
+        f"_constraint = varsurf.make_constraint({', '.join(args)})",
+        f"App.getDocument({sheet.Document.Name!r}).recompute()",
+    ]
+
+
+def _sheet_centre(sheet):
+    face = sheet.Shape.Faces[0] if not sheet.Shape.isNull() and sheet.Shape.Faces else None
+    if face is None:
+        return (0.0, 0.0, 0.0)
+    u0, u1, v0, v1 = face.ParameterRange
+    p = face.Surface.value(0.5 * (u0 + u1), 0.5 * (v0 + v1))
+    return (p.x, p.y, p.z)
+
+
+def run_constraint_command(kind: str, selection_ex, do_command=None, on_error=None):
+    """What a constraint command does when activated (also usable headless): validate the
+    selection, then add the constraint through recorded macro lines in one transaction. An
+    unusable selection is reported and creates nothing. Returns the new Constraint or None."""
+    try:
+        sheet, location = constraint_selection_to_args(kind, selection_ex)
+    except ValueError as error:
+        FreeCAD.Console.PrintError(f"VarSurf: {error}\n")
+        if on_error is not None:
+            on_error(str(error))
+        return None
+    doc = sheet.Document
+    run = do_command or _exec_line
+    before = set(o.Name for o in doc.Objects)
+    doc.openTransaction(TRANSACTION_CONSTRAINT)
+    try:
+        for line in constraint_command_lines(kind, sheet, location):
+            run(line)
+    except Exception:
+        doc.abortTransaction()
+        raise
+    doc.commitTransaction()
+    created = [o for o in doc.Objects if o.Name not in before]
+    return created[-1] if created else None

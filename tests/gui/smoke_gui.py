@@ -131,7 +131,20 @@ def run(result):
     result["bend_restored"] = sheet.Bend == bend_before
     result["task_panel_closed"] = not Gui.Control.activeDialog()
 
-    # 4. picture
+    # 4. a constraint command in the real GUI: a Normal on the selected sheet
+    import varsurf.gui.commands as commands
+
+    result["constraint_commands"] = [c for c in commands.CONSTRAINTS if c in Gui.listCommands()]
+    Gui.Selection.clearSelection()
+    Gui.Selection.addSelection(doc.Name, sheet.Name)
+    result["normal_active"] = bool(Gui.Command.get("VarSurf_Normal").isActive())
+    Gui.runCommand("VarSurf_Normal")
+    doc.recompute()
+    result["constraint_kinds"] = [c.Kind for c in sheet.Constraints]
+    result["constraint_residuals"] = list(sheet.ConstraintResiduals)
+    result["sheet_valid_with_constraint"] = sheet.isValid()
+
+    # 5. picture
     Gui.Selection.clearSelection()
     view = Gui.ActiveDocument.ActiveView
     view.viewIsometric()

@@ -76,3 +76,13 @@ def test_screenshot_is_not_blank(smoke):
     assert stats["variance"] > 50.0, stats
     assert stats["non_white"] > 0.03, stats
     assert smoke["saved"]
+
+
+def test_constraint_commands_work_in_the_gui(smoke):
+    from varsurf import constraints
+
+    assert len(smoke["constraint_commands"]) == len(constraints.KINDS), smoke["constraint_commands"]
+    assert smoke["normal_active"]
+    assert smoke["constraint_kinds"] == ["Normal"]
+    assert smoke["sheet_valid_with_constraint"]
+    assert smoke["constraint_residuals"][0] < 1e-6  # degrees

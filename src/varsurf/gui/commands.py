@@ -56,6 +56,77 @@ class CommandSheet:
         )
 
 
+class CommandConstraint:
+    """Add a constraint or operator of one kind to the selected Sheet."""
+
+    def __init__(self, kind: str, menu_text: str, tool_tip: str):
+        self.kind = kind
+        self.menu_text = menu_text
+        self.tool_tip = tool_tip
+
+    def GetResources(self):
+        return {
+            "Pixmap": resources.icon("VarSurf_Constraint.svg"),
+            "MenuText": self.menu_text,
+            "ToolTip": self.tool_tip,
+        }
+
+    def IsActive(self):
+        if App.ActiveDocument is None:
+            return False
+        try:
+            api.constraint_selection_to_args(self.kind, Gui.Selection.getSelectionEx())
+        except ValueError:
+            return False
+        return True
+
+    def Activated(self):
+        api.run_constraint_command(
+            self.kind, Gui.Selection.getSelectionEx(), do_command=Gui.doCommand,
+            on_error=show_selection_error,
+        )
+
+
+# Command name, kind, menu text, tool tip (what to select).
+CONSTRAINT_COMMANDS = [
+    ("VarSurf_Point", "Point",
+     QT_TRANSLATE_NOOP("VarSurf_Point", "Point constraint"),
+     QT_TRANSLATE_NOOP("VarSurf_Point", "The sheet passes through a vertex.\nSelect a Sheet and a vertex.")),
+    ("VarSurf_TangentU", "TangentU",
+     QT_TRANSLATE_NOOP("VarSurf_TangentU", "Tangent along u"),
+     QT_TRANSLATE_NOOP("VarSurf_TangentU", "Prescribe the u derivative at a point.\nSelect a Sheet (and optionally a vertex for the point).")),
+    ("VarSurf_TangentV", "TangentV",
+     QT_TRANSLATE_NOOP("VarSurf_TangentV", "Tangent along v"),
+     QT_TRANSLATE_NOOP("VarSurf_TangentV", "Prescribe the v derivative at a point.\nSelect a Sheet (and optionally a vertex for the point).")),
+    ("VarSurf_Normal", "Normal",
+     QT_TRANSLATE_NOOP("VarSurf_Normal", "Normal constraint"),
+     QT_TRANSLATE_NOOP("VarSurf_Normal", "Prescribe the surface normal at a point.\nSelect a Sheet (and optionally a vertex for the point).")),
+    ("VarSurf_PointInPlane", "PointInPlane",
+     QT_TRANSLATE_NOOP("VarSurf_PointInPlane", "Point in plane"),
+     QT_TRANSLATE_NOOP("VarSurf_PointInPlane", "Keep a point of the sheet in a plane.\nSelect a Sheet (and optionally a vertex for the point).")),
+    ("VarSurf_PointOnLine", "PointOnLine",
+     QT_TRANSLATE_NOOP("VarSurf_PointOnLine", "Point on line"),
+     QT_TRANSLATE_NOOP("VarSurf_PointOnLine", "Keep a point of the sheet on a line.\nSelect a Sheet (and optionally a vertex for the point).")),
+    ("VarSurf_PointAttractor", "PointAttractor",
+     QT_TRANSLATE_NOOP("VarSurf_PointAttractor", "Point attractor"),
+     QT_TRANSLATE_NOOP("VarSurf_PointAttractor", "Pull a region of the sheet toward a point.\nSelect a Sheet.")),
+    ("VarSurf_PlaneAttractor", "PlaneAttractor",
+     QT_TRANSLATE_NOOP("VarSurf_PlaneAttractor", "Plane attractor"),
+     QT_TRANSLATE_NOOP("VarSurf_PlaneAttractor", "Pull a region of the sheet onto a plane.\nSelect a Sheet.")),
+    ("VarSurf_LineAttractor", "LineAttractor",
+     QT_TRANSLATE_NOOP("VarSurf_LineAttractor", "Line attractor"),
+     QT_TRANSLATE_NOOP("VarSurf_LineAttractor", "Pull a region of the sheet onto a line.\nSelect a Sheet.")),
+    ("VarSurf_Director", "Director",
+     QT_TRANSLATE_NOOP("VarSurf_Director", "Director"),
+     QT_TRANSLATE_NOOP("VarSurf_Director", "Push the normals of a region toward a direction.\nSelect a Sheet.")),
+    ("VarSurf_FrozenRegion", "FrozenRegion",
+     QT_TRANSLATE_NOOP("VarSurf_FrozenRegion", "Frozen region"),
+     QT_TRANSLATE_NOOP("VarSurf_FrozenRegion", "Keep a region of the sheet as the base shape.\nSelect a Sheet.")),
+]
+
 COMMANDS = ["VarSurf_Sheet"]
+CONSTRAINTS = [name for name, _kind, _menu, _tip in CONSTRAINT_COMMANDS]
 
 Gui.addCommand("VarSurf_Sheet", CommandSheet())
+for _name, _kind, _menu, _tip in CONSTRAINT_COMMANDS:
+    Gui.addCommand(_name, CommandConstraint(_kind, _menu, _tip))

@@ -1,0 +1,69 @@
+"""The constraint commands' headless path: selection check, macro lines, one transaction."""
+
+import FreeCAD
+import pytest
+
+import varsurf
+from varsurf import api, constraints
+from scenes import Sel, add_face, add_line_sketch, flat_face
+
+
+@pytest.fixture
+def sheet(doc, native):
+    doc.UndoMode = 1
+    surface = add_face(doc, flat_face())
+    rail = add_line_sketch(doc, "Rail", 5.0, (20.0, 15.0), (40.0, 20.0))
+    doc.recompute()
+    s = varsurf.make_sheet((surface, "Face1"), [(rail, "Edge1")])
+    doc.recompute()
+    return s
+
+
+@pytest.mark.parametrize("kind", [k for k in constraints.KINDS if k not in api.VERTEX_KINDS])
+def test_every_kind_from_a_selected_sheet(sheet, kind):
+    doc = sheet.Document
+    lines = []
+    c = api.run_constraint_command(kind, [Sel(sheet, "Face1")], do_command=lambda l: (lines.append(l), api._exec_line(l)))
+    assert c is not None and c.Kind == kind
+    assert c in sheet.Constraints
+    assert any("varsurf.make_constraint(" in l and repr(kind) in l for l in lines), lines
+    if kind == "FrozenRegion":
+        # The default region (the sheet's middle half) covers part of the rail, which must lift
+        # the sheet 5 mm there: freezing it contradicts the rail, and the Sheet says so.
+        assert not sheet.isValid()
+        assert "contradict" in sheet.getStatusString()
+    else:
+        assert sheet.isValid(), sheet.getStatusString()
+        assert list(sheet.ConstraintNames) == [c.Label]
+    # one undo removes it
+    name = c.Name
+    doc.undo()
+    assert name not in [o.Name for o in doc.Objects]
+
+
+def test_point_from_a_sheet_and_a_vertex(sheet):
+    doc = sheet.Document
+    pin = doc.addObject("Part::Vertex", "Pin")
+    pin.X, pin.Y, pin.Z = 60.0, 50.0, 9.0
+    doc.recompute()
+    c = api.run_constraint_command("Point", [Sel(sheet), Sel(pin, "Vertex1")])
+    assert c is not None and c.Location[0] == pin
+    assert sheet.ConstraintResiduals[0] < 1e-6
+
+
+@pytest.mark.parametrize("selection, text", [
+    (lambda s, p: [], "0 Sheets"),
+    (lambda s, p: [Sel(p, "Vertex1")], "0 Sheets"),
+    (lambda s, p: [Sel(s)], "needs a vertex"),
+    (lambda s, p: [Sel(s), Sel(p)], "not a Sheet"),
+])
+def test_bad_selections_create_nothing(sheet, selection, text, console_errors):
+    doc = sheet.Document
+    pin = doc.addObject("Part::Vertex", "Pin")
+    doc.recompute()
+    before = len(doc.Objects)
+    messages = []
+    c = api.run_constraint_command("Point", selection(sheet, pin), on_error=messages.append)
+    assert c is None and len(doc.Objects) == before
+    assert text in messages[0]
+    assert text in console_errors()
