@@ -247,7 +247,10 @@ void bind_core_types(py::module_& m) {
       .def_readwrite("line_points", &SheetProblem::line_points)
       .def_readwrite("ribbons", &SheetProblem::ribbons)
       .def_readwrite("attractors", &SheetProblem::attractors)
-      .def_readwrite("directors", &SheetProblem::directors);
+      .def_readwrite("directors", &SheetProblem::directors)
+      .def_readwrite("repellers", &SheetProblem::repellers)
+      .def_readwrite("pressure", &SheetProblem::pressure,
+                     "Inflate (> 0, along w_u x w_v) or deflate (< 0); iterated.");
 
   py::class_<SolveOptions>(m, "SolveOptions", "Numerical settings of solve_sheet.")
       .def(py::init([](double rank_tolerance, double fit_tolerance, double regularization,
@@ -278,6 +281,12 @@ void bind_core_types(py::module_& m) {
                      "Larger problems are refused with InvalidInput.")
       .def_readwrite("keep_tolerance", &SolveOptions::keep_tolerance,
                      "Singular directions at least this fraction of the largest are always kept.")
+      .def_readwrite("max_iterations", &SolveOptions::max_iterations,
+                     "Nonlinear steps allowed (repellers, pressure).")
+      .def_readwrite("step_limit", &SolveOptions::step_limit,
+                     "Largest pole move per nonlinear step, relative to the sheet's size.")
+      .def_readwrite("nonlinear_tolerance", &SolveOptions::nonlinear_tolerance,
+                     "Converged when no pole moves more than this (relative to the size).")
       .def_readwrite("force_coupled", &SolveOptions::force_coupled,
                      "Solve one 3n system even when every term is separable.");
 
@@ -288,6 +297,10 @@ void bind_core_types(py::module_& m) {
       .def_readonly("constraint_rank", &SolveReport::constraint_rank)
       .def_readonly("clusters", &SolveReport::clusters)
       .def_readonly("coupled", &SolveReport::coupled, "True if one 3n system was solved.")
+      .def_readonly("iterations", &SolveReport::iterations, "Nonlinear steps taken.")
+      .def_readonly("converged", &SolveReport::converged)
+      .def_readonly("last_step", &SolveReport::last_step,
+                    "Largest pole move of the last nonlinear step.")
       .def_readonly("conflict", &SolveReport::conflict,
                     "RMS distance by which the constraints contradict each other (near 0 when "
                     "compatible).")

@@ -118,6 +118,17 @@ void bind_operators(py::module_& m) {
       .def_readwrite("direction", &Attractor::direction)
       .def_readwrite("strength", &Attractor::strength);
 
+  py::class_<Repeller>(m, "Repeller",
+                       "strength * integral over region of 1 / |w - origin|^2: pushes the region "
+                       "away (iterated: see SolveOptions.max_iterations).")
+      .def(py::init([](Region region, Eigen::Vector3d origin, double strength) {
+             return Repeller{region, origin, strength};
+           }),
+           "region"_a = Region(), "origin"_a = Eigen::Vector3d::Zero(), "strength"_a = 1.0)
+      .def_readwrite("region", &Repeller::region)
+      .def_readwrite("origin", &Repeller::origin)
+      .def_readwrite("strength", &Repeller::strength);
+
   py::class_<Director>(m, "Director",
                        "strength * integral over region of (d . w_u)^2 + (d . w_v)^2: normals "
                        "pushed toward direction d.")

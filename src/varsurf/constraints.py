@@ -27,10 +27,12 @@ KINDS: Dict[str, Tuple[str, str]] = {
     "PlaneAttractor": ("the region is pulled onto the plane (Origin, normal Vector)", "mm"),
     "LineAttractor": ("the region is pulled onto the line (Origin, direction Vector)", "mm"),
     "Director": ("the region's normals are pushed toward Vector", "deg"),
+    "Repeller": ("the region is pushed away from Origin with strength Weight (residual: closest distance)", "mm"),
     "FrozenRegion": ("the sheet over the region keeps the base shape", "mm"),
 }
 POINT_KINDS = ("Point", "TangentU", "TangentV", "Normal", "PointInPlane", "PointOnLine")
-REGION_KINDS = ("PointAttractor", "PlaneAttractor", "LineAttractor", "Director", "FrozenRegion")
+REGION_KINDS = ("PointAttractor", "PlaneAttractor", "LineAttractor", "Director", "Repeller",
+                "FrozenRegion")
 #: Grid (per direction) on which region residuals are sampled.
 REGION_SAMPLES = 7
 
@@ -67,11 +69,12 @@ class ConstraintSpec:
             u0, u1, v0, v1 = self.region
             if not (0.0 <= u0 < u1 <= 1.0 and 0.0 <= v0 < v1 <= 1.0):
                 raise fail(f"the region must satisfy 0 <= u0 < u1 <= 1 and 0 <= v0 < v1 <= 1 (got {self.region})")
-        needs_vector = self.kind not in ("Point", "PointAttractor", "FrozenRegion")
+        needs_vector = self.kind not in ("Point", "PointAttractor", "Repeller", "FrozenRegion")
         vec = self.vector
         if needs_vector and not (all(math.isfinite(c) for c in vec) and math.hypot(*vec) > 0.0):
             raise fail(f"Vector must be a finite non-zero direction (got {tuple(vec)})")
-        if self.kind in ("PointInPlane", "PointOnLine", "PointAttractor", "PlaneAttractor", "LineAttractor"):
+        if self.kind in ("PointInPlane", "PointOnLine", "PointAttractor", "PlaneAttractor", "LineAttractor",
+                         "Repeller"):
             if self.origin is None and self.location is None:
                 raise fail("needs an Origin (or a location)")
         if self.kind == "Point" and self.location is None and self.origin is None:
@@ -124,10 +127,12 @@ class NativeTerms:
     line_points: list = field(default_factory=list)
     attractors: list = field(default_factory=list)
     directors: list = field(default_factory=list)
+    repellers: list = field(default_factory=list)
     frozen_poles: list = field(default_factory=list)
 
     def apply(self, problem):
-        for name in ("points", "tangents", "normals", "plane_points", "line_points", "attractors", "directors"):
+        for name in ("points", "tangents", "normals", "plane_points", "line_points", "attractors", "directors",
+                     "repellers"):
             setattr(problem, name, list(getattr(problem, name)) + getattr(self, name))
 
 
@@ -158,6 +163,8 @@ def native_terms(placed: Sequence[PlacedSpec], space, nat) -> NativeTerms:
                                                 direction=vec, strength=s.weight))
         elif kind == "Director":
             out.directors.append(nat.Director(region=region, direction=vec, strength=s.weight))
+        elif kind == "Repeller":
+            out.repellers.append(nat.Repeller(region=region, origin=list(p.origin), strength=s.weight))
         elif kind == "FrozenRegion":
             out.frozen_poles.extend(int(k) for k in nat.poles_in_region(space, region))
     return out
@@ -217,7 +224,7 @@ def residual(p: PlacedSpec, surface, base) -> float:
             v = v0 + (v1 - v0) * j / (REGION_SAMPLES - 1)
             d = surface.derivatives(u, v, 1)
             w = list(d[0])
-            if kind == "PointAttractor":
+            if kind in ("PointAttractor", "Repeller"):
                 values.append(_norm(_sub(w, p.origin)))
             elif kind == "PlaneAttractor":
                 values.append(abs(_dot(_unit(s.vector), _sub(w, p.origin))))
@@ -229,4 +236,6 @@ def residual(p: PlacedSpec, surface, base) -> float:
                 values.append(_norm(_sub(w, list(base.evaluate(u, v)))))
     if kind == "FrozenRegion":
         return max(values)
+    if kind == "Repeller":  # how close the region comes: the smallest distance
+        return min(values)
     return math.sqrt(sum(x * x for x in values) / len(values))

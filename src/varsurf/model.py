@@ -85,6 +85,8 @@ class SheetOutcome:
     constraint_names: List[str] = field(default_factory=list)
     constraint_residuals: List[float] = field(default_factory=list)  # in constraint_units
     constraint_units: List[str] = field(default_factory=list)  # "mm" or "deg"
+    iterations: int = 0  # nonlinear steps (repellers, pressure)
+    converged: bool = True
 
     @property
     def max_deviation(self) -> float:
@@ -243,6 +245,7 @@ def solve_sheet_on_face(
     rank_tolerance: float = DEFAULT_RANK_TOLERANCE,
     constraints: Sequence = (),
     rest=None,
+    pressure: float = 0.0,
 ) -> SheetOutcome:
     """Solve the variational sheet over ``face`` that passes through ``edges``.
 
@@ -260,6 +263,8 @@ def solve_sheet_on_face(
     names: one label per edge for messages and reports ("Sketch001:Edge2").
     constraints: ConstraintSpec objects (varsurf.constraints): point, tangent, normal,
         point-in-plane and point-on-line constraints, attractors, directors, frozen regions.
+    pressure: inflate (> 0, along the sheet's normal) or deflate (< 0), in the energy's units;
+        solved by iterating (see SolveReport.iterations/converged).
     rest: None (pure fairness), "base" (the base face is the rest shape: the energy acts on the
         displacement from it, so edits keep its detail), or a Part face whose B-spline has the
         sheet's own spline space (an installed rest shape).
@@ -351,6 +356,9 @@ def solve_sheet_on_face(
             fixed_poles=fixed,
         )
         terms.apply(problem)
+        if not math.isfinite(pressure):
+            raise SheetError(f"Pressure must be finite (got {pressure})")
+        problem.pressure = float(pressure)
         if rest == "base":
             problem.rest_poles = sheet.poles
         elif rest_surface is not None:
@@ -394,5 +402,7 @@ def solve_sheet_on_face(
         constraint_names=[p.spec.name for p in placed],
         constraint_residuals=residuals,
         constraint_units=[constraint_specs.KINDS[p.spec.kind][1] for p in placed],
+        iterations=int(report.iterations),
+        converged=bool(report.converged),
         report=report,
     )

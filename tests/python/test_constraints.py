@@ -174,3 +174,32 @@ def test_unknown_kind_is_refused(sheet):
     with pytest.raises(ValueError, match="unknown constraint kind"):
         varsurf.make_constraint(sheet, "Magnet")
     assert set(constraints.KINDS) >= {"Point", "Normal", "Director", "FrozenRegion"}
+
+
+def test_repeller_pushes_the_region_away(sheet):
+    doc = sheet.Document
+    r = varsurf.make_constraint(sheet, "Repeller", origin=(60.0, 40.0, 3.0), region=(0.45, 0.75, 0.35, 0.65),
+                                weight=1e-3)
+    doc.recompute()
+    assert sheet.isValid(), sheet.getStatusString()
+    near = residual_of(sheet, r)
+    r.Weight = 1e-1
+    doc.recompute()
+    assert sheet.isValid(), sheet.getStatusString()
+    assert residual_of(sheet, r) > near + 0.1  # the closest approach grows with the strength
+
+
+def test_pressure_inflates_the_sheet(sheet):
+    doc = sheet.Document
+    before = sheet.Shape.BoundBox.ZMax
+    sheet.Pressure = 1.0
+    doc.recompute()
+    assert sheet.isValid(), sheet.getStatusString()
+    up = sheet.Shape.BoundBox.ZMax
+    sheet.Pressure = -1.0
+    doc.recompute()
+    down = sheet.Shape.BoundBox.ZMin
+    assert up > before + 0.5 and down < -0.5, (before, up, down)
+    sheet.Pressure = float("nan")
+    doc.recompute()
+    assert not sheet.isValid() and "Pressure must be finite" in sheet.getStatusString()

@@ -1,5 +1,6 @@
 #include "varsurf/core/external_energy.hpp"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -150,6 +151,54 @@ void add_director(const SplineSpace& space, const Director& dir, double scale, Q
   integrate_region(space, dir.region, [&](const BasisSample& s, double dA) {
     add_coupled(t, s, 1, scale * dir.strength * dA, m, Eigen::Vector3d::Zero());
     add_coupled(t, s, 2, scale * dir.strength * dA, m, Eigen::Vector3d::Zero());
+  });
+}
+
+void add_repeller_model(const SplineSpace& space, const Repeller& rep, double scale,
+                        const Eigen::MatrixX3d& poles, double min_distance, QuadraticTerms& t) {
+  check_region(space, rep.region, "repeller");
+  check_strength(rep.strength, "repeller");
+  if (!rep.origin.allFinite()) throw InvalidInput("repeller: origin is not finite");
+  if (rep.strength == 0.0) return;
+  integrate_region(space, rep.region, [&](const BasisSample& s, double dA) {
+    Eigen::Vector3d w = Eigen::Vector3d::Zero();
+    for (size_t k = 0; k < s.index.size(); ++k)
+      w += s.values(0, static_cast<Eigen::Index>(k)) * poles.row(s.index[k]).transpose();
+    const Eigen::Vector3d d = w - rep.origin;
+    const double r = std::max(d.norm(), min_distance);
+    const Eigen::Vector3d e =
+        d.norm() > 0.0 ? Eigen::Vector3d(d / d.norm()) : Eigen::Vector3d::UnitZ();
+    const double c = scale * rep.strength * dA;
+    // E = c r^-2: gradient -2 c r^-4 d, radial curvature 6 c r^-4. In the x^T Q x - 2 f^T x form
+    // the model E(w0) + g.(w - w0) + 1/2 (w - w0)^T J (w - w0) adds Q += J / 2 and
+    // f += (J w0 - g) / 2.
+    const Eigen::Matrix3d j = 6.0 * c / std::pow(r, 4) * e * e.transpose();
+    const Eigen::Vector3d g = -2.0 * c / std::pow(r, 4) * d;
+    add_coupled(t, s, 0, 1.0, 0.5 * j, Eigen::Vector3d::Zero());
+    const Eigen::Vector3d f = 0.5 * (j * w - g);
+    for (size_t k = 0; k < s.index.size(); ++k)
+      for (int a = 0; a < 3; ++a)
+        t.coupled_f(3 * s.index[k] + a) += s.values(0, static_cast<Eigen::Index>(k)) * f(a);
+  });
+}
+
+void add_pressure_force(const SplineSpace& space, double pressure, const Eigen::MatrixX3d& poles,
+                        QuadraticTerms& t) {
+  if (!std::isfinite(pressure)) throw InvalidInput("pressure must be finite");
+  if (pressure == 0.0) return;
+  const Region all{space.u_first(), space.u_last(), space.v_first(), space.v_last()};
+  integrate_region(space, all, [&](const BasisSample& s, double dA) {
+    Eigen::Vector3d wu = Eigen::Vector3d::Zero(), wv = Eigen::Vector3d::Zero();
+    for (size_t k = 0; k < s.index.size(); ++k) {
+      wu += s.values(1, static_cast<Eigen::Index>(k)) * poles.row(s.index[k]).transpose();
+      wv += s.values(2, static_cast<Eigen::Index>(k)) * poles.row(s.index[k]).transpose();
+    }
+    // The work P * V has the gradient P * (w_u x w_v) per unit (u, v) area; E = ... - 2 f.x
+    // takes half of it.
+    const Eigen::Vector3d n = 0.5 * pressure * dA * wu.cross(wv);
+    for (size_t k = 0; k < s.index.size(); ++k)
+      for (int a = 0; a < 3; ++a)
+        t.coupled_f(3 * s.index[k] + a) += s.values(0, static_cast<Eigen::Index>(k)) * n(a);
   });
 }
 

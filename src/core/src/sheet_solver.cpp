@@ -173,6 +173,62 @@ Eigen::MatrixXd solve_quadratic(const Quadratic& pb, const SolveOptions& opt, So
   return x;
 }
 
+Eigen::MatrixX3d unflatten(const Eigen::MatrixXd& x) {
+  Eigen::MatrixX3d poles(x.rows() / 3, 3);
+  for (Eigen::Index k = 0; k < poles.rows(); ++k)
+    for (int c = 0; c < 3; ++c) poles(k, c) = x(3 * k + c, 0);
+  return poles;
+}
+
+// Repellers and pressure: re-linearize at the current poles, solve, move at most step_limit.
+// Every iterate is a convex combination of feasible solutions, so the constraints keep holding.
+Eigen::MatrixXd iterate_nonlinear(const SheetProblem& pb, const SolveOptions& opt,
+                                  const OperatorScales& scales, const Quadratic& base,
+                                  Eigen::MatrixXd x, SolveReport& rep) {
+  if (opt.max_iterations < 1 || !(opt.step_limit > 0.0) || !(opt.nonlinear_tolerance > 0.0))
+    throw InvalidInput("nonlinear solve: max_iterations, step_limit and tolerance must be > 0");
+  const Eigen::Vector3d extent =
+      pb.initial_poles.colwise().maxCoeff() - pb.initial_poles.colwise().minCoeff();
+  const double size = std::max(extent.norm(), 1e-300);
+  const double limit = opt.step_limit * size, tol = opt.nonlinear_tolerance * size;
+  const int poles = pb.space.size();
+  rep.converged = false;
+  for (int it = 1; it <= opt.max_iterations; ++it) {
+    const Eigen::MatrixX3d current = unflatten(x);
+    QuadraticTerms model(poles);
+    for (size_t i = 0; i < pb.repellers.size(); ++i) {
+      try {
+        add_repeller_model(pb.space, pb.repellers[i], scales.value, current, 1e-6 * size, model);
+      } catch (const InvalidInput& e) {
+        throw InvalidInput("repeller " + std::to_string(i) + ": " + e.what());
+      }
+    }
+    add_pressure_force(pb.space, pb.pressure, current, model);
+    Quadratic step = base;
+    if (model.uses_coupled()) {
+      Sparse extra(3 * poles, 3 * poles);
+      extra.setFromTriplets(model.coupled.begin(), model.coupled.end());
+      step.q += extra;
+    }
+    step.f += model.coupled_f;
+    SolveReport inner;
+    Eigen::MatrixXd next = solve_quadratic(step, opt, inner);
+    const double move = (next - x).cwiseAbs().maxCoeff();
+    if (move > limit) next = x + (limit / move) * (next - x);
+    x = next;
+    rep.iterations = it;
+    rep.last_step = std::min(move, limit);
+    rep.constraint_rank = inner.constraint_rank;
+    rep.constraint_residual = inner.constraint_residual;
+    rep.kkt_residual = inner.kkt_residual;
+    if (move <= tol) {
+      rep.converged = true;
+      break;
+    }
+  }
+  return x;
+}
+
 }  // namespace
 
 SolveResult solve_sheet(const SheetProblem& pb, const SolveOptions& opt) {
@@ -188,7 +244,8 @@ SolveResult solve_sheet(const SheetProblem& pb, const SolveOptions& opt) {
   QuadraticTerms terms(poles);
   if (pb.rest_poles.rows() != 0) terms.separable_f += h * pb.rest_poles;
   OperatorScales scales;
-  if (!pb.attractors.empty() || !pb.directors.empty()) scales = operator_scales(sp, h);
+  if (!pb.attractors.empty() || !pb.directors.empty() || !pb.repellers.empty())
+    scales = operator_scales(sp, h);
   for (size_t i = 0; i < pb.attractors.size(); ++i) {
     try {
       add_attractor(sp, pb.attractors[i], scales.value, terms);
@@ -229,8 +286,10 @@ SolveResult solve_sheet(const SheetProblem& pb, const SolveOptions& opt) {
   sample_all(
       pb.ribbons, "ribbon", [&](const auto& c) { return sample_ribbon(sp, c); }, coupled);
 
+  const bool nonlinear = !pb.repellers.empty() || pb.pressure != 0.0;
+  if (!std::isfinite(pb.pressure)) throw InvalidInput("pressure must be finite");
   Quadratic quad;
-  rep.coupled = opt.force_coupled || !coupled.empty() || terms.uses_coupled();
+  rep.coupled = opt.force_coupled || nonlinear || !coupled.empty() || terms.uses_coupled();
   if (!rep.coupled) {
     quad.q = std::move(h);
     quad.f = terms.separable_f;
@@ -255,13 +314,12 @@ SolveResult solve_sheet(const SheetProblem& pb, const SolveOptions& opt) {
   }
   rep.assemble_seconds = seconds_since(t);
 
-  const Eigen::MatrixXd x = solve_quadratic(quad, opt, rep);
+  Eigen::MatrixXd x = solve_quadratic(quad, opt, rep);
+  if (nonlinear) x = iterate_nonlinear(pb, opt, scales, quad, x, rep);
   if (!rep.coupled) {
     result.poles = x;
   } else {
-    result.poles.resize(poles, 3);
-    for (int k = 0; k < poles; ++k)
-      for (int c = 0; c < 3; ++c) result.poles(k, c) = x(3 * k + c, 0);
+    result.poles = unflatten(x);
   }
   rep.total_seconds = seconds_since(start);
   return result;

@@ -30,6 +30,7 @@ _PROPERTIES = [
     ("Constraints", "App::PropertyLinkList", "Sheet", "Constraint objects (points, tangents, normals, planes, lines, attractors, directors, frozen regions)", False),
     ("RestShape", "App::PropertyEnumeration", "Sheet", "Base: the energy acts on the displacement from the base face, so edits keep its detail. None: pure fairness (melted). Installed: the displacement from an installed shape", False),
     ("InstalledRest", "Part::PropertyPartShape", "Sheet", "The shape installed as rest shape (install_rest_shape)", False),
+    ("Pressure", "App::PropertyFloat", "Sheet", "Inflate (> 0, along the sheet's normal) or deflate (< 0); solved by iteration", False),
     ("Stretch", "App::PropertyFloatConstraint", "Sheet", "Stretching weight (alpha, >= 0): penalizes first derivatives, pulls toward a membrane of least area. Default 0", False),
     ("Bend", "App::PropertyFloatConstraint", "Sheet", "Bending weight (beta, >= 0): penalizes second derivatives, pulls toward a fair thin plate. Default 1", False),
     ("FixBoundary", "App::PropertyBool", "Sheet", "Keep the base face's boundary (its boundary poles are held)", False),
@@ -204,6 +205,7 @@ class SheetFeature:
                 spec_of(c) for c in (getattr(obj, "Constraints", None) or []) if c.Enabled
             ]
             options["rest"] = _rest_of(obj, face)
+            options["pressure"] = float(getattr(obj, "Pressure", 0.0))
             if face is None:
                 outcome = model.solve_sheet_from_curves(edges, **options)
             else:
@@ -226,6 +228,11 @@ class SheetFeature:
         obj.ConstraintNames = list(outcome.constraint_names)
         obj.ConstraintResiduals = [float(r) for r in outcome.constraint_residuals]
         obj.ConstraintUnits = list(outcome.constraint_units)
+        if not outcome.converged:
+            FreeCAD.Console.PrintWarning(
+                f"VarSurf: {obj.Label}: the nonlinear solve (repellers, pressure) did not converge "
+                f"in {outcome.iterations} steps; the result is the last step\n"
+            )
         n = len(outcome.max_deviations)
         obj.Status = (
             f"OK: {outcome.pole_count_u} x {outcome.pole_count_v} poles, {n} curve"

@@ -43,6 +43,14 @@ struct Director {
   double strength = 1.0;
 };
 
+// strength (relative) * integral over the region of 1 / |w - origin|^2 dA: pushes the region away
+// from a point. Not quadratic: the solve iterates Gauss-Newton steps (see SolveOptions).
+struct Repeller {
+  Region region;
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();
+  double strength = 1.0;
+};
+
 // Quadratic energy pieces beyond the thin plate, as E = x^T Q x - 2 f^T x (plus a constant).
 struct QuadraticTerms {
   explicit QuadraticTerms(int poles);
@@ -68,5 +76,16 @@ OperatorScales operator_scales(const SplineSpace& space, const Eigen::SparseMatr
 void add_attractor(const SplineSpace& space, const Attractor& a, double scale,
                    QuadraticTerms& terms);
 void add_director(const SplineSpace& space, const Director& d, double scale, QuadraticTerms& terms);
+
+// The Gauss-Newton model of a repeller at the current poles (size() x 3): its gradient and the
+// radial part of its Hessian (d^2/dr^2 r^-2 = 6 r^-4 along w - origin; the tangential part is
+// negative and left out so the model stays convex). Distances are floored at `min_distance`.
+void add_repeller_model(const SplineSpace& space, const Repeller& r, double scale,
+                        const Eigen::MatrixX3d& poles, double min_distance, QuadraticTerms& terms);
+
+// Inflation by a pressure: the work pressure * volume, linearized at the current poles. Adds the
+// force pressure * integral of b_k (w_u x w_v) du dv to every pole (positive: along the normal).
+void add_pressure_force(const SplineSpace& space, double pressure, const Eigen::MatrixX3d& poles,
+                        QuadraticTerms& terms);
 
 }  // namespace varsurf

@@ -37,7 +37,9 @@ struct SheetProblem {
   std::vector<RibbonConstraint> ribbons;           // couples x, y, z
   std::vector<Attractor> attractors;               // plane and line kinds couple x, y, z
   std::vector<Director> directors;                 // couples x, y, z
-  std::vector<int> fixed_poles;                    // flat indices held at initial_poles
+  std::vector<Repeller> repellers;                 // not quadratic: iterated, couples x, y, z
+  double pressure = 0.0;         // inflate (> 0, along w_u x w_v) or deflate (< 0): iterated
+  std::vector<int> fixed_poles;  // flat indices held at initial_poles
 };
 
 struct SolveOptions {
@@ -60,11 +62,21 @@ struct SolveOptions {
   // Solve the coupled 3n system even when every term is separable (the separable solve is
   // cheaper and gives the same poles).
   bool force_coupled = false;
+  // Repellers and pressure: Gauss-Newton / fixed-point steps, each at most step_limit (relative
+  // to the start shape's size) per pole, until no pole moves more than nonlinear_tolerance
+  // (relative) or max_iterations is reached.
+  int max_iterations = 100;
+  double step_limit = 0.05;
+  double nonlinear_tolerance = 1e-9;
 };
 
 struct SolveReport {
-  int unknowns = 0;            // free poles (per coordinate), or free coordinates if coupled
-  bool coupled = false;        // one 3n system instead of three n systems sharing one
+  int unknowns = 0;  // free poles (per coordinate), or free coordinates if coupled
+  bool coupled = false;
+  int iterations = 0;      // nonlinear steps taken (0 for a quadratic problem)
+  bool converged = true;   // false if max_iterations ran out
+  double last_step = 0.0;  // largest pole move of the last nonlinear step (model units)        //
+                           // one 3n system instead of three n systems sharing one
   int constraint_samples = 0;  // least-squares rows before reduction
   int constraint_rank = 0;     // independent rows kept
   int clusters = 0;            // independent groups of constraints
