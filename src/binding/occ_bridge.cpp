@@ -11,6 +11,7 @@
 #include "varsurf/occ/deviation.hpp"
 #include "varsurf/occ/face_builder.hpp"
 #include "varsurf/occ/geom_convert.hpp"
+#include "varsurf/occ/normal_field.hpp"
 #include "varsurf/occ/point_projection.hpp"
 #include "varsurf/occ/shape_check.hpp"
 #include "varsurf/occ/single_shape.hpp"
@@ -37,6 +38,17 @@ void bind_occ_bridge(py::module_& m) {
       .def_readonly("u", &occ::PointOnSheet::u)
       .def_readonly("v", &occ::PointOnSheet::v)
       .def_readonly("distance", &occ::PointOnSheet::distance);
+
+  m.def(
+      "normal_field_brep",
+      [](const std::string& face_brep, const BSplineCurve& curve, double angle_deg,
+         double max_distance, int samples) {
+        return occ::normal_field(occ::only_face(occ::read_brep(face_brep)), curve, angle_deg,
+                                 max_distance, samples);
+      },
+      "face_brep"_a, "curve"_a, "angle_deg"_a = 0.0, "max_distance"_a = 1e-3, "samples"_a = 0,
+      "Normal field of a reference face along a 3D curve (turned by angle_deg about the curve's "
+      "tangent) as a 3D BSplineCurve with the curve's parameter: a ribbon's target.");
 
   m.def("project_point", &occ::project_point, "surface"_a, "point"_a,
         "Closest point of the sheet to a 3D point, as (u, v) and the distance.");

@@ -139,6 +139,9 @@ def make_constraint(
     region=None,
     weight: float = 1.0,
     name: str = "Constraint",
+    curve=None,
+    reference=None,
+    angle: float = 0.0,
 ):
     """Add a Constraint of ``kind`` (see ``varsurf.constraints.KINDS``) to ``sheet``.
 
@@ -148,6 +151,7 @@ def make_constraint(
     origin: plane, line or attractor point; for a Point, the target instead of the location.
     region: normalized (u0, u1, v0, v1) of an operator or a frozen region.
     weight: the constraint's weight or the operator's strength.
+    curve, reference, angle: Ribbon and G1: (object, "EdgeN"), (object, "FaceN") and degrees.
     """
     from varsurf import constraints
     from varsurf.app.constraint import ConstraintFeature
@@ -171,6 +175,11 @@ def make_constraint(
     if region is not None:
         obj.RegionU0, obj.RegionU1, obj.RegionV0, obj.RegionV1 = (float(x) for x in region)
     obj.Weight = float(weight)
+    if curve is not None:
+        obj.Curve = (curve[0], curve[1])
+    if reference is not None:
+        obj.Reference = (reference[0], reference[1])
+    obj.Angle = float(angle)
     sheet.Constraints = list(sheet.Constraints) + [obj]
     return obj
 
@@ -361,21 +370,25 @@ def is_sheet(obj) -> bool:
 
 TRANSACTION_CONSTRAINT = "Add VarSurf constraint"
 CONSTRAINT_HINT = "Select a Sheet and, for a point constraint, a vertex the sheet must pass through."
+CURVE_CONSTRAINT_HINT = "Select a Sheet, the edge along which it joins, and the face it must follow there."
 #: Kinds that need a picked vertex from the GUI (their target is a location).
 VERTEX_KINDS = ("Point",)
 
 
 def constraint_selection_to_args(kind: str, selection_ex: Sequence):
-    """(sheet, location or None) for make_constraint from a selection, or ValueError.
+    """(sheet, location, curve, reference) for make_constraint from a selection, or ValueError.
 
-    Exactly one Sheet (the whole object or any of its elements); at most one vertex of another
-    object, which becomes the constraint's location.
+    Exactly one Sheet (the whole object or any of its elements). Point-like kinds take at most
+    one vertex of another object (the location); Ribbon and G1 take one edge (the curve) and one
+    face (the reference) of other objects.
     """
     from varsurf import constraints
 
     if kind not in constraints.KINDS:
         raise ValueError(f"unknown constraint kind {kind!r}")
-    sheets, vertices = [], []
+    curve_kind = kind in constraints.CURVE_KINDS
+    hint = CURVE_CONSTRAINT_HINT if curve_kind else CONSTRAINT_HINT
+    sheets, picked = [], {"Vertex": [], "Edge": [], "Face": []}
     for sel in selection_ex or []:
         obj = sel.Object
         subs = [s.split(".")[-1] for s in (getattr(sel, "SubElementNames", None) or ()) if s]
@@ -383,29 +396,41 @@ def constraint_selection_to_args(kind: str, selection_ex: Sequence):
             if obj not in sheets:
                 sheets.append(obj)
             continue
-        for sub in subs:
-            if not sub.startswith("Vertex"):
-                raise ValueError(f"{obj.Label}:{sub} is not a vertex. {CONSTRAINT_HINT}")
-            vertices.append((obj, sub))
         if not subs:
-            raise ValueError(f"{obj.Label} is not a Sheet: pick a vertex of it instead. {CONSTRAINT_HINT}")
+            raise ValueError(f"{obj.Label} is not a Sheet: pick one of its elements instead. {hint}")
+        for sub in subs:
+            element = next((e for e in picked if sub.startswith(e)), None)
+            allowed = ("Edge", "Face") if curve_kind else ("Vertex",)
+            if element not in allowed:
+                raise ValueError(f"{obj.Label}:{sub} cannot be used here. {hint}")
+            picked[element].append((obj, sub))
     if len(sheets) != 1:
-        raise ValueError(f"{len(sheets)} Sheets selected: select exactly one. {CONSTRAINT_HINT}")
+        raise ValueError(f"{len(sheets)} Sheets selected: select exactly one. {hint}")
+    if curve_kind:
+        if len(picked["Edge"]) != 1 or len(picked["Face"]) != 1:
+            raise ValueError(f"a {kind} needs exactly one edge and one face. {hint}")
+        return sheets[0], None, picked["Edge"][0], picked["Face"][0]
+    vertices = picked["Vertex"]
     if len(vertices) > 1:
-        raise ValueError(f"{len(vertices)} vertices selected: select at most one. {CONSTRAINT_HINT}")
+        raise ValueError(f"{len(vertices)} vertices selected: select at most one. {hint}")
     if kind in VERTEX_KINDS and not vertices:
-        raise ValueError(f"a {kind} constraint needs a vertex. {CONSTRAINT_HINT}")
-    return sheets[0], (vertices[0] if vertices else None)
+        raise ValueError(f"a {kind} constraint needs a vertex. {hint}")
+    return sheets[0], (vertices[0] if vertices else None), None, None
 
 
-def constraint_command_lines(kind: str, sheet, location) -> List[str]:
+def constraint_command_lines(kind: str, sheet, location, curve=None, reference=None) -> List[str]:
     """Macro lines that add a constraint with editable defaults and recompute."""
+    from varsurf import constraints
+
     args = [_ref(sheet), repr(kind)]
-    if location is not None:
+    if kind in constraints.CURVE_KINDS:
+        args.append(f"curve=({_ref(curve[0])}, {curve[1]!r})")
+        args.append(f"reference=({_ref(reference[0])}, {reference[1]!r})")
+    elif location is not None:
         args.append(f"location=({_ref(location[0])}, {location[1]!r})")
     else:
         args.append("uv=(0.5, 0.5)")
-    if kind not in VERTEX_KINDS:
+    if kind not in VERTEX_KINDS and kind not in constraints.CURVE_KINDS:
         # planes, lines and attractors start through the sheet's middle, operators on its middle half
         centre = _sheet_centre(sheet)
         args.append(f"origin=({centre[0]:.6g}, {centre[1]:.6g}, {centre[2]:.6g})")
@@ -431,7 +456,7 @@ def run_constraint_command(kind: str, selection_ex, do_command=None, on_error=No
     selection, then add the constraint through recorded macro lines in one transaction. An
     unusable selection is reported and creates nothing. Returns the new Constraint or None."""
     try:
-        sheet, location = constraint_selection_to_args(kind, selection_ex)
+        sheet, location, curve, reference = constraint_selection_to_args(kind, selection_ex)
     except ValueError as error:
         FreeCAD.Console.PrintError(f"VarSurf: {error}\n")
         if on_error is not None:
@@ -442,7 +467,7 @@ def run_constraint_command(kind: str, selection_ex, do_command=None, on_error=No
     before = set(o.Name for o in doc.Objects)
     doc.openTransaction(TRANSACTION_CONSTRAINT)
     try:
-        for line in constraint_command_lines(kind, sheet, location):
+        for line in constraint_command_lines(kind, sheet, location, curve, reference):
             run(line)
     except Exception:
         doc.abortTransaction()

@@ -29,8 +29,11 @@ KINDS: Dict[str, Tuple[str, str]] = {
     "Director": ("the region's normals are pushed toward Vector", "deg"),
     "Repeller": ("the region is pushed away from Origin with strength Weight (residual: closest distance)", "mm"),
     "FrozenRegion": ("the sheet over the region keeps the base shape", "mm"),
+    "Ribbon": ("along Curve, the sheet's normal follows Reference's normal turned by Angle", "deg"),
+    "G1": ("the sheet contains Curve and joins Reference there tangent-continuously", "deg"),
 }
 POINT_KINDS = ("Point", "TangentU", "TangentV", "Normal", "PointInPlane", "PointOnLine")
+CURVE_KINDS = ("Ribbon", "G1")
 REGION_KINDS = ("PointAttractor", "PlaneAttractor", "LineAttractor", "Director", "Repeller",
                 "FrozenRegion")
 #: Grid (per direction) on which region residuals are sampled.
@@ -51,6 +54,9 @@ class ConstraintSpec:
     origin: Optional[Tuple[float, float, float]] = None
     region: Tuple[float, float, float, float] = (0.0, 1.0, 0.0, 1.0)
     weight: float = 1.0
+    edge: object = None  # Part.Edge of a curve kind
+    reference: object = None  # Part.Face of a curve kind
+    angle: float = 0.0  # degrees, Ribbon
 
     def validate(self):
         fail = lambda why: ConstraintError(f"{self.name}: {why}")  # noqa: E731
@@ -69,6 +75,14 @@ class ConstraintSpec:
             u0, u1, v0, v1 = self.region
             if not (0.0 <= u0 < u1 <= 1.0 and 0.0 <= v0 < v1 <= 1.0):
                 raise fail(f"the region must satisfy 0 <= u0 < u1 <= 1 and 0 <= v0 < v1 <= 1 (got {self.region})")
+        if self.kind in CURVE_KINDS:
+            if self.edge is None or self.reference is None:
+                raise fail("needs a Curve (an edge) and a Reference (the face to follow)")
+            if not math.isfinite(self.angle):
+                raise fail(f"Angle must be finite (got {self.angle})")
+            if self.weight == 0.0:
+                raise fail("a constraint's weight must be > 0")
+            return
         needs_vector = self.kind not in ("Point", "PointAttractor", "Repeller", "FrozenRegion")
         vec = self.vector
         if needs_vector and not (all(math.isfinite(c) for c in vec) and math.hypot(*vec) > 0.0):
@@ -90,6 +104,8 @@ class PlacedSpec:
     v: float = 0.0
     region: Tuple[float, float, float, float] = (0.0, 1.0, 0.0, 1.0)
     start_distance: float = 0.0  # location to base surface, when a location was given
+    ribbon: object = None  # native RibbonConstraint of a curve kind
+    curve: object = None  # native CurveConstraint of a G1
 
     @property
     def origin(self):
@@ -112,10 +128,31 @@ def place(specs: Sequence[ConstraintSpec], base, nat) -> List[PlacedSpec]:
                 p.u, p.v, p.start_distance = hit.u, hit.v, hit.distance
             else:
                 p.u, p.v = uf + spec.uv[0] * (ul - uf), vf + spec.uv[1] * (vl - vf)
+        if spec.kind in CURVE_KINDS:
+            _place_curve(p, base, nat)
         u0, u1, v0, v1 = spec.region
         p.region = (uf + u0 * (ul - uf), uf + u1 * (ul - uf), vf + v0 * (vl - vf), vf + v1 * (vl - vf))
         placed.append(p)
     return placed
+
+
+#: How far (mm) a ribbon's curve may pass from its reference face.
+RIBBON_DISTANCE = 1e-3
+
+
+def _place_curve(p: PlacedSpec, base, nat):
+    """The ribbon of a curve kind: the curve's pre-image on the base and the reference's normals."""
+    s = p.spec
+    try:
+        curve = nat.curve_from_edge_brep(s.edge.exportBrepToString())
+        pre = nat.project_curve(base, curve)
+        normals = nat.normal_field_brep(s.reference.exportBrepToString(), curve,
+                                        angle_deg=float(s.angle), max_distance=RIBBON_DISTANCE)
+    except (nat.InvalidInput, nat.GeometryError) as error:
+        raise ConstraintError(f"{s.name}: {error}") from error
+    p.ribbon = nat.RibbonConstraint(preimage=pre.curve, normals=normals, weight=s.weight)
+    if s.kind == "G1":
+        p.curve = nat.CurveConstraint(preimage=pre.curve, target=curve, weight=1.0)
 
 
 @dataclass
@@ -128,11 +165,13 @@ class NativeTerms:
     attractors: list = field(default_factory=list)
     directors: list = field(default_factory=list)
     repellers: list = field(default_factory=list)
+    ribbons: list = field(default_factory=list)
+    curves: list = field(default_factory=list)
     frozen_poles: list = field(default_factory=list)
 
     def apply(self, problem):
         for name in ("points", "tangents", "normals", "plane_points", "line_points", "attractors", "directors",
-                     "repellers"):
+                     "repellers", "ribbons", "curves"):
             setattr(problem, name, list(getattr(problem, name)) + getattr(self, name))
 
 
@@ -163,6 +202,10 @@ def native_terms(placed: Sequence[PlacedSpec], space, nat) -> NativeTerms:
                                                 direction=vec, strength=s.weight))
         elif kind == "Director":
             out.directors.append(nat.Director(region=region, direction=vec, strength=s.weight))
+        elif kind in CURVE_KINDS:
+            out.ribbons.append(p.ribbon)
+            if p.curve is not None:
+                out.curves.append(p.curve)
         elif kind == "Repeller":
             out.repellers.append(nat.Repeller(region=region, origin=list(p.origin), strength=s.weight))
         elif kind == "FrozenRegion":
@@ -200,6 +243,10 @@ def _angle_deg(normal, direction):
 def residual(p: PlacedSpec, surface, base) -> float:
     """How far the solved ``surface`` is from what the spec asks, in KINDS' unit."""
     s, kind = p.spec, p.spec.kind
+    if kind in CURVE_KINDS:
+        from varsurf import _native
+
+        return math.degrees(_native.ribbon_angle_error(surface.space, surface.poles, p.ribbon))
     if kind in POINT_KINDS:
         d = surface.derivatives(p.u, p.v, 1)
         w, wu, wv = list(d[0]), list(d[1]), list(d[2])

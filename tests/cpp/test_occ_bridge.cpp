@@ -39,6 +39,7 @@
 #include "varsurf/occ/step_io.hpp"
 #include "varsurf/occ/surface_refinement.hpp"
 #include "varsurf/occ/point_projection.hpp"
+#include "varsurf/occ/normal_field.hpp"
 
 namespace varsurf {
 namespace {
@@ -651,4 +652,22 @@ TEST(ProjectPoint, FindsTheParametersAndDistanceOfAPointAboveACurvedSheet) {
   EXPECT_NEAR(p.v, v, 1e-7);
   EXPECT_NEAR(p.distance, 2.0, 1e-7);
   EXPECT_THROW(varsurf::occ::project_point(s, Eigen::Vector3d(NAN, 0, 0)), varsurf::InvalidInput);
+}
+
+TEST(NormalField, PlaneNormalTurnedAboutTheCurve) {
+  // On the plane z = 0 the normal is +z; turned +30 degrees about the +x tangent of a line along
+  // x it becomes (0, -sin 30, cos 30).
+  const TopoDS_Face plane = BRepBuilderAPI_MakeFace(gp_Pln(gp::Origin(), gp::DZ()), -10, 10, -10, 10);
+  const varsurf::BSplineCurve line =
+      varsurf::test::line_curve(Eigen::Vector3d(-5, 1, 0), Eigen::Vector3d(5, 1, 0), 0.0, 3.0);
+  const varsurf::BSplineCurve n = varsurf::occ::normal_field(plane, line, 30.0, 1e-6);
+  EXPECT_DOUBLE_EQ(n.first(), 0.0);
+  EXPECT_DOUBLE_EQ(n.last(), 3.0);
+  for (double t : {0.0, 0.7, 1.9, 3.0}) {
+    const Eigen::Vector3d v = n.evaluate(t);
+    EXPECT_LT((v - Eigen::Vector3d(0.0, -0.5, std::sqrt(3.0) / 2.0)).norm(), 1e-7) << t;
+  }
+  const varsurf::BSplineCurve above =
+      varsurf::test::line_curve(Eigen::Vector3d(-5, 1, 2), Eigen::Vector3d(5, 1, 2));
+  EXPECT_THROW(varsurf::occ::normal_field(plane, above, 0.0, 1e-3), varsurf::InvalidInput);
 }

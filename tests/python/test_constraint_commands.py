@@ -19,7 +19,8 @@ def sheet(doc, native):
     return s
 
 
-@pytest.mark.parametrize("kind", [k for k in constraints.KINDS if k not in api.VERTEX_KINDS])
+@pytest.mark.parametrize("kind", [k for k in constraints.KINDS
+                                  if k not in api.VERTEX_KINDS and k not in constraints.CURVE_KINDS])
 def test_every_kind_from_a_selected_sheet(sheet, kind):
     doc = sheet.Document
     lines = []
@@ -67,3 +68,24 @@ def test_bad_selections_create_nothing(sheet, selection, text, console_errors):
     assert c is None and len(doc.Objects) == before
     assert text in messages[0]
     assert text in console_errors()
+
+
+def test_g1_from_a_sheet_an_edge_and_a_face(sheet):
+    import Part
+
+    doc = sheet.Document
+    seam = doc.addObject("Part::Feature", "Seam")
+    seam.Shape = Part.LineSegment(FreeCAD.Vector(60, 25, 0), FreeCAD.Vector(60, 55, 0)).toShape()
+    face = doc.addObject("Part::Feature", "Flat")
+    face.Shape = Part.makePlane(30, 40, FreeCAD.Vector(60, 20, 0))
+    doc.recompute()
+    lines = []
+    c = api.run_constraint_command("G1", [Sel(sheet), Sel(seam, "Edge1"), Sel(face, "Face1")],
+                                   do_command=lambda l: (lines.append(l), api._exec_line(l)))
+    assert c is not None and c.Kind == "G1" and c.Curve[0] == seam and c.Reference[0] == face
+    assert any("curve=" in l and "reference=" in l for l in lines), lines
+    assert sheet.isValid(), sheet.getStatusString()
+    assert sheet.ConstraintResiduals[0] < 1.0
+    messages = []
+    assert api.run_constraint_command("Ribbon", [Sel(sheet), Sel(seam, "Edge1")], on_error=messages.append) is None
+    assert "one edge and one face" in messages[0]

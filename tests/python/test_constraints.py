@@ -203,3 +203,43 @@ def test_pressure_inflates_the_sheet(sheet):
     sheet.Pressure = float("nan")
     doc.recompute()
     assert not sheet.isValid() and "Pressure must be finite" in sheet.getStatusString()
+
+
+def tilted_face(doc, degrees):
+    """A face containing the line x = 60 (z = 0), tilted `degrees` about it."""
+    rot = FreeCAD.Rotation(V(0, 1, 0), degrees)
+    plane = Part.makePlane(80.0, 40.0, V(60.0, 20.0, 0.0), rot.multVec(V(0, 0, 1)))
+    # makePlane's length runs along the local x: rebuild it from corners for a clear placement.
+    corners = [V(60, 20, 0), V(60, 60, 0), rot.multVec(V(20, 0, 0)) + V(60, 60, 0), rot.multVec(V(20, 0, 0)) + V(60, 20, 0)]
+    face = Part.Face(Part.makePolygon(corners + [corners[0]]))
+    obj = doc.addObject("Part::Feature", "Neighbour")
+    obj.Shape = face
+    return obj
+
+
+@pytest.mark.parametrize("kind", ["G1", "Ribbon"])
+def test_join_to_a_tilted_neighbour_along_a_line(sheet, kind):
+    doc = sheet.Document
+    neighbour = tilted_face(doc, 20.0)
+    line = doc.addObject("Part::Feature", "Seam")
+    line.Shape = Part.LineSegment(V(60, 25, 0), V(60, 55, 0)).toShape()
+    doc.recompute()
+    c = varsurf.make_constraint(sheet, kind, curve=(line, "Edge1"), reference=(neighbour, "Face1"),
+                                angle=0.0 if kind == "G1" else 10.0)
+    doc.recompute()
+    assert sheet.isValid(), sheet.getStatusString()
+    assert sheet.ConstraintUnits[0] == "deg"
+    assert residual_of(sheet, c) < 1.0, list(sheet.ConstraintResiduals)  # of a 20 (or 10) degree turn
+    if kind == "G1":
+        # the sheet contains the seam
+        assert sheet.Shape.distToShape(line.Shape)[0] < varsurf.DEFAULT_TOLERANCE
+
+
+def test_ribbon_without_reference_is_an_error(sheet):
+    doc = sheet.Document
+    line = doc.addObject("Part::Feature", "Seam")
+    line.Shape = Part.LineSegment(V(60, 25, 0), V(60, 55, 0)).toShape()
+    doc.recompute()
+    c = varsurf.make_constraint(sheet, "Ribbon", curve=(line, "Edge1"))
+    doc.recompute()
+    assert not c.isValid() and "needs a Curve" in c.getStatusString()

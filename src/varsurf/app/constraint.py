@@ -30,6 +30,9 @@ _PROPERTIES = [
     ("RegionV0", "App::PropertyFloat", "Region", "Normalized region start along v"),
     ("RegionV1", "App::PropertyFloat", "Region", "Normalized region end along v"),
     ("Weight", "App::PropertyFloat", "Constraint", "Weight of a constraint, or strength of an operator (>= 0)"),
+    ("Curve", "App::PropertyLinkSub", "Ribbon", "Ribbon and G1: the edge along which the sheet's orientation is set"),
+    ("Reference", "App::PropertyLinkSub", "Ribbon", "Ribbon and G1: the face whose normal the sheet follows along Curve"),
+    ("Angle", "App::PropertyAngle", "Ribbon", "Ribbon: the sheet's normal is the Reference's turned by this angle about Curve"),
 ]
 
 
@@ -66,6 +69,22 @@ def _location_point(obj):
     return (p.x, p.y, p.z)
 
 
+def _sub_shape(obj, prop, kind):
+    link = getattr(obj, prop, None)
+    if link is None:
+        return None
+    target, subs = link
+    subs = [s for s in subs if s]
+    import Part
+
+    if not subs:
+        raise constraints.ConstraintError(f"{obj.Label}: {prop} must name one {kind.lower()} of {target.Label}")
+    shape = Part.getShape(target, subs[0], needSubElement=True)
+    if shape.isNull() or shape.ShapeType != kind:
+        raise constraints.ConstraintError(f"{obj.Label}: {prop} must be a {kind.lower()} (got {subs[0]})")
+    return shape
+
+
 def spec_of(obj) -> constraints.ConstraintSpec:
     """The ConstraintSpec a Constraint object describes (validated)."""
     location = _location_point(obj)
@@ -81,6 +100,9 @@ def spec_of(obj) -> constraints.ConstraintSpec:
         origin=origin,
         region=(float(obj.RegionU0), float(obj.RegionU1), float(obj.RegionV0), float(obj.RegionV1)),
         weight=float(obj.Weight),
+        edge=_sub_shape(obj, "Curve", "Edge") if "Curve" in obj.PropertiesList else None,
+        reference=_sub_shape(obj, "Reference", "Face") if "Reference" in obj.PropertiesList else None,
+        angle=float(obj.Angle) if "Angle" in obj.PropertiesList else 0.0,
     )
     spec.validate()
     return spec
