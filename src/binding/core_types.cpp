@@ -203,14 +203,18 @@ void bind_core_types(py::module_& m) {
   py::class_<CurveConstraint>(m, "CurveConstraint",
                               "Curve incidence: sheet(preimage(t)) = target(t) over the shared "
                               "parameter range.")
-      .def(py::init([](BSplineCurve preimage, BSplineCurve target, double weight) {
+      .def(py::init([](BSplineCurve preimage, BSplineCurve target, double weight, bool exact) {
              CurveConstraint c;
              c.preimage = std::move(preimage);
              c.target = std::move(target);
              c.weight = weight;
+             c.exact = exact;
              return c;
            }),
-           "preimage"_a = BSplineCurve(), "target"_a = BSplineCurve(), "weight"_a = 1.0)
+           "preimage"_a = BSplineCurve(), "target"_a = BSplineCurve(), "weight"_a = 1.0,
+           "exact"_a = false)
+      .def_readwrite("exact", &CurveConstraint::exact,
+                     "Fit every direction the space holds (not only to fit_tolerance).")
       .def_readwrite("preimage", &CurveConstraint::preimage, "2D (u, v) curve.")
       .def_readwrite("target", &CurveConstraint::target, "3D curve, same parameter range.")
       .def_readwrite("weight", &CurveConstraint::weight);

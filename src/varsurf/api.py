@@ -171,7 +171,7 @@ def make_constraint(
         obj.Vector = FreeCAD.Vector(*vector)
     if origin is not None:
         obj.Origin = FreeCAD.Vector(*origin)
-        obj.UseOrigin = location is not None
+        obj.UseOrigin = location is not None or kind == "Point"
     if region is not None:
         obj.RegionU0, obj.RegionU1, obj.RegionV0, obj.RegionV1 = (float(x) for x in region)
     obj.Weight = float(weight)

@@ -92,7 +92,7 @@ class ConstraintSpec:
             if self.origin is None and self.location is None:
                 raise fail("needs an Origin (or a location)")
         if self.kind == "Point" and self.location is None and self.origin is None:
-            raise fail("needs a location (a vertex) or an Origin to pass through")
+            raise fail("needs a Location vertex to pass through (was it deleted?), or UseOrigin with an Origin")
 
 
 @dataclass

@@ -134,6 +134,28 @@ def shape_from_brep(text: str):
     return shape
 
 
+def _energy(nat, stretch, bend, stretch_tensor, bend_tensor):
+    """The native ThinPlateWeights: isotropic, or from (11, 12, 22) tensors."""
+    import numpy as np
+
+    alpha = float(stretch) * np.eye(2)
+    beta = float(bend) * np.ones((2, 2))
+    for label, tensor in (("StretchTensor", stretch_tensor), ("BendTensor", bend_tensor)):
+        if tensor is None or len(tensor) == 0:
+            continue
+        if len(tensor) != 3 or not all(math.isfinite(float(x)) for x in tensor):
+            raise SheetError(f"{label} takes three finite numbers (11, 12, 22), got {list(tensor)}")
+        m = np.array([[tensor[0], tensor[1]], [tensor[1], tensor[2]]], dtype=float)
+        if label == "StretchTensor":
+            alpha = m
+        else:
+            beta = m
+    try:
+        return nat.ThinPlateWeights(alpha=alpha, beta=beta)
+    except nat.InvalidInput as error:
+        raise SheetError(f"energy weights: {error}") from error
+
+
 def _rest_poles_in(rest_surface, space, nat, spans):
     """Poles of an installed rest shape in the sheet's space (refined alike), or SheetError."""
     refined = nat.refine_surface(rest_surface, spans, spans, SHEET_MIN_DEGREE)
@@ -246,6 +268,9 @@ def solve_sheet_on_face(
     constraints: Sequence = (),
     rest=None,
     pressure: float = 0.0,
+    exact_curves: Sequence[str] = (),
+    stretch_tensor: Optional[Sequence[float]] = None,
+    bend_tensor: Optional[Sequence[float]] = None,
 ) -> SheetOutcome:
     """Solve the variational sheet over ``face`` that passes through ``edges``.
 
@@ -263,6 +288,12 @@ def solve_sheet_on_face(
     names: one label per edge for messages and reports ("Sketch001:Edge2").
     constraints: ConstraintSpec objects (varsurf.constraints): point, tangent, normal,
         point-in-plane and point-on-line constraints, attractors, directors, frozen regions.
+    stretch_tensor, bend_tensor: anisotropic weights (a11, a12, a22) and (b11, b12, b22) of
+        sum_ij alpha_ij D_i w D_j w + beta_ij (D_i D_j w)^2 (Welch & Witkin eq. 4; b12 weighs each
+        of the two mixed terms), replacing stretch and bend when given.
+    exact_curves: names of curves met exactly wherever the space allows (incidence in every
+        direction the spline space holds), instead of within the tolerance; exact curves can
+        cost fairness on coarse sheets.
     pressure: inflate (> 0, along the sheet's normal) or deflate (< 0), in the energy's units;
         solved by iterating (see SolveReport.iterations/converged).
     rest: None (pure fairness), "base" (the base face is the rest shape: the energy acts on the
@@ -283,7 +314,7 @@ def solve_sheet_on_face(
     for label, value in (("Stretch", stretch), ("Bend", bend)):
         if not value >= 0.0:  # also rejects NaN
             raise SheetError(f"{label} must be >= 0 (got {value})")
-    if stretch == 0.0 and bend == 0.0:
+    if stretch == 0.0 and bend == 0.0 and not stretch_tensor and not bend_tensor:
         raise SheetError("Stretch and Bend are both 0: the sheet would have no energy to minimize")
     if not (tolerance > 0.0 and math.isfinite(tolerance)):
         raise SheetError(f"Tolerance must be a positive length (got {tolerance})")
@@ -317,7 +348,10 @@ def solve_sheet_on_face(
             ) from error
         except nat.GeometryError as error:
             raise SheetError(f"{name} cannot be projected onto the base face: {error}") from error
-        curve_constraints.append(_build(nat.CurveConstraint, preimage=pre.curve, target=curve, weight=1.0))
+        curve_constraints.append(
+            _build(nat.CurveConstraint, preimage=pre.curve, target=curve, weight=1.0,
+                   exact=name in set(exact_curves))
+        )
         targets.append(curve)
 
     try:
@@ -333,6 +367,8 @@ def solve_sheet_on_face(
             rest_surface = nat.surface_from_face_brep(rest.exportBrepToString())
         except (nat.InvalidInput, nat.GeometryError, AttributeError) as error:
             raise SheetError(f"the installed rest shape cannot be used: {error}") from error
+
+    energy = _energy(nat, stretch, bend, stretch_tensor, bend_tensor)
 
     # Pre-images and constraint (u, v) stay valid on every refinement: knot insertion keeps the
     # parametrization.
@@ -350,7 +386,7 @@ def solve_sheet_on_face(
             nat.SheetProblem,
             space=space,
             initial_poles=sheet.poles,
-            energy=nat.ThinPlateWeights.isotropic(float(stretch), float(bend)),
+            energy=energy,
             points=[],
             curves=curve_constraints,
             fixed_poles=fixed,

@@ -1,12 +1,12 @@
 // The OpenCASCADE layer: conversions, face/edge extraction, projection, face building, STEP, and
 // deviation, each checked against OCCT's own evaluation or a known geometric answer.
 #include <gtest/gtest.h>
-#include <Eigen/Geometry>
 #include <BRepBuilderAPI_MakeEdge.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
 #include <BRepGProp.hxx>
 #include <BRep_Builder.hxx>
 #include <BRep_Tool.hxx>
+#include <Eigen/Geometry>
 #include <GProp_GProps.hxx>
 #include <GeomConvert.hxx>
 #include <Geom_BSplineSurface.hxx>
@@ -33,13 +33,13 @@
 #include "varsurf/occ/deviation.hpp"
 #include "varsurf/occ/face_builder.hpp"
 #include "varsurf/occ/geom_convert.hpp"
+#include "varsurf/occ/normal_field.hpp"
 #include "varsurf/occ/occ_error.hpp"
+#include "varsurf/occ/point_projection.hpp"
 #include "varsurf/occ/shape_check.hpp"
 #include "varsurf/occ/single_shape.hpp"
 #include "varsurf/occ/step_io.hpp"
 #include "varsurf/occ/surface_refinement.hpp"
-#include "varsurf/occ/point_projection.hpp"
-#include "varsurf/occ/normal_field.hpp"
 
 namespace varsurf {
 namespace {
@@ -657,7 +657,8 @@ TEST(ProjectPoint, FindsTheParametersAndDistanceOfAPointAboveACurvedSheet) {
 TEST(NormalField, PlaneNormalTurnedAboutTheCurve) {
   // On the plane z = 0 the normal is +z; turned +30 degrees about the +x tangent of a line along
   // x it becomes (0, -sin 30, cos 30).
-  const TopoDS_Face plane = BRepBuilderAPI_MakeFace(gp_Pln(gp::Origin(), gp::DZ()), -10, 10, -10, 10);
+  const TopoDS_Face plane =
+      BRepBuilderAPI_MakeFace(gp_Pln(gp::Origin(), gp::DZ()), -10, 10, -10, 10);
   const varsurf::BSplineCurve line =
       varsurf::test::line_curve(Eigen::Vector3d(-5, 1, 0), Eigen::Vector3d(5, 1, 0), 0.0, 3.0);
   const varsurf::BSplineCurve n = varsurf::occ::normal_field(plane, line, 30.0, 1e-6);

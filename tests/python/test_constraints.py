@@ -243,3 +243,17 @@ def test_ribbon_without_reference_is_an_error(sheet):
     c = varsurf.make_constraint(sheet, "Ribbon", curve=(line, "Edge1"))
     doc.recompute()
     assert not c.isValid() and "needs a Curve" in c.getStatusString()
+
+
+def test_deleting_the_vertex_of_a_point_is_an_error_not_a_pull_to_the_origin(sheet, console_errors):
+    doc = sheet.Document
+    v = vertex(doc, "Pin", (60.0, 50.0, 12.0))
+    c = varsurf.make_constraint(sheet, "Point", location=(v, "Vertex1"))
+    doc.recompute()
+    assert sheet.isValid()
+    doc.removeObject(v.Name)
+    doc.recompute()
+    assert c.Location is None
+    assert not c.isValid() and "was it deleted?" in c.getStatusString(), c.getStatusString()
+    assert "was it deleted?" in console_errors()
+    assert sheet.Shape.BoundBox.ZMax > 11.0  # the last good sheet is kept, not pulled to (0, 0, 0)

@@ -310,3 +310,36 @@ def test_contradictory_curves_are_an_error_not_a_wild_sheet(doc, native, console
     sheet.Curves = [(rail, ("Edge1",))]
     doc.recompute()
     assert_ok(sheet)
+
+
+def test_exact_curves_are_met_to_rounding_where_the_tolerance_fit_stops(scene):
+    doc, surface, rail, side = scene
+    sheet = varsurf.make_sheet((surface, "Face1"), [(rail, "Edge1")], tolerance=0.05)
+    doc.recompute()
+    fitted = sheet.MaxDeviations[0]
+    sheet.ExactCurves = ["Rail:Edge1"]
+    doc.recompute()
+    assert_ok(sheet)
+    exact = sheet.MaxDeviations[0]
+    assert exact < 1e-7 and exact < 0.1 * fitted, (fitted, exact)
+    sheet.ExactCurves = ["Nope:Edge9"]
+    doc.recompute()
+    assert not sheet.isValid() and "Nope:Edge9" in sheet.getStatusString()
+
+
+def test_anisotropic_weights_reproduce_isotropic_and_change_the_shape(scene):
+    doc, surface, rail, side = scene
+    iso = varsurf.make_sheet((surface, "Face1"), [(rail, "Edge1")], stretch=0.3, bend=1.0)
+    same = varsurf.make_sheet((surface, "Face1"), [(rail, "Edge1")], name="Same")
+    same.StretchTensor = [0.3, 0.0, 0.3]  # alpha = 0.3 I
+    same.BendTensor = [1.0, 1.0, 1.0]     # beta_ij = 1: w_uu^2 + 2 w_uv^2 + w_vv^2
+    aniso = varsurf.make_sheet((surface, "Face1"), [(rail, "Edge1")], name="Aniso")
+    aniso.BendTensor = [1.0, 1.0, 20.0]   # much stiffer across v
+    doc.recompute()
+    for s in (iso, same, aniso):
+        assert_ok(s)
+    assert max_pole_shift(poles_of(iso), poles_of(same)) < 1e-9
+    assert max_pole_shift(poles_of(iso), poles_of(aniso)) > 0.1
+    aniso.BendTensor = [1.0, 2.0]
+    doc.recompute()
+    assert not aniso.isValid() and "BendTensor takes three" in aniso.getStatusString()

@@ -35,6 +35,7 @@ struct FreeRow {
   std::vector<double> vals;
   Eigen::RowVectorXd rhs;
   double weight;
+  bool exact;
 };
 
 }  // namespace
@@ -63,6 +64,7 @@ ReducedConstraints reduce_constraints(const std::vector<ConstraintSamples>& bloc
       const auto& idx = block.index[static_cast<size_t>(r)];
       const Eigen::VectorXd& c = block.coeff[static_cast<size_t>(r)];
       row.weight = block.weight[static_cast<size_t>(r)];
+      row.exact = block.exact;
       for (size_t k = 0; k < idx.size(); ++k) {
         const double v = c(static_cast<Eigen::Index>(k));
         if (v == 0.0) continue;
@@ -110,12 +112,14 @@ ReducedConstraints reduce_constraints(const std::vector<ConstraintSamples>& bloc
     Eigen::MatrixXd b = Eigen::MatrixXd::Zero(m, n);
     Eigen::MatrixXd d(m, width);
     double cluster_weight = 0.0;
+    bool exact = false;  // an exact constraint in the cluster: no discrepancy truncation
     for (Eigen::Index i = 0; i < m; ++i) {
       const FreeRow& row = rows[members[static_cast<size_t>(i)]];
       for (size_t k = 0; k < row.cols.size(); ++k)
         b(i, local[static_cast<size_t>(row.cols[k])]) += row.vals[k];
       d.row(i) = row.rhs;
       cluster_weight += row.weight;
+      exact = exact || row.exact;
     }
     for (int c : cols) local[static_cast<size_t>(c)] = -1;
 
@@ -153,7 +157,7 @@ ReducedConstraints reduce_constraints(const std::vector<ConstraintSamples>& bloc
     Eigen::Index rank = 0;
     while (rank < numeric_rank) {
       const bool strong = s(rank) >= keep_tolerance * s(0);
-      if (!strong && fit_tolerance > 0.0 && residual <= allowed) break;
+      if (!strong && !exact && fit_tolerance > 0.0 && residual <= allowed) break;
       residual -= gain.row(rank).squaredNorm();
       ++rank;
     }

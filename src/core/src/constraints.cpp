@@ -51,6 +51,7 @@ ConstraintSamples to_coupled(const ConstraintSamples& sep) {
       out.weight.push_back(sep.weight[static_cast<size_t>(r)] / 3.0);
     }
   }
+  out.exact = sep.exact;
   return out;
 }
 
@@ -109,6 +110,7 @@ ConstraintSamples sample_curve(const SplineSpace& space, const CurveConstraint& 
                s.point, rhs);
   }
   out.rhs = stack(rhs);
+  out.exact = c.exact;
   return out;
 }
 

@@ -24,7 +24,7 @@ _PROPERTIES = [
     ("V", "App::PropertyFloat", "Constraint", "Normalized v in [0, 1], used when there is no Location"),
     ("Vector", "App::PropertyVector", "Constraint", "Tangent, normal, plane normal, line or director direction"),
     ("Origin", "App::PropertyVector", "Constraint", "Plane, line or attractor point (Point: the target when there is no Location)"),
-    ("UseOrigin", "App::PropertyBool", "Constraint", "Use Origin even when a Location is set"),
+    ("UseOrigin", "App::PropertyBool", "Constraint", "Use Origin even when a Location is set (a Point without Location needs it)"),
     ("RegionU0", "App::PropertyFloat", "Region", "Normalized region start along u (operators, frozen region)"),
     ("RegionU1", "App::PropertyFloat", "Region", "Normalized region end along u"),
     ("RegionV0", "App::PropertyFloat", "Region", "Normalized region start along v"),
@@ -89,7 +89,9 @@ def spec_of(obj) -> constraints.ConstraintSpec:
     """The ConstraintSpec a Constraint object describes (validated)."""
     location = _location_point(obj)
     origin = None
-    if obj.UseOrigin or location is None:
+    # A Point's target is its vertex; Origin stands in only when asked to (UseOrigin), so a
+    # deleted vertex is an error rather than a silent pull toward (0, 0, 0).
+    if obj.UseOrigin or (location is None and str(obj.Kind) != "Point"):
         origin = (obj.Origin.x, obj.Origin.y, obj.Origin.z)
     spec = constraints.ConstraintSpec(
         kind=str(obj.Kind),

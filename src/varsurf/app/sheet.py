@@ -30,6 +30,9 @@ _PROPERTIES = [
     ("Constraints", "App::PropertyLinkList", "Sheet", "Constraint objects (points, tangents, normals, planes, lines, attractors, directors, frozen regions)", False),
     ("RestShape", "App::PropertyEnumeration", "Sheet", "Base: the energy acts on the displacement from the base face, so edits keep its detail. None: pure fairness (melted). Installed: the displacement from an installed shape", False),
     ("InstalledRest", "Part::PropertyPartShape", "Sheet", "The shape installed as rest shape (install_rest_shape)", False),
+    ("ExactCurves", "App::PropertyStringList", "Sheet", "Curves (as in CurveNames) met exactly wherever the spline space allows, instead of within Tolerance", False),
+    ("StretchTensor", "App::PropertyFloatList", "Anisotropy", "Anisotropic stretch weights (a11, a12, a22) replacing Stretch; empty: isotropic", False),
+    ("BendTensor", "App::PropertyFloatList", "Anisotropy", "Anisotropic bend weights (b11, b12, b22) replacing Bend; empty: isotropic", False),
     ("Pressure", "App::PropertyFloat", "Sheet", "Inflate (> 0, along the sheet's normal) or deflate (< 0); solved by iteration", False),
     ("Stretch", "App::PropertyFloatConstraint", "Sheet", "Stretching weight (alpha, >= 0): penalizes first derivatives, pulls toward a membrane of least area. Default 0", False),
     ("Bend", "App::PropertyFloatConstraint", "Sheet", "Bending weight (beta, >= 0): penalizes second derivatives, pulls toward a fair thin plate. Default 1", False),
@@ -206,6 +209,13 @@ class SheetFeature:
             ]
             options["rest"] = _rest_of(obj, face)
             options["pressure"] = float(getattr(obj, "Pressure", 0.0))
+            exact = list(getattr(obj, "ExactCurves", []) or [])
+            unknown = [n for n in exact if n not in names]
+            if unknown:
+                raise model.SheetError(f"ExactCurves names curves the sheet does not have: {', '.join(unknown)}")
+            options["exact_curves"] = exact
+            options["stretch_tensor"] = list(getattr(obj, "StretchTensor", []) or [])
+            options["bend_tensor"] = list(getattr(obj, "BendTensor", []) or [])
             if face is None:
                 outcome = model.solve_sheet_from_curves(edges, **options)
             else:

@@ -23,6 +23,10 @@ struct CurveConstraint {
   BSplineCurve preimage;
   BSplineCurve target;
   double weight = 1.0;  // relative importance if constraints contradict each other
+  // Exact incidence: every direction the space can hold is fitted (only rank_tolerance
+  // truncates), so a representable target is met to rounding. Otherwise the curve is fitted
+  // until it is within SolveOptions::fit_tolerance, and the rest is left to fairness.
+  bool exact = false;
 };
 
 // Weighted least-squares samples of constraints: row r says sqrt(w_r) * (b_r . x) = sqrt(w_r) *
@@ -34,6 +38,7 @@ struct ConstraintSamples {
   std::vector<Eigen::VectorXd> coeff;   // their coefficients (already scaled by sqrt(w_r))
   Eigen::MatrixXd rhs;                  // scaled right-hand sides, rows x width
   std::vector<double> weight;           // w_r: what the row counts for in an RMS residual
+  bool exact = false;                   // its cluster keeps every numerically independent row
   int rows() const { return static_cast<int>(index.size()); }
   bool coupled() const { return rhs.cols() == 1; }
 };
