@@ -181,6 +181,10 @@ def make_constraint(
         obj.Reference = (reference[0], reference[1])
     obj.Angle = float(angle)
     sheet.Constraints = list(sheet.Constraints) + [obj]
+    if FreeCAD.GuiUp:
+        from varsurf.gui.view_providers import ViewProviderConstraint
+
+        ViewProviderConstraint(obj.ViewObject)
     return obj
 
 

@@ -143,6 +143,9 @@ def run(result):
     result["constraint_kinds"] = [c.Kind for c in sheet.Constraints]
     result["constraint_residuals"] = list(sheet.ConstraintResiduals)
     result["sheet_valid_with_constraint"] = sheet.isValid()
+    constraint = sheet.Constraints[0] if sheet.Constraints else None
+    result["constraint_in_tree"] = constraint is not None and constraint in sheet.ViewObject.Proxy.claimChildren()
+    result["constraint_icon"] = constraint.ViewObject.Proxy.getIcon() if constraint is not None else ""
 
     # 5. picture
     Gui.Selection.clearSelection()

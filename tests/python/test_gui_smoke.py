@@ -86,3 +86,5 @@ def test_constraint_commands_work_in_the_gui(smoke):
     assert smoke["constraint_kinds"] == ["Normal"]
     assert smoke["sheet_valid_with_constraint"]
     assert smoke["constraint_residuals"][0] < 1e-6  # degrees
+    assert smoke["constraint_in_tree"]
+    assert smoke["constraint_icon"].endswith("VarSurf_Constraint.svg")

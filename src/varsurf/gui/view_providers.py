@@ -19,6 +19,7 @@ def _input_objects(obj):
         found.append(base[0])
     for link_obj, _subs in getattr(obj, "Curves", None) or []:
         found.append(link_obj)
+    found.extend(getattr(obj, "Constraints", None) or [])
     unique = []
     for item in found:
         if item is not None and item is not obj and item not in unique:
@@ -94,6 +95,38 @@ class ViewProviderSheet:
     # -- persistence (see app/sheet.py for why both protocols) --
     def dumps(self):
         return {"type": TYPE, "version": STATE_VERSION}
+
+    def loads(self, state):
+        return None
+
+    def __getstate__(self):
+        return self.dumps()
+
+    def __setstate__(self, state):
+        self.loads(state)
+
+
+class ViewProviderConstraint:
+    """Tree icon of a Constraint; it has no geometry of its own to draw."""
+
+    def __init__(self, vobj):
+        vobj.Proxy = self
+
+    def attach(self, vobj):
+        self.ViewObject = vobj
+        self.Object = vobj.Object
+
+    def getIcon(self):
+        return resources.icon("VarSurf_Constraint.svg")
+
+    def updateData(self, obj, prop):
+        pass
+
+    def onChanged(self, vobj, prop):
+        pass
+
+    def dumps(self):
+        return {"type": "VarSurf::ViewProviderConstraint", "version": STATE_VERSION}
 
     def loads(self, state):
         return None
