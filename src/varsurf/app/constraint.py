@@ -11,9 +11,9 @@ from __future__ import annotations
 import FreeCAD
 
 from varsurf import constraints
+from varsurf.persistence import VersionedState
 
 TYPE = "VarSurf::Constraint"
-STATE_VERSION = 1
 
 # name, type, group, tooltip
 _PROPERTIES = [
@@ -110,28 +110,16 @@ def spec_of(obj) -> constraints.ConstraintSpec:
     return spec
 
 
-class ConstraintFeature:
+class ConstraintFeature(VersionedState):
     """Proxy of a VarSurf Constraint (App::FeaturePython)."""
 
     Type = TYPE
+    TYPE = TYPE
 
     def __init__(self, obj):
         obj.Proxy = self
         self.Type = TYPE
         _add_missing_properties(obj)
-
-    def dumps(self):
-        return {"type": TYPE, "version": STATE_VERSION}
-
-    def loads(self, state):
-        self.Type = TYPE
-        return None
-
-    def __getstate__(self):
-        return self.dumps()
-
-    def __setstate__(self, state):
-        self.loads(state)
 
     def onDocumentRestored(self, obj):
         self.Type = TYPE

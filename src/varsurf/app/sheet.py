@@ -11,11 +11,11 @@ from __future__ import annotations
 import FreeCAD
 
 from varsurf import model
+from varsurf.persistence import VersionedState
 from varsurf.app.constraint import spec_of
 
 TYPE = "VarSurf::Sheet"
 REST_SHAPES = ("Base", "None", "Installed")
-STATE_VERSION = 1
 
 # Property status bits (App::PropertyType): read-only in the editor, output (does not touch).
 _PROP_READONLY = 1
@@ -156,33 +156,17 @@ def _clear_results(obj, status):
     obj.Status = status
 
 
-class SheetFeature:
+class SheetFeature(VersionedState):
     """Proxy of a VarSurf Sheet (Part::FeaturePython)."""
 
     Type = TYPE
+    TYPE = TYPE
 
     def __init__(self, obj):
         obj.Proxy = self
         self.Type = TYPE
         _add_missing_properties(obj)
         _restore_constraints(obj)
-
-    # -- persistence: a small versioned dict (both protocols: FreeCAD's and pickle's, which in
-    # Python 3.11 has a default object.__getstate__ that would otherwise be picked) --
-    def dumps(self):
-        return {"type": TYPE, "version": STATE_VERSION}
-
-    def loads(self, state):
-        self.Type = TYPE
-        if isinstance(state, dict):
-            self.state_version = int(state.get("version", STATE_VERSION))
-        return None
-
-    def __getstate__(self):
-        return self.dumps()
-
-    def __setstate__(self, state):
-        self.loads(state)
 
     def onDocumentRestored(self, obj):
         self.Type = TYPE

@@ -6,9 +6,9 @@ import FreeCAD as App
 import FreeCADGui as Gui
 
 from varsurf.gui import resources
+from varsurf.persistence import VersionedState
 
 TYPE = "VarSurf::ViewProviderSheet"
-STATE_VERSION = 1
 
 
 def _input_objects(obj):
@@ -27,8 +27,10 @@ def _input_objects(obj):
     return unique
 
 
-class ViewProviderSheet:
-    """Tree icon, children (base and curves), double click to edit."""
+class ViewProviderSheet(VersionedState):
+    """Tree icon, children (base, curves, constraints), double click to edit."""
+
+    TYPE = TYPE
 
     def __init__(self, vobj):
         vobj.Proxy = self
@@ -92,22 +94,11 @@ class ViewProviderSheet:
         Gui.Control.closeDialog()
         return True
 
-    # -- persistence (see app/sheet.py for why both protocols) --
-    def dumps(self):
-        return {"type": TYPE, "version": STATE_VERSION}
 
-    def loads(self, state):
-        return None
-
-    def __getstate__(self):
-        return self.dumps()
-
-    def __setstate__(self, state):
-        self.loads(state)
-
-
-class ViewProviderConstraint:
+class ViewProviderConstraint(VersionedState):
     """Tree icon of a Constraint; it has no geometry of its own to draw."""
+
+    TYPE = "VarSurf::ViewProviderConstraint"
 
     def __init__(self, vobj):
         vobj.Proxy = self
@@ -124,18 +115,6 @@ class ViewProviderConstraint:
 
     def onChanged(self, vobj, prop):
         pass
-
-    def dumps(self):
-        return {"type": "VarSurf::ViewProviderConstraint", "version": STATE_VERSION}
-
-    def loads(self, state):
-        return None
-
-    def __getstate__(self):
-        return self.dumps()
-
-    def __setstate__(self, state):
-        self.loads(state)
 
 
 def ensure_view_provider(obj):
