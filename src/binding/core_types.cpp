@@ -253,6 +253,7 @@ void bind_core_types(py::module_& m) {
       .def_readwrite("attractors", &SheetProblem::attractors)
       .def_readwrite("directors", &SheetProblem::directors)
       .def_readwrite("repellers", &SheetProblem::repellers)
+      .def_readwrite("shape_attractors", &SheetProblem::shape_attractors)
       .def_readwrite("pressure", &SheetProblem::pressure,
                      "Inflate (> 0, along w_u x w_v) or deflate (< 0); iterated.");
 
@@ -286,7 +287,7 @@ void bind_core_types(py::module_& m) {
       .def_readwrite("keep_tolerance", &SolveOptions::keep_tolerance,
                      "Singular directions at least this fraction of the largest are always kept.")
       .def_readwrite("max_iterations", &SolveOptions::max_iterations,
-                     "Nonlinear steps allowed (repellers, pressure).")
+                     "Nonlinear steps allowed (repellers, shape attractors, pressure).")
       .def_readwrite("step_limit", &SolveOptions::step_limit,
                      "Largest pole move per nonlinear step, relative to the sheet's size.")
       .def_readwrite("nonlinear_tolerance", &SolveOptions::nonlinear_tolerance,

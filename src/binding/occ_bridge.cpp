@@ -3,10 +3,13 @@
 #include <pybind11/eigen.h>
 #include <pybind11/stl.h>
 
+#include <memory>
 #include <string>
 
 #include "binding.hpp"
+#include "varsurf/core/errors.hpp"
 #include "varsurf/occ/brep_io.hpp"
+#include "varsurf/occ/closest_point.hpp"
 #include "varsurf/occ/curve_projection.hpp"
 #include "varsurf/occ/deviation.hpp"
 #include "varsurf/occ/face_builder.hpp"
@@ -49,6 +52,39 @@ void bind_occ_bridge(py::module_& m) {
       "face_brep"_a, "curve"_a, "angle_deg"_a = 0.0, "max_distance"_a = 1e-3, "samples"_a = 0,
       "Normal field of a reference face along a 3D curve (turned by angle_deg about the curve's "
       "tangent) as a 3D BSplineCurve with the curve's parameter: a ribbon's target.");
+
+  m.def("normal_field_between", &occ::normal_field_between, "curve"_a, "second"_a,
+        "angle_deg"_a = 0.0, "samples"_a = 0,
+        "Normal field of the ruled strip from a 3D curve to a second 3D curve (turned by "
+        "angle_deg about the curve's tangent): a ribbon's target.");
+
+  py::class_<occ::ClosestPointTarget, std::shared_ptr<occ::ClosestPointTarget>>(
+      m, "ClosestPointTarget",
+      "Closest points on a shape's faces (or, without faces, its edges): a shape attractor's "
+      "target.")
+      .def(py::init([](const std::string& brep) {
+             return std::make_shared<occ::ClosestPointTarget>(occ::read_brep(brep));
+           }),
+           "brep"_a)
+      .def_property_readonly("on_faces", &occ::ClosestPointTarget::on_faces)
+      .def(
+          "closest",
+          [](const occ::ClosestPointTarget& t, const Eigen::Vector3d& p) { return t(p).point; },
+          "point"_a, "The target's point closest to `point`.");
+
+  py::class_<ShapeAttractor>(m, "ShapeAttractor",
+                             "strength * integral over region of dist(w, target)^2: the region "
+                             "pulled onto a surface or curve (iterated: see "
+                             "SolveOptions.max_iterations).")
+      .def(py::init(
+               [](Region region, std::shared_ptr<occ::ClosestPointTarget> target, double strength) {
+                 if (!target) throw InvalidInput("shape attractor: no target");
+                 return ShapeAttractor{
+                     region, [target](const Eigen::Vector3d& p) { return (*target)(p); }, strength};
+               }),
+           "region"_a, "target"_a, "strength"_a = 1.0)
+      .def_readwrite("region", &ShapeAttractor::region)
+      .def_readwrite("strength", &ShapeAttractor::strength);
 
   m.def("project_point", &occ::project_point, "surface"_a, "point"_a,
         "Closest point of the sheet to a 3D point, as (u, v) and the distance.");

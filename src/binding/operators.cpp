@@ -84,15 +84,37 @@ void bind_operators(py::module_& m) {
       "space"_a, "poles"_a, "ribbon"_a, "samples"_a = 200,
       "Largest angle (radians) between the sheet's normal and the ribbon's field.");
 
-  py::class_<Region>(m, "Region", "The rectangle [u0, u1] x [v0, v1] of the parameter domain.")
-      .def(py::init([](double u0, double u1, double v0, double v1) {
-             return Region{u0, u1, v0, v1};
-           }),
-           "u0"_a = 0.0, "u1"_a = 1.0, "v0"_a = 0.0, "v1"_a = 1.0)
+  py::class_<Region>(m, "Region",
+                     "A region of the parameter domain: the rectangle [u0, u1] x [v0, v1], or "
+                     "the area enclosed by `loop` (a closed polygon of (u, v) points) if given.")
+      .def(py::init(
+               [](double u0, double u1, double v0, double v1, std::vector<Eigen::Vector2d> loop) {
+                 Region r(u0, u1, v0, v1);
+                 r.loop = std::move(loop);
+                 return r;
+               }),
+           "u0"_a = 0.0, "u1"_a = 1.0, "v0"_a = 0.0, "v1"_a = 1.0,
+           "loop"_a = std::vector<Eigen::Vector2d>())
       .def_readwrite("u0", &Region::u0)
       .def_readwrite("u1", &Region::u1)
       .def_readwrite("v0", &Region::v0)
-      .def_readwrite("v1", &Region::v1);
+      .def_readwrite("v1", &Region::v1)
+      .def_readwrite("loop", &Region::loop);
+
+  py::class_<QuadraturePoint>(m, "QuadraturePoint")
+      .def_readonly("u", &QuadraturePoint::u)
+      .def_readonly("v", &QuadraturePoint::v)
+      .def_readonly("weight", &QuadraturePoint::weight);
+
+  m.def(
+      "region_quadrature",
+      [](const SplineSpace& space, const Region& region) {
+        check_region(space, region, "region");
+        return region_quadrature(space, region);
+      },
+      "space"_a, "region"_a,
+      "Quadrature points and weights over the region, exact for products of two basis "
+      "functions.");
 
   m.def("poles_in_region", &poles_in_region, "space"_a, "region"_a,
         "Flat indices of the poles supported inside the region (to freeze it).");

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <BRepBuilderAPI_MakeEdge.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
+#include <BRepBuilderAPI_MakeVertex.hxx>
 #include <BRepGProp.hxx>
 #include <BRep_Builder.hxx>
 #include <BRep_Tool.hxx>
@@ -29,6 +30,7 @@
 #include "varsurf/core/constraints.hpp"
 #include "varsurf/core/errors.hpp"
 #include "varsurf/occ/brep_io.hpp"
+#include "varsurf/occ/closest_point.hpp"
 #include "varsurf/occ/curve_projection.hpp"
 #include "varsurf/occ/deviation.hpp"
 #include "varsurf/occ/face_builder.hpp"
@@ -671,4 +673,54 @@ TEST(NormalField, PlaneNormalTurnedAboutTheCurve) {
   const varsurf::BSplineCurve above =
       varsurf::test::line_curve(Eigen::Vector3d(-5, 1, 2), Eigen::Vector3d(5, 1, 2));
   EXPECT_THROW(varsurf::occ::normal_field(plane, above, 0.0, 1e-3), varsurf::InvalidInput);
+}
+
+TEST(NormalField, StripToASecondCurve) {
+  // From a line along x at z = 0 to a parallel line at y = 1, z = 1: the strip's normal is
+  // x cross (0, 1, 1) / sqrt 2 = (0, -1, 1) / sqrt 2 everywhere.
+  const varsurf::BSplineCurve line =
+      varsurf::test::line_curve(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(4, 0, 0));
+  const varsurf::BSplineCurve second =
+      varsurf::test::line_curve(Eigen::Vector3d(-1, 1, 1), Eigen::Vector3d(5, 1, 1));
+  const varsurf::BSplineCurve n = varsurf::occ::normal_field_between(line, second, 0.0);
+  for (double t : {0.0, 0.3, 1.0}) {
+    const Eigen::Vector3d v = n.evaluate(t);
+    EXPECT_LT((v - Eigen::Vector3d(0, -1, 1) / std::sqrt(2.0)).norm(), 1e-7) << t;
+  }
+  // Turned by -45 degrees about x the strip's normal becomes (0, 0, 1).
+  const Eigen::Vector3d turned =
+      varsurf::occ::normal_field_between(line, second, -45.0).evaluate(0.5);
+  EXPECT_LT((turned - Eigen::Vector3d(0, 0, 1)).norm(), 1e-7);
+  // A second curve crossing the first has no strip there.
+  const varsurf::BSplineCurve crossing =
+      varsurf::test::line_curve(Eigen::Vector3d(2, -1, 0), Eigen::Vector3d(2, 1, 0));
+  EXPECT_THROW(varsurf::occ::normal_field_between(line, crossing, 0.0), varsurf::InvalidInput);
+}
+
+TEST(ClosestPointTarget, FaceInteriorBoundaryAndEdges) {
+  using varsurf::occ::ClosestPointTarget;
+  const ClosestPointTarget face(
+      BRepBuilderAPI_MakeFace(gp_Pln(gp::Origin(), gp::DZ()), 0, 2, 0, 1));
+  EXPECT_TRUE(face.on_faces());
+  // Above the interior: straight down, metric z z^T.
+  varsurf::ClosestPoint c = face(Eigen::Vector3d(0.5, 0.25, 3.0));
+  EXPECT_LT((c.point - Eigen::Vector3d(0.5, 0.25, 0.0)).norm(), 1e-9);
+  EXPECT_LT((c.metric - Eigen::Vector3d::UnitZ() * Eigen::Vector3d::UnitZ().transpose()).norm(),
+            1e-9);
+  // Beyond the edge x = 2: the closest point is on that edge, with the full metric.
+  c = face(Eigen::Vector3d(3.0, 0.5, 1.0));
+  EXPECT_LT((c.point - Eigen::Vector3d(2.0, 0.5, 0.0)).norm(), 1e-7);
+  EXPECT_LT((c.metric - Eigen::Matrix3d::Identity()).norm(), 1e-12);
+  // An edge along x: across it, metric I - x x^T; beyond its end, the end.
+  const ClosestPointTarget edge(BRepBuilderAPI_MakeEdge(gp_Pnt(0, 0, 0), gp_Pnt(1, 0, 0)).Edge());
+  EXPECT_FALSE(edge.on_faces());
+  c = edge(Eigen::Vector3d(0.3, 2.0, -1.0));
+  EXPECT_LT((c.point - Eigen::Vector3d(0.3, 0, 0)).norm(), 1e-9);
+  EXPECT_LT((c.metric - Eigen::Vector3d(0, 1, 1).asDiagonal().toDenseMatrix()).norm(), 1e-9);
+  c = edge(Eigen::Vector3d(4.0, 1.0, 0.0));
+  EXPECT_LT((c.point - Eigen::Vector3d(1, 0, 0)).norm(), 1e-9);
+  EXPECT_THROW(edge(Eigen::Vector3d(NAN, 0, 0)), varsurf::InvalidInput);
+  EXPECT_THROW(ClosestPointTarget{TopoDS_Shape()}, varsurf::InvalidInput);
+  EXPECT_THROW(ClosestPointTarget{BRepBuilderAPI_MakeVertex(gp_Pnt(0, 0, 0)).Vertex()},
+               varsurf::InvalidInput);
 }

@@ -49,7 +49,7 @@ TEST(Ribbon, ConsistentWithAPlaneIsMetExactly) {
 TEST(Ribbon, FoldAlongADiagonalConvergesUnderRefinement) {
   // A flat sheet held at its boundary and along a diagonal line, asked to turn its normal 20
   // degrees about that line: no finite sheet does it exactly; the angle error must fall with
-  // refinement.
+  // refinement until it reaches round-off (from 16 spans on, the sheet meets it to ~1e-14).
   const Eigen::Vector2d a(0.25, 0.3), b(0.75, 0.7);
   const Eigen::Vector3d along = Eigen::Vector3d(b.x() - a.x(), b.y() - a.y(), 0.0).normalized();
   const Eigen::Vector3d tilted =
@@ -68,7 +68,7 @@ TEST(Ribbon, FoldAlongADiagonalConvergesUnderRefinement) {
     pb.ribbons.push_back(r);
     const SolveResult res = solve_sheet(pb);
     const double err = ribbon_angle_error(pb.space, res.poles, r, 400);
-    EXPECT_LT(err, previous) << spans;
+    EXPECT_TRUE(err < previous || err < 1e-10) << spans << ": " << err << " after " << previous;
     EXPECT_LT(incidence_error(pb.space, res.poles, hold), 1e-9) << spans;
     previous = err;
   }

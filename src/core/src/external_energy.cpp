@@ -7,8 +7,6 @@
 
 #include "unit_vector.hpp"
 #include "varsurf/core/errors.hpp"
-#include "varsurf/core/gauss_legendre.hpp"
-#include "varsurf/core/knot_vector.hpp"
 
 namespace varsurf {
 
@@ -17,50 +15,17 @@ QuadraticTerms::QuadraticTerms(int poles)
 
 namespace {
 
-void check_region(const SplineSpace& space, const Region& r, const char* what) {
-  const std::string w(what);
-  if (!std::isfinite(r.u0) || !std::isfinite(r.u1) || !std::isfinite(r.v0) || !std::isfinite(r.v1))
-    throw InvalidInput(w + ": region bounds are not finite");
-  if (!(r.u0 < r.u1) || !(r.v0 < r.v1)) throw InvalidInput(w + ": region is empty");
-  if (r.u0 < space.u_first() || r.u1 > space.u_last() || r.v0 < space.v_first() ||
-      r.v1 > space.v_last())
-    throw InvalidInput(w + ": region lies outside the sheet's parameter domain");
-}
-
 void check_strength(double s, const char* what) {
   if (!std::isfinite(s) || s < 0.0)
     throw InvalidInput(std::string(what) + ": strength must be finite and non-negative");
 }
 
-// Breakpoints of one direction inside [a, b], with a and b: the pieces where the basis is
-// polynomial.
-std::vector<double> pieces(const std::vector<double>& knots, int degree, double a, double b) {
-  std::vector<double> out = {a};
-  for (double t : breakpoints(knots, degree))
-    if (t > a && t < b) out.push_back(t);
-  out.push_back(b);
-  return out;
-}
-
-// Calls f(basis sample with first derivatives, dA) at Gauss points covering the region, exact for
-// products of two basis functions (or derivatives) of a non-rational space.
+// Calls f(basis sample with first derivatives, dA) at quadrature points covering the region, exact
+// for products of two basis functions (or derivatives) of a non-rational space.
 template <class F>
 void integrate_region(const SplineSpace& space, const Region& r, F&& f) {
-  const int extra = space.rational() ? 2 : 0;
-  const GaussRule& gu = gauss_legendre(space.degree_u + 1 + extra);
-  const GaussRule& gv = gauss_legendre(space.degree_v + 1 + extra);
-  const std::vector<double> pu = pieces(space.knots_u, space.degree_u, r.u0, r.u1);
-  const std::vector<double> pv = pieces(space.knots_v, space.degree_v, r.v0, r.v1);
-  for (size_t a = 0; a + 1 < pu.size(); ++a) {
-    const double hu = 0.5 * (pu[a + 1] - pu[a]);
-    for (size_t b = 0; b + 1 < pv.size(); ++b) {
-      const double hv = 0.5 * (pv[b + 1] - pv[b]);
-      for (size_t i = 0; i < gu.nodes.size(); ++i)
-        for (size_t j = 0; j < gv.nodes.size(); ++j)
-          f(space.basis(pu[a] + hu * (gu.nodes[i] + 1.0), pv[b] + hv * (gv.nodes[j] + 1.0), 1),
-            gu.weights[i] * gv.weights[j] * hu * hv);
-    }
-  }
+  for (const QuadraturePoint& q : region_quadrature(space, r))
+    f(space.basis(q.u, q.v, 1), q.weight);
 }
 
 // Adds w * (sum_k beta_k p_k - q)^T M (sum_k beta_k p_k - q), beta = row `d` of the sample.
@@ -82,23 +47,6 @@ void add_coupled(QuadraticTerms& t, const BasisSample& s, int d, double w, const
 }
 
 }  // namespace
-
-std::vector<int> poles_in_region(const SplineSpace& space, const Region& r) {
-  space.validate();
-  check_region(space, r, "frozen region");
-  // Pole i along a direction is supported on [knots[i], knots[i + degree + 1]]; it acts on the
-  // region if that interval overlaps [a, b] in more than a point.
-  auto inside = [](const std::vector<double>& k, int p, int i, double a, double b) {
-    return k[static_cast<size_t>(i)] < b && k[static_cast<size_t>(i + p + 1)] > a;
-  };
-  std::vector<int> out;
-  for (int i = 0; i < space.nu(); ++i)
-    for (int j = 0; j < space.nv(); ++j)
-      if (inside(space.knots_u, space.degree_u, i, r.u0, r.u1) &&
-          inside(space.knots_v, space.degree_v, j, r.v0, r.v1))
-        out.push_back(space.index(i, j));
-  return out;
-}
 
 OperatorScales operator_scales(const SplineSpace& space, const Eigen::SparseMatrix<double>& h) {
   double mass = 0.0, gradient = 0.0;
@@ -179,6 +127,23 @@ void add_repeller_model(const SplineSpace& space, const Repeller& rep, double sc
     for (size_t k = 0; k < s.index.size(); ++k)
       for (int a = 0; a < 3; ++a)
         t.coupled_f(3 * s.index[k] + a) += s.values(0, static_cast<Eigen::Index>(k)) * f(a);
+  });
+}
+
+void add_shape_attractor_model(const SplineSpace& space, const ShapeAttractor& a, double scale,
+                               const Eigen::MatrixX3d& poles, QuadraticTerms& t) {
+  check_region(space, a.region, "shape attractor");
+  check_strength(a.strength, "shape attractor");
+  if (!a.closest) throw InvalidInput("shape attractor: no target shape");
+  if (a.strength == 0.0) return;
+  integrate_region(space, a.region, [&](const BasisSample& s, double dA) {
+    Eigen::Vector3d w = Eigen::Vector3d::Zero();
+    for (size_t k = 0; k < s.index.size(); ++k)
+      w += s.values(0, static_cast<Eigen::Index>(k)) * poles.row(s.index[k]).transpose();
+    const ClosestPoint c = a.closest(w);
+    if (!c.point.allFinite() || !c.metric.allFinite())
+      throw InvalidInput("shape attractor: the target gave no closest point");
+    add_coupled(t, s, 0, scale * a.strength * dA, c.metric, c.point);
   });
 }
 

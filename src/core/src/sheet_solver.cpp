@@ -180,8 +180,9 @@ Eigen::MatrixX3d unflatten(const Eigen::MatrixXd& x) {
   return poles;
 }
 
-// Repellers and pressure: re-linearize at the current poles, solve, move at most step_limit.
-// Every iterate is a convex combination of feasible solutions, so the constraints keep holding.
+// Repellers, shape attractors and pressure: re-linearize at the current poles, solve, move at most
+// step_limit. Every iterate is a convex combination of feasible solutions, so the constraints keep
+// holding.
 Eigen::MatrixXd iterate_nonlinear(const SheetProblem& pb, const SolveOptions& opt,
                                   const OperatorScales& scales, const Quadratic& base,
                                   Eigen::MatrixXd x, SolveReport& rep) {
@@ -201,6 +202,13 @@ Eigen::MatrixXd iterate_nonlinear(const SheetProblem& pb, const SolveOptions& op
         add_repeller_model(pb.space, pb.repellers[i], scales.value, current, 1e-6 * size, model);
       } catch (const InvalidInput& e) {
         throw InvalidInput("repeller " + std::to_string(i) + ": " + e.what());
+      }
+    }
+    for (size_t i = 0; i < pb.shape_attractors.size(); ++i) {
+      try {
+        add_shape_attractor_model(pb.space, pb.shape_attractors[i], scales.value, current, model);
+      } catch (const InvalidInput& e) {
+        throw InvalidInput("shape attractor " + std::to_string(i) + ": " + e.what());
       }
     }
     add_pressure_force(pb.space, pb.pressure, current, model);
@@ -244,7 +252,8 @@ SolveResult solve_sheet(const SheetProblem& pb, const SolveOptions& opt) {
   QuadraticTerms terms(poles);
   if (pb.rest_poles.rows() != 0) terms.separable_f += h * pb.rest_poles;
   OperatorScales scales;
-  if (!pb.attractors.empty() || !pb.directors.empty() || !pb.repellers.empty())
+  if (!pb.attractors.empty() || !pb.directors.empty() || !pb.repellers.empty() ||
+      !pb.shape_attractors.empty())
     scales = operator_scales(sp, h);
   for (size_t i = 0; i < pb.attractors.size(); ++i) {
     try {
@@ -286,7 +295,8 @@ SolveResult solve_sheet(const SheetProblem& pb, const SolveOptions& opt) {
   sample_all(
       pb.ribbons, "ribbon", [&](const auto& c) { return sample_ribbon(sp, c); }, coupled);
 
-  const bool nonlinear = !pb.repellers.empty() || pb.pressure != 0.0;
+  const bool nonlinear =
+      !pb.repellers.empty() || !pb.shape_attractors.empty() || pb.pressure != 0.0;
   if (!std::isfinite(pb.pressure)) throw InvalidInput("pressure must be finite");
   Quadratic quad;
   rep.coupled = opt.force_coupled || nonlinear || !coupled.empty() || terms.uses_coupled();

@@ -5,21 +5,13 @@
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <functional>
 #include <vector>
 
+#include "varsurf/core/region.hpp"
 #include "varsurf/core/spline_space.hpp"
 
 namespace varsurf {
-
-// A rectangle [u0, u1] x [v0, v1] of the parameter domain.
-struct Region {
-  double u0 = 0.0, u1 = 1.0, v0 = 0.0, v1 = 1.0;
-};
-
-// Flat indices of the poles whose basis functions do not vanish on the region: holding them fixed
-// keeps the surface over the region exactly as it is. InvalidInput for an empty or out-of-domain
-// region.
-std::vector<int> poles_in_region(const SplineSpace& space, const Region& region);
 
 enum class AttractorKind { point, plane, line };
 
@@ -48,6 +40,24 @@ struct Director {
 struct Repeller {
   Region region;
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();
+  double strength = 1.0;
+};
+
+// The point of another shape (a face, a curve) closest to a point in space, and the metric of the
+// squared distance's Gauss-Newton model there: n n^T inside a surface, I - t t^T along a curve,
+// I at an end, edge or corner.
+struct ClosestPoint {
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d metric = Eigen::Matrix3d::Identity();
+};
+using ClosestPointFunction = std::function<ClosestPoint(const Eigen::Vector3d&)>;
+
+// strength (relative) * integral over the region of dist(w, target)^2 dA: the region pulled onto
+// another surface or curve (Veltkamp & Wesselink's surface and curve attractors). Not quadratic:
+// the solve iterates, pulling each quadrature point toward its current closest point.
+struct ShapeAttractor {
+  Region region;
+  ClosestPointFunction closest;
   double strength = 1.0;
 };
 
@@ -82,6 +92,12 @@ void add_director(const SplineSpace& space, const Director& d, double scale, Qua
 // negative and left out so the model stays convex). Distances are floored at `min_distance`.
 void add_repeller_model(const SplineSpace& space, const Repeller& r, double scale,
                         const Eigen::MatrixX3d& poles, double min_distance, QuadraticTerms& terms);
+
+// The Gauss-Newton model of a shape attractor at the current poles: each quadrature point w0 adds
+// (w - c)^T M (w - c) for its closest point c and metric M. InvalidInput if the target gives a
+// non-finite point or metric.
+void add_shape_attractor_model(const SplineSpace& space, const ShapeAttractor& a, double scale,
+                               const Eigen::MatrixX3d& poles, QuadraticTerms& terms);
 
 // Inflation by a pressure: the work pressure * volume, linearized at the current poles. Adds the
 // force pressure * integral of b_k (w_u x w_v) du dv to every pole (positive: along the normal).

@@ -38,6 +38,7 @@ struct SheetProblem {
   std::vector<Attractor> attractors;               // plane and line kinds couple x, y, z
   std::vector<Director> directors;                 // couples x, y, z
   std::vector<Repeller> repellers;                 // not quadratic: iterated, couples x, y, z
+  std::vector<ShapeAttractor> shape_attractors;    // not quadratic: iterated, couples x, y, z
   double pressure = 0.0;         // inflate (> 0, along w_u x w_v) or deflate (< 0): iterated
   std::vector<int> fixed_poles;  // flat indices held at initial_poles
 };
@@ -62,7 +63,7 @@ struct SolveOptions {
   // Solve the coupled 3n system even when every term is separable (the separable solve is
   // cheaper and gives the same poles).
   bool force_coupled = false;
-  // Repellers and pressure: Gauss-Newton / fixed-point steps, each at most step_limit (relative
+  // Repellers, shape attractors and pressure: Gauss-Newton / fixed-point steps, each at most step_limit (relative
   // to the start shape's size) per pole, until no pole moves more than nonlinear_tolerance
   // (relative) or max_iterations is reached.
   int max_iterations = 100;

@@ -1,5 +1,4 @@
-// The normal field of a reference face along a curve: what a ribbon (or a G1 join) asks the
-// sheet's normal to follow.
+// Normal fields along a curve: what a ribbon (or a G1 join) asks the sheet's normal to follow.
 #pragma once
 
 #include <TopoDS_Face.hxx>
@@ -15,5 +14,12 @@ namespace varsurf::occ {
 // face, or for invalid data; GeometryError if OCCT fails.
 BSplineCurve normal_field(const TopoDS_Face& reference, const BSplineCurve& curve, double angle_deg,
                           double max_distance, int samples = 0);
+
+// N(t) of the ruled strip from `curve` to a second curve: at each sample, the normal of the
+// plane spanned by the curve's tangent and the direction to the second curve's closest point,
+// turned by `angle_deg` about the tangent. InvalidInput where the curves touch or the direction
+// runs along the tangent.
+BSplineCurve normal_field_between(const BSplineCurve& curve, const BSplineCurve& second,
+                                  double angle_deg, int samples = 0);
 
 }  // namespace varsurf::occ
