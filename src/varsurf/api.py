@@ -142,6 +142,7 @@ def make_constraint(
     curve=None,
     reference=None,
     angle: float = 0.0,
+    region_loop=None,
 ):
     """Add a Constraint of ``kind`` (see ``varsurf.constraints.KINDS``) to ``sheet``.
 
@@ -151,7 +152,11 @@ def make_constraint(
     origin: plane, line or attractor point; for a Point, the target instead of the location.
     region: normalized (u0, u1, v0, v1) of an operator or a frozen region.
     weight: the constraint's weight or the operator's strength.
-    curve, reference, angle: Ribbon and G1: (object, "EdgeN"), (object, "FaceN") and degrees.
+    curve, reference, angle: Ribbon and G1: (object, "EdgeN"), (object, "FaceN") and degrees; a
+        Ribbon's reference may also be a second edge, or None for the base's own normal.
+        CurveAttractor: curve is the edge pulled onto; SurfaceAttractor: reference is the face.
+    region_loop: (object, ["Edge1", ...]) or (object, []) for all its edges: a closed loop whose
+        projection onto the base is the region (instead of the rectangle `region`).
     """
     from varsurf import constraints
     from varsurf.app.constraint import ConstraintFeature
@@ -180,6 +185,9 @@ def make_constraint(
     if reference is not None:
         obj.Reference = (reference[0], reference[1])
     obj.Angle = float(angle)
+    if region_loop is not None:
+        link, subs = region_loop
+        obj.RegionLoop = (link, list(subs) if not isinstance(subs, str) else [subs])
     sheet.Constraints = list(sheet.Constraints) + [obj]
     if FreeCAD.GuiUp:
         from varsurf.gui.view_providers import ViewProviderConstraint
@@ -373,26 +381,31 @@ def is_sheet(obj) -> bool:
 # constraints from a selection (what the constraint commands run)
 
 TRANSACTION_CONSTRAINT = "Add VarSurf constraint"
-CONSTRAINT_HINT = "Select a Sheet and, for a point constraint, a vertex the sheet must pass through."
-CURVE_CONSTRAINT_HINT = "Select a Sheet, the edge along which it joins, and the face it must follow there."
+#: What to select for each kind, besides the Sheet.
+SELECTION_HINTS = {
+    "Point": "Select a Sheet and the vertex it must pass through.",
+    "point": "Select a Sheet and, optionally, a vertex for the point's position.",
+    "region": "Select a Sheet and, optionally, closed edges (e.g. a sketch) bounding the region.",
+    "SurfaceAttractor": "Select a Sheet, the face to pull onto and, optionally, closed edges bounding the region.",
+    "CurveAttractor": "Select a Sheet and the edge to pull onto.",
+    "Ribbon": "Select a Sheet, the edge along which its normal is set and, optionally, a face or a second edge to follow.",
+    "G1": "Select a Sheet, the edge along which it joins, and the face it must follow there.",
+}
 #: Kinds that need a picked vertex from the GUI (their target is a location).
 VERTEX_KINDS = ("Point",)
 
 
-def constraint_selection_to_args(kind: str, selection_ex: Sequence):
-    """(sheet, location, curve, reference) for make_constraint from a selection, or ValueError.
-
-    Exactly one Sheet (the whole object or any of its elements). Point-like kinds take at most
-    one vertex of another object (the location); Ribbon and G1 take one edge (the curve) and one
-    face (the reference) of other objects.
-    """
+def selection_hint(kind: str) -> str:
     from varsurf import constraints
 
-    if kind not in constraints.KINDS:
-        raise ValueError(f"unknown constraint kind {kind!r}")
-    curve_kind = kind in constraints.CURVE_KINDS
-    hint = CURVE_CONSTRAINT_HINT if curve_kind else CONSTRAINT_HINT
-    sheets, picked = [], {"Vertex": [], "Edge": [], "Face": []}
+    if kind in SELECTION_HINTS:
+        return SELECTION_HINTS[kind]
+    return SELECTION_HINTS["point" if kind in constraints.POINT_KINDS else "region"]
+
+
+def _split_selection(selection_ex, hint):
+    """(sheets, [(element type, (object, sub)), ...]) of a selection, in picking order."""
+    sheets, picks = [], []
     for sel in selection_ex or []:
         obj = sel.Object
         subs = [s.split(".")[-1] for s in (getattr(sel, "SubElementNames", None) or ()) if s]
@@ -403,45 +416,98 @@ def constraint_selection_to_args(kind: str, selection_ex: Sequence):
         if not subs:
             raise ValueError(f"{obj.Label} is not a Sheet: pick one of its elements instead. {hint}")
         for sub in subs:
-            element = next((e for e in picked if sub.startswith(e)), None)
-            allowed = ("Edge", "Face") if curve_kind else ("Vertex",)
-            if element not in allowed:
+            element = next((e for e in ("Vertex", "Edge", "Face") if sub.startswith(e)), None)
+            if element is None:
                 raise ValueError(f"{obj.Label}:{sub} cannot be used here. {hint}")
-            picked[element].append((obj, sub))
+            picks.append((element, (obj, sub)))
     if len(sheets) != 1:
         raise ValueError(f"{len(sheets)} Sheets selected: select exactly one. {hint}")
-    if curve_kind:
-        if len(picked["Edge"]) != 1 or len(picked["Face"]) != 1:
-            raise ValueError(f"a {kind} needs exactly one edge and one face. {hint}")
-        return sheets[0], None, picked["Edge"][0], picked["Face"][0]
-    vertices = picked["Vertex"]
-    if len(vertices) > 1:
-        raise ValueError(f"{len(vertices)} vertices selected: select at most one. {hint}")
-    if kind in VERTEX_KINDS and not vertices:
-        raise ValueError(f"a {kind} constraint needs a vertex. {hint}")
-    return sheets[0], (vertices[0] if vertices else None), None, None
+    return sheets[0], picks
 
 
-def constraint_command_lines(kind: str, sheet, location, curve=None, reference=None) -> List[str]:
+def constraint_selection_to_args(kind: str, selection_ex: Sequence):
+    """(sheet, keyword arguments for make_constraint) from a selection, or ValueError.
+
+    Exactly one Sheet (the whole object or any of its elements), plus per kind: a vertex (Point:
+    required; other point kinds: optional); an edge to follow and an optional face or second
+    edge (Ribbon), an edge and a face (G1); an edge (CurveAttractor); a face (SurfaceAttractor);
+    and for region kinds optionally closed edges of one object bounding the region.
+    """
+    from varsurf import constraints
+
+    if kind not in constraints.KINDS:
+        raise ValueError(f"unknown constraint kind {kind!r}")
+    hint = selection_hint(kind)
+    sheet, picks = _split_selection(selection_ex, hint)
+    of = {e: [ref for element, ref in picks if element == e] for e in ("Vertex", "Edge", "Face")}
+
+    def refuse(element, why=None):
+        if of[element]:
+            obj, sub = of[element][0]
+            raise ValueError(why or f"{obj.Label}:{sub} cannot be used here. {hint}")
+
+    args = {}
+    if kind in constraints.POINT_KINDS:
+        refuse("Edge")
+        refuse("Face")
+        if len(of["Vertex"]) > 1:
+            raise ValueError(f"{len(of['Vertex'])} vertices selected: select at most one. {hint}")
+        if kind in VERTEX_KINDS and not of["Vertex"]:
+            raise ValueError(f"a {kind} constraint needs a vertex. {hint}")
+        if of["Vertex"]:
+            args["location"] = of["Vertex"][0]
+        return sheet, args
+    refuse("Vertex")
+    if kind in constraints.CURVE_KINDS or kind == "CurveAttractor":
+        edges, faces = of["Edge"], of["Face"]
+        if kind == "G1" and (len(edges) != 1 or len(faces) != 1):
+            raise ValueError(f"a G1 needs exactly one edge and one face. {hint}")
+        if kind == "CurveAttractor" and (len(edges) != 1 or faces):
+            raise ValueError(f"a CurveAttractor needs exactly one edge. {hint}")
+        if kind == "Ribbon" and (not edges or len(edges) + len(faces) > 2 or len(faces) > 1):
+            raise ValueError(f"a Ribbon needs one edge and at most one face or second edge. {hint}")
+        args["curve"] = edges[0]
+        rest = faces + edges[1:]
+        if rest:
+            args["reference"] = rest[0]
+        return sheet, args
+    if kind == "SurfaceAttractor":
+        if len(of["Face"]) != 1:
+            raise ValueError(f"a SurfaceAttractor needs exactly one face. {hint}")
+        args["reference"] = of["Face"][0]
+    else:
+        refuse("Face")
+    if of["Edge"]:
+        owners = {obj.Name for obj, _sub in of["Edge"]}
+        if len(owners) != 1:
+            raise ValueError(f"the region's edges must all belong to one object. {hint}")
+        args["region_loop"] = (of["Edge"][0][0], [sub for _obj, sub in of["Edge"]])
+    return sheet, args
+
+
+def constraint_command_lines(kind: str, sheet, args) -> List[str]:
     """Macro lines that add a constraint with editable defaults and recompute."""
     from varsurf import constraints
 
-    args = [_ref(sheet), repr(kind)]
-    if kind in constraints.CURVE_KINDS:
-        args.append(f"curve=({_ref(curve[0])}, {curve[1]!r})")
-        args.append(f"reference=({_ref(reference[0])}, {reference[1]!r})")
-    elif location is not None:
-        args.append(f"location=({_ref(location[0])}, {location[1]!r})")
-    else:
-        args.append("uv=(0.5, 0.5)")
-    if kind not in VERTEX_KINDS and kind not in constraints.CURVE_KINDS:
-        # planes, lines and attractors start through the sheet's middle, operators on its middle half
+    parts = [_ref(sheet), repr(kind)]
+    for key in ("location", "curve", "reference"):
+        if key in args:
+            obj, sub = args[key]
+            parts.append(f"{key}=({_ref(obj)}, {sub!r})")
+    if "region_loop" in args:
+        obj, subs = args["region_loop"]
+        parts.append(f"region_loop=({_ref(obj)}, {list(subs)!r})")
+    if kind in constraints.POINT_KINDS and "location" not in args:
+        parts.append("uv=(0.5, 0.5)")
+    if kind in ("PointInPlane", "PointOnLine", "PointAttractor", "PlaneAttractor", "LineAttractor", "Repeller"):
+        # planes, lines and attracting points start through the sheet's middle
         centre = _sheet_centre(sheet)
-        args.append(f"origin=({centre[0]:.6g}, {centre[1]:.6g}, {centre[2]:.6g})")
-        args.append("region=(0.25, 0.75, 0.25, 0.75)")
+        parts.append(f"origin=({centre[0]:.6g}, {centre[1]:.6g}, {centre[2]:.6g})")
+    if kind in constraints.REGION_KINDS and "region_loop" not in args:
+        parts.append("region=(0.25, 0.75, 0.25, 0.75)")  # the sheet's middle
     return [
         "import varsurf",
-        f"_constraint = varsurf.make_constraint({', '.join(args)})",
+        f"_constraint = varsurf.make_constraint({', '.join(parts)})",
         f"App.getDocument({sheet.Document.Name!r}).recompute()",
     ]
 
@@ -460,7 +526,7 @@ def run_constraint_command(kind: str, selection_ex, do_command=None, on_error=No
     selection, then add the constraint through recorded macro lines in one transaction. An
     unusable selection is reported and creates nothing. Returns the new Constraint or None."""
     try:
-        sheet, location, curve, reference = constraint_selection_to_args(kind, selection_ex)
+        sheet, args = constraint_selection_to_args(kind, selection_ex)
     except ValueError as error:
         FreeCAD.Console.PrintError(f"VarSurf: {error}\n")
         if on_error is not None:
@@ -471,7 +537,7 @@ def run_constraint_command(kind: str, selection_ex, do_command=None, on_error=No
     before = set(o.Name for o in doc.Objects)
     doc.openTransaction(TRANSACTION_CONSTRAINT)
     try:
-        for line in constraint_command_lines(kind, sheet, location, curve, reference):
+        for line in constraint_command_lines(kind, sheet, args):
             run(line)
     except Exception:
         doc.abortTransaction()

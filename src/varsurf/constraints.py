@@ -6,7 +6,8 @@ surface how well each was met. No document and no GUI here.
 
 Positions on the sheet are given either by a 3D ``location`` (projected onto the base surface to
 find its (u, v)) or by normalized parameters ``uv`` in [0, 1]^2; regions are normalized
-rectangles (u0, u1, v0, v1).
+rectangles (u0, u1, v0, v1), or the area a closed loop of edges encloses (its projection onto the
+base).
 """
 
 from __future__ import annotations
@@ -29,15 +30,20 @@ KINDS: Dict[str, Tuple[str, str]] = {
     "Director": ("the region's normals are pushed toward Vector", "deg"),
     "Repeller": ("the region is pushed away from Origin with strength Weight (residual: closest distance)", "mm"),
     "FrozenRegion": ("the sheet over the region keeps the base shape", "mm"),
-    "Ribbon": ("along Curve, the sheet's normal follows Reference's normal turned by Angle", "deg"),
+    "SurfaceAttractor": ("the region is pulled onto Reference (a face) with strength Weight (residual: RMS distance)", "mm"),
+    "CurveAttractor": ("the region is pulled onto Curve (an edge) with strength Weight (residual: RMS distance)", "mm"),
+    "Ribbon": ("along Curve, the sheet's normal follows Reference (a face's normal, or the strip toward a second "
+               "edge; without Reference the base's own normal), turned by Angle", "deg"),
     "G1": ("the sheet contains Curve and joins Reference there tangent-continuously", "deg"),
 }
 POINT_KINDS = ("Point", "TangentU", "TangentV", "Normal", "PointInPlane", "PointOnLine")
 CURVE_KINDS = ("Ribbon", "G1")
 REGION_KINDS = ("PointAttractor", "PlaneAttractor", "LineAttractor", "Director", "Repeller",
-                "FrozenRegion")
-#: Grid (per direction) on which region residuals are sampled.
-REGION_SAMPLES = 7
+                "FrozenRegion", "SurfaceAttractor", "CurveAttractor")
+#: Region kinds pulled onto another shape (closest points, iterated).
+SHAPE_KINDS = ("SurfaceAttractor", "CurveAttractor")
+#: Most points a region's residual is measured on.
+REGION_SAMPLES = 400
 
 
 class ConstraintError(ValueError):
@@ -54,9 +60,10 @@ class ConstraintSpec:
     origin: Optional[Tuple[float, float, float]] = None
     region: Tuple[float, float, float, float] = (0.0, 1.0, 0.0, 1.0)
     weight: float = 1.0
-    edge: object = None  # Part.Edge of a curve kind
-    reference: object = None  # Part.Face of a curve kind
+    edge: object = None  # Part.Edge: Ribbon/G1 curve, CurveAttractor target
+    reference: object = None  # Part.Face (G1, Ribbon, SurfaceAttractor) or Part.Edge (Ribbon)
     angle: float = 0.0  # degrees, Ribbon
+    region_loop: object = None  # Part shape whose edges form one closed loop: the region
 
     def validate(self):
         fail = lambda why: ConstraintError(f"{self.name}: {why}")  # noqa: E731
@@ -71,13 +78,26 @@ class ConstraintSpec:
                 raise fail("needs a location (a vertex) or (u, v)")
             if self.uv is not None and not all(0.0 <= t <= 1.0 for t in self.uv):
                 raise fail(f"(u, v) must lie in [0, 1] x [0, 1] (got {self.uv})")
-        if self.kind in REGION_KINDS:
+        if self.kind in REGION_KINDS and self.region_loop is None:
             u0, u1, v0, v1 = self.region
             if not (0.0 <= u0 < u1 <= 1.0 and 0.0 <= v0 < v1 <= 1.0):
                 raise fail(f"the region must satisfy 0 <= u0 < u1 <= 1 and 0 <= v0 < v1 <= 1 (got {self.region})")
+        if self.kind == "SurfaceAttractor":
+            if not _is_shape(self.reference, "Face"):
+                raise fail("needs a Reference face to pull the region onto")
+            return
+        if self.kind == "CurveAttractor":
+            if not _is_shape(self.edge, "Edge"):
+                raise fail("needs a Curve (an edge) to pull the region onto")
+            return
         if self.kind in CURVE_KINDS:
-            if self.edge is None or self.reference is None:
-                raise fail("needs a Curve (an edge) and a Reference (the face to follow)")
+            if not _is_shape(self.edge, "Edge"):
+                raise fail("needs a Curve (an edge) along which to set the sheet's normal")
+            if self.kind == "G1" and not _is_shape(self.reference, "Face"):
+                raise fail("needs a Curve (an edge) and a Reference (the face to join)")
+            if self.reference is not None and not (_is_shape(self.reference, "Face")
+                                                   or _is_shape(self.reference, "Edge")):
+                raise fail("Reference must be a face or a second edge")
             if not math.isfinite(self.angle):
                 raise fail(f"Angle must be finite (got {self.angle})")
             if self.weight == 0.0:
@@ -95,6 +115,10 @@ class ConstraintSpec:
             raise fail("needs a Location vertex to pass through (was it deleted?), or UseOrigin with an Origin")
 
 
+def _is_shape(shape, kind: str) -> bool:
+    return shape is not None and not shape.isNull() and shape.ShapeType == kind
+
+
 @dataclass
 class PlacedSpec:
     """A spec with its (u, v) in the sheet's own parameters and its region in them."""
@@ -106,6 +130,8 @@ class PlacedSpec:
     start_distance: float = 0.0  # location to base surface, when a location was given
     ribbon: object = None  # native RibbonConstraint of a curve kind
     curve: object = None  # native CurveConstraint of a G1
+    loop: object = None  # the region's closed loop in the sheet's (u, v), or None
+    target: object = None  # native ClosestPointTarget of a shape attractor
 
     @property
     def origin(self):
@@ -130,6 +156,14 @@ def place(specs: Sequence[ConstraintSpec], base, nat) -> List[PlacedSpec]:
                 p.u, p.v = uf + spec.uv[0] * (ul - uf), vf + spec.uv[1] * (vl - vf)
         if spec.kind in CURVE_KINDS:
             _place_curve(p, base, nat)
+        if spec.kind in SHAPE_KINDS:
+            target = spec.reference if spec.kind == "SurfaceAttractor" else spec.edge
+            try:
+                p.target = nat.ClosestPointTarget(target.exportBrepToString())
+            except (nat.InvalidInput, nat.GeometryError) as error:
+                raise ConstraintError(f"{spec.name}: {error}") from error
+        if spec.region_loop is not None:
+            p.loop = _place_loop(spec, base, nat)
         u0, u1, v0, v1 = spec.region
         p.region = (uf + u0 * (ul - uf), uf + u1 * (ul - uf), vf + v0 * (vl - vf), vf + v1 * (vl - vf))
         placed.append(p)
@@ -140,14 +174,66 @@ def place(specs: Sequence[ConstraintSpec], base, nat) -> List[PlacedSpec]:
 RIBBON_DISTANCE = 1e-3
 
 
+#: Points per closed region loop (its pre-image is a polygon through their projections).
+LOOP_POINTS = 240
+
+
+def _place_loop(spec: ConstraintSpec, base, nat):
+    """The pre-image on the base of a region's closed loop of edges, as (u, v) points."""
+    import Part
+
+    fail = lambda why: ConstraintError(f"{spec.name}: {why}")  # noqa: E731
+    edges = list(spec.region_loop.Edges)
+    if not edges:
+        raise fail("the region loop has no edges")
+    try:
+        wires = [Part.Wire(group) for group in Part.sortEdges(edges)]
+    except Exception as error:  # OCC refuses edges that do not chain
+        raise fail(f"the region loop's edges do not form a wire ({error})") from error
+    if len(wires) != 1 or not wires[0].isClosed():
+        raise fail("the region loop must be one closed chain of edges")
+    # Per edge, so that corners are kept; each edge is walked in the loop's direction.
+    wire = wires[0]
+    total = max(wire.Length, 1e-300)
+    pieces = [e.discretize(Number=max(2, int(round(LOOP_POINTS * e.Length / total)) + 1))
+              for e in wire.OrderedEdges]
+    if len(pieces) > 1:
+        ends = (pieces[1][0], pieces[1][-1])
+        if min(pieces[0][0].distanceToPoint(q) for q in ends) < min(pieces[0][-1].distanceToPoint(q) for q in ends):
+            pieces[0].reverse()
+    points = list(pieces[0])
+    for along in pieces[1:]:
+        if along[0].distanceToPoint(points[-1]) > along[-1].distanceToPoint(points[-1]):
+            along.reverse()
+        points.extend(along[1:])
+    points = points[:-1]  # the loop's end is its start
+    loop = []
+    for q in points:
+        hit = nat.project_point(base, [q.x, q.y, q.z])
+        loop.append((hit.u, hit.v))
+    try:  # a loop that crosses itself once projected, or encloses nothing, is refused here
+        nat.region_quadrature(base.space, nat.Region(loop=[list(q) for q in loop]))
+    except nat.InvalidInput as error:
+        raise fail(f"{error} (projected onto the base)") from error
+    return loop
+
+
 def _place_curve(p: PlacedSpec, base, nat):
-    """The ribbon of a curve kind: the curve's pre-image on the base and the reference's normals."""
+    """The ribbon of a curve kind: the curve's pre-image on the base and the normals it follows:
+    a reference face's, the strip toward a second edge, or (no reference) the base's own."""
     s = p.spec
     try:
         curve = nat.curve_from_edge_brep(s.edge.exportBrepToString())
         pre = nat.project_curve(base, curve)
-        normals = nat.normal_field_brep(s.reference.exportBrepToString(), curve,
-                                        angle_deg=float(s.angle), max_distance=RIBBON_DISTANCE)
+        if s.reference is None:
+            normals = nat.normal_field_brep(nat.face_brep(base), curve, angle_deg=float(s.angle),
+                                            max_distance=math.inf)
+        elif s.reference.ShapeType == "Edge":
+            second = nat.curve_from_edge_brep(s.reference.exportBrepToString())
+            normals = nat.normal_field_between(curve, second, angle_deg=float(s.angle))
+        else:
+            normals = nat.normal_field_brep(s.reference.exportBrepToString(), curve,
+                                            angle_deg=float(s.angle), max_distance=RIBBON_DISTANCE)
     except (nat.InvalidInput, nat.GeometryError) as error:
         raise ConstraintError(f"{s.name}: {error}") from error
     p.ribbon = nat.RibbonConstraint(preimage=pre.curve, normals=normals, weight=s.weight)
@@ -166,12 +252,13 @@ class NativeTerms:
     directors: list = field(default_factory=list)
     repellers: list = field(default_factory=list)
     ribbons: list = field(default_factory=list)
+    shape_attractors: list = field(default_factory=list)
     curves: list = field(default_factory=list)
     frozen_poles: list = field(default_factory=list)
 
     def apply(self, problem):
         for name in ("points", "tangents", "normals", "plane_points", "line_points", "attractors", "directors",
-                     "repellers", "ribbons", "curves"):
+                     "repellers", "ribbons", "curves", "shape_attractors"):
             setattr(problem, name, list(getattr(problem, name)) + getattr(self, name))
 
 
@@ -181,7 +268,7 @@ def native_terms(placed: Sequence[PlacedSpec], space, nat) -> NativeTerms:
     for p in placed:
         s, kind = p.spec, p.spec.kind
         vec = list(s.vector)
-        region = nat.Region(u0=p.region[0], u1=p.region[1], v0=p.region[2], v1=p.region[3])
+        region = _native_region(p, nat)
         if kind == "Point":
             out.points.append(nat.PointConstraint(u=p.u, v=p.v, target=list(p.origin), weight=s.weight))
         elif kind in ("TangentU", "TangentV"):
@@ -206,11 +293,30 @@ def native_terms(placed: Sequence[PlacedSpec], space, nat) -> NativeTerms:
             out.ribbons.append(p.ribbon)
             if p.curve is not None:
                 out.curves.append(p.curve)
+        elif kind in SHAPE_KINDS:
+            out.shape_attractors.append(nat.ShapeAttractor(region=region, target=p.target, strength=s.weight))
         elif kind == "Repeller":
             out.repellers.append(nat.Repeller(region=region, origin=list(p.origin), strength=s.weight))
         elif kind == "FrozenRegion":
             out.frozen_poles.extend(int(k) for k in nat.poles_in_region(space, region))
     return out
+
+
+def _native_region(p: PlacedSpec, nat):
+    if p.loop is not None:
+        return nat.Region(loop=[list(q) for q in p.loop])
+    return nat.Region(u0=p.region[0], u1=p.region[1], v0=p.region[2], v1=p.region[3])
+
+
+def _region_samples(p: PlacedSpec, surface):
+    """(u, v, weight) on which a region kind's residual is measured: the region's quadrature
+    points (at most REGION_SAMPLES of them, evenly picked) with their weights normalized."""
+    from varsurf import _native
+
+    points = _native.region_quadrature(surface.space, _native_region(p, _native))
+    points = points[:: max(1, len(points) // REGION_SAMPLES)]
+    total = sum(q.weight for q in points)
+    return [(q.u, q.v, q.weight / total) for q in points]
 
 
 def _unit(v):
@@ -262,27 +368,26 @@ def residual(p: PlacedSpec, surface, base) -> float:
             return abs(_dot(_unit(s.vector), _sub(w, p.origin)))
         if kind == "PointOnLine":
             return _norm(_cross(_sub(w, p.origin), _unit(s.vector)))
-    # Region kinds: RMS over a grid of the region (max for a frozen region).
-    u0, u1, v0, v1 = p.region
-    values = []
-    for i in range(REGION_SAMPLES):
-        for j in range(REGION_SAMPLES):
-            u = u0 + (u1 - u0) * i / (REGION_SAMPLES - 1)
-            v = v0 + (v1 - v0) * j / (REGION_SAMPLES - 1)
-            d = surface.derivatives(u, v, 1)
-            w = list(d[0])
-            if kind in ("PointAttractor", "Repeller"):
-                values.append(_norm(_sub(w, p.origin)))
-            elif kind == "PlaneAttractor":
-                values.append(abs(_dot(_unit(s.vector), _sub(w, p.origin))))
-            elif kind == "LineAttractor":
-                values.append(_norm(_cross(_sub(w, p.origin), _unit(s.vector))))
-            elif kind == "Director":
-                values.append(_angle_deg(_cross(list(d[1]), list(d[2])), s.vector))
-            elif kind == "FrozenRegion":
-                values.append(_norm(_sub(w, list(base.evaluate(u, v)))))
+    # Region kinds: RMS over the region (max for a frozen region, min for a repeller).
+    values, weights = [], []
+    for u, v, weight in _region_samples(p, surface):
+        weights.append(weight)
+        d = surface.derivatives(u, v, 1)
+        w = list(d[0])
+        if kind in ("PointAttractor", "Repeller"):
+            values.append(_norm(_sub(w, p.origin)))
+        elif kind == "PlaneAttractor":
+            values.append(abs(_dot(_unit(s.vector), _sub(w, p.origin))))
+        elif kind == "LineAttractor":
+            values.append(_norm(_cross(_sub(w, p.origin), _unit(s.vector))))
+        elif kind == "Director":
+            values.append(_angle_deg(_cross(list(d[1]), list(d[2])), s.vector))
+        elif kind == "FrozenRegion":
+            values.append(_norm(_sub(w, list(base.evaluate(u, v)))))
+        elif kind in SHAPE_KINDS:
+            values.append(_norm(_sub(w, list(p.target.closest(w)))))
     if kind == "FrozenRegion":
         return max(values)
     if kind == "Repeller":  # how close the region comes: the smallest distance
         return min(values)
-    return math.sqrt(sum(x * x for x in values) / len(values))
+    return math.sqrt(sum(w * x * x for w, x in zip(weights, values)))

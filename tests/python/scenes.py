@@ -107,3 +107,36 @@ class Sel:
         self.Object = obj
         self.SubElementNames = tuple(subs)
         self.HasSubObjects = bool(subs)
+
+
+def railed_sheet(doc):
+    """A Sheet over a flat 100 x 80 mm base at z = 0 (x = 100 u, y = 80 v) with its boundary
+    kept, through a low rail 5 mm up."""
+    import varsurf
+
+    surface = add_face(doc, flat_face())
+    rail = add_line_sketch(doc, "Rail", 5.0, (20.0, 15.0), (40.0, 20.0))
+    doc.recompute()
+    s = varsurf.make_sheet((surface, "Face1"), [(rail, "Edge1")])
+    doc.recompute()
+    assert s.isValid(), s.getStatusString()
+    return s
+
+
+def residual_of(sheet, constraint):
+    """The residual the Sheet reports for one of its constraints."""
+    names = list(sheet.ConstraintNames)
+    assert constraint.Label in names, names
+    return sheet.ConstraintResiduals[names.index(constraint.Label)]
+
+
+def add_vertex(doc, name, point):
+    obj = doc.addObject("Part::Vertex", name)
+    obj.X, obj.Y, obj.Z = point
+    return obj
+
+
+def add_shape(doc, name, shape):
+    obj = doc.addObject("Part::Feature", name)
+    obj.Shape = shape
+    return obj

@@ -19,8 +19,8 @@ def sheet(doc, native):
     return s
 
 
-@pytest.mark.parametrize("kind", [k for k in constraints.KINDS
-                                  if k not in api.VERTEX_KINDS and k not in constraints.CURVE_KINDS])
+@pytest.mark.parametrize("kind", [k for k in constraints.KINDS if k not in api.VERTEX_KINDS
+                                  and k not in constraints.CURVE_KINDS and k not in constraints.SHAPE_KINDS])
 def test_every_kind_from_a_selected_sheet(sheet, kind):
     doc = sheet.Document
     lines = []
@@ -87,5 +87,78 @@ def test_g1_from_a_sheet_an_edge_and_a_face(sheet):
     assert sheet.isValid(), sheet.getStatusString()
     assert sheet.ConstraintResiduals[0] < 1.0
     messages = []
-    assert api.run_constraint_command("Ribbon", [Sel(sheet), Sel(seam, "Edge1")], on_error=messages.append) is None
-    assert "one edge and one face" in messages[0]
+    assert api.run_constraint_command("G1", [Sel(sheet), Sel(seam, "Edge1")], on_error=messages.append) is None
+    assert "exactly one edge and one face" in messages[0]
+
+
+def _scene(doc):
+    """A seam on the base, a second edge 20 mm over and 7 up, a roof face 9 mm up, a flat face
+    containing the seam, and a closed triangle of edges over the base."""
+    import types
+
+    import Part
+
+    o = types.SimpleNamespace()
+    o.seam = doc.addObject("Part::Feature", "Seam")
+    o.seam.Shape = Part.LineSegment(FreeCAD.Vector(60, 25, 0), FreeCAD.Vector(60, 55, 0)).toShape()
+    o.second = doc.addObject("Part::Feature", "Second")
+    o.second.Shape = Part.LineSegment(FreeCAD.Vector(80, 25, 7), FreeCAD.Vector(80, 55, 7)).toShape()
+    o.roof = doc.addObject("Part::Feature", "Roof")
+    o.roof.Shape = Part.makePlane(60, 40, FreeCAD.Vector(20, 20, 9))
+    o.flat = doc.addObject("Part::Feature", "Flat")
+    o.flat.Shape = Part.makePlane(30, 40, FreeCAD.Vector(60, 20, 0))
+    o.loop = doc.addObject("Part::Feature", "Loop")
+    o.loop.Shape = Part.makePolygon([FreeCAD.Vector(*p) for p in
+                                     [(55, 30, 0), (85, 30, 0), (70, 60, 0), (55, 30, 0)]])
+    doc.recompute()
+    return o
+
+
+LOOP_EDGES = lambda o: [Sel(o.loop, "Edge1"), Sel(o.loop, "Edge2"), Sel(o.loop, "Edge3")]  # noqa: E731
+
+
+@pytest.mark.parametrize("kind, picks, expect", [
+    ("Ribbon", lambda o: [Sel(o.seam, "Edge1")], dict(curve="Seam")),
+    ("Ribbon", lambda o: [Sel(o.seam, "Edge1"), Sel(o.second, "Edge1")], dict(curve="Seam", reference="Second")),
+    ("Ribbon", lambda o: [Sel(o.seam, "Edge1"), Sel(o.flat, "Face1")], dict(curve="Seam", reference="Flat")),
+    ("CurveAttractor", lambda o: [Sel(o.second, "Edge1")], dict(curve="Second")),
+    ("SurfaceAttractor", lambda o: [Sel(o.roof, "Face1")], dict(reference="Roof")),
+    ("SurfaceAttractor", lambda o: [Sel(o.roof, "Face1")] + LOOP_EDGES(o), dict(reference="Roof", region_loop="Loop")),
+    ("PointAttractor", LOOP_EDGES, dict(region_loop="Loop")),
+    ("FrozenRegion", LOOP_EDGES, dict(region_loop="Loop")),
+])
+def test_kinds_that_take_edges_and_faces(sheet, kind, picks, expect):
+    doc = sheet.Document
+    o = _scene(doc)
+    lines = []
+    c = api.run_constraint_command(kind, [Sel(sheet)] + picks(o),
+                                   do_command=lambda l: (lines.append(l), api._exec_line(l)))
+    assert c is not None and c.Kind == kind
+    for prop, label in dict(curve="Curve", reference="Reference", region_loop="RegionLoop").items():
+        link = getattr(c, label)
+        assert (link[0].Name if link else None) == expect.get(prop), (prop, link)
+        assert (prop + "=" in lines[1]) == (prop in expect), lines[1]
+    assert sheet.isValid(), sheet.getStatusString()
+    assert list(sheet.ConstraintNames) == [c.Label]
+    if "region_loop" in expect:
+        assert "region=" not in lines[1]
+
+
+@pytest.mark.parametrize("kind, picks, text", [
+    ("CurveAttractor", lambda o: [], "exactly one edge"),
+    ("CurveAttractor", lambda o: [Sel(o.roof, "Face1")], "exactly one edge"),
+    ("SurfaceAttractor", lambda o: [Sel(o.seam, "Edge1")], "exactly one face"),
+    ("Ribbon", lambda o: [], "one edge and at most"),
+    ("Ribbon", lambda o: [Sel(o.seam, "Edge1"), Sel(o.second, "Edge1"), Sel(o.flat, "Face1")], "one edge and at most"),
+    ("Director", lambda o: [Sel(o.roof, "Face1")], "cannot be used here"),
+    ("Director", lambda o: [Sel(o.loop, "Edge1"), Sel(o.seam, "Edge1")], "one object"),
+    ("Normal", lambda o: [Sel(o.seam, "Edge1")], "cannot be used here"),
+])
+def test_bad_selections_of_edge_and_face_kinds(sheet, kind, picks, text):
+    doc = sheet.Document
+    o = _scene(doc)
+    before = len(doc.Objects)
+    messages = []
+    assert api.run_constraint_command(kind, [Sel(sheet)] + picks(o), on_error=messages.append) is None
+    assert len(doc.Objects) == before
+    assert text in messages[0], messages

@@ -9,33 +9,17 @@ import pytest
 
 import varsurf
 from varsurf import constraints
-from scenes import add_face, add_line_sketch, flat_face, poles_of
+from scenes import add_vertex, poles_of, railed_sheet, residual_of
 
 V = FreeCAD.Vector
 
 
 @pytest.fixture
 def sheet(doc, native):
-    """A flat 100 x 80 mm base at z = 0 with its boundary kept, and a low rail 5 mm up."""
-    surface = add_face(doc, flat_face())
-    rail = add_line_sketch(doc, "Rail", 5.0, (20.0, 15.0), (40.0, 20.0))
-    doc.recompute()
-    s = varsurf.make_sheet((surface, "Face1"), [(rail, "Edge1")])
-    doc.recompute()
-    assert s.isValid(), s.getStatusString()
-    return s
+    return railed_sheet(doc)
 
 
-def residual_of(sheet, constraint):
-    names = list(sheet.ConstraintNames)
-    assert constraint.Label in names, names
-    return sheet.ConstraintResiduals[names.index(constraint.Label)]
-
-
-def vertex(doc, name, point):
-    obj = doc.addObject("Part::Vertex", name)
-    obj.X, obj.Y, obj.Z = point
-    return obj
+vertex = add_vertex
 
 
 def test_point_at_a_vertex_is_met_and_the_sheet_passes_through_it(sheet):
@@ -208,8 +192,6 @@ def test_pressure_inflates_the_sheet(sheet):
 def tilted_face(doc, degrees):
     """A face containing the line x = 60 (z = 0), tilted `degrees` about it."""
     rot = FreeCAD.Rotation(V(0, 1, 0), degrees)
-    plane = Part.makePlane(80.0, 40.0, V(60.0, 20.0, 0.0), rot.multVec(V(0, 0, 1)))
-    # makePlane's length runs along the local x: rebuild it from corners for a clear placement.
     corners = [V(60, 20, 0), V(60, 60, 0), rot.multVec(V(20, 0, 0)) + V(60, 60, 0), rot.multVec(V(20, 0, 0)) + V(60, 20, 0)]
     face = Part.Face(Part.makePolygon(corners + [corners[0]]))
     obj = doc.addObject("Part::Feature", "Neighbour")
@@ -233,16 +215,6 @@ def test_join_to_a_tilted_neighbour_along_a_line(sheet, kind):
     if kind == "G1":
         # the sheet contains the seam
         assert sheet.Shape.distToShape(line.Shape)[0] < varsurf.DEFAULT_TOLERANCE
-
-
-def test_ribbon_without_reference_is_an_error(sheet):
-    doc = sheet.Document
-    line = doc.addObject("Part::Feature", "Seam")
-    line.Shape = Part.LineSegment(V(60, 25, 0), V(60, 55, 0)).toShape()
-    doc.recompute()
-    c = varsurf.make_constraint(sheet, "Ribbon", curve=(line, "Edge1"))
-    doc.recompute()
-    assert not c.isValid() and "needs a Curve" in c.getStatusString()
 
 
 def test_deleting_the_vertex_of_a_point_is_an_error_not_a_pull_to_the_origin(sheet, console_errors):

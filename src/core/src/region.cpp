@@ -138,9 +138,10 @@ void check_region(const SplineSpace& space, const Region& r, const char* what) {
         throw InvalidInput(w + ": the region's loop leaves the sheet's parameter domain");
     }
     const Polygon p = cleaned(r.loop);
-    if (p.size() < 3 || !(std::abs(signed_area(p)) > 1e-14 * du * dv))
-      throw InvalidInput(w + ": the region's loop encloses no area");
+    if (p.size() < 3) throw InvalidInput(w + ": the region's loop encloses no area");
     if (!is_simple(p)) throw InvalidInput(w + ": the region's loop crosses itself");
+    if (!(std::abs(signed_area(p)) > 1e-14 * du * dv))
+      throw InvalidInput(w + ": the region's loop encloses no area");
     return;
   }
   if (!std::isfinite(r.u0) || !std::isfinite(r.u1) || !std::isfinite(r.v0) || !std::isfinite(r.v1))

@@ -30,8 +30,9 @@ _PROPERTIES = [
     ("RegionV0", "App::PropertyFloat", "Region", "Normalized region start along v"),
     ("RegionV1", "App::PropertyFloat", "Region", "Normalized region end along v"),
     ("Weight", "App::PropertyFloat", "Constraint", "Weight of a constraint, or strength of an operator (>= 0)"),
-    ("Curve", "App::PropertyLinkSub", "Ribbon", "Ribbon and G1: the edge along which the sheet's orientation is set"),
-    ("Reference", "App::PropertyLinkSub", "Ribbon", "Ribbon and G1: the face whose normal the sheet follows along Curve"),
+    ("RegionLoop", "App::PropertyLinkSub", "Region", "Closed edges (e.g. a sketch): the region is the part of the sheet they enclose, projected onto the base; overrides RegionU0..V1"),
+    ("Curve", "App::PropertyLinkSub", "Ribbon", "Ribbon and G1: the edge along which the sheet's orientation is set; CurveAttractor: the edge pulled onto"),
+    ("Reference", "App::PropertyLinkSub", "Ribbon", "G1, Ribbon: the face whose normal the sheet follows along Curve (Ribbon: or a second edge; empty: the base's normal); SurfaceAttractor: the face pulled onto"),
     ("Angle", "App::PropertyAngle", "Ribbon", "Ribbon: the sheet's normal is the Reference's turned by this angle about Curve"),
 ]
 
@@ -69,7 +70,8 @@ def _location_point(obj):
     return (p.x, p.y, p.z)
 
 
-def _sub_shape(obj, prop, kind):
+def _sub_shape(obj, prop, kinds):
+    """The one element `prop` links to, of one of the shape types `kinds` (e.g. ("Face",))."""
     link = getattr(obj, prop, None)
     if link is None:
         return None
@@ -77,11 +79,30 @@ def _sub_shape(obj, prop, kind):
     subs = [s for s in subs if s]
     import Part
 
+    what = " or ".join(k.lower() for k in kinds)
     if not subs:
-        raise constraints.ConstraintError(f"{obj.Label}: {prop} must name one {kind.lower()} of {target.Label}")
+        raise constraints.ConstraintError(f"{obj.Label}: {prop} must name one {what} of {target.Label}")
     shape = Part.getShape(target, subs[0], needSubElement=True)
-    if shape.isNull() or shape.ShapeType != kind:
-        raise constraints.ConstraintError(f"{obj.Label}: {prop} must be a {kind.lower()} (got {subs[0]})")
+    if shape.isNull() or shape.ShapeType not in kinds:
+        raise constraints.ConstraintError(f"{obj.Label}: {prop} must be a {what} (got {subs[0]})")
+    return shape
+
+
+def _loop_shape(obj):
+    """The edges RegionLoop links to (all of the object's edges when no element is named)."""
+    link = getattr(obj, "RegionLoop", None)
+    if link is None:
+        return None
+    target, subs = link
+    subs = [s for s in subs if s]
+    import Part
+
+    if not subs:
+        shape = target.Shape
+    else:
+        shape = Part.Compound([Part.getShape(target, sub, needSubElement=True) for sub in subs])
+    if shape.isNull() or not shape.Edges:
+        raise constraints.ConstraintError(f"{obj.Label}: RegionLoop must be closed edges (got {target.Label})")
     return shape
 
 
@@ -102,9 +123,10 @@ def spec_of(obj) -> constraints.ConstraintSpec:
         origin=origin,
         region=(float(obj.RegionU0), float(obj.RegionU1), float(obj.RegionV0), float(obj.RegionV1)),
         weight=float(obj.Weight),
-        edge=_sub_shape(obj, "Curve", "Edge") if "Curve" in obj.PropertiesList else None,
-        reference=_sub_shape(obj, "Reference", "Face") if "Reference" in obj.PropertiesList else None,
-        angle=float(obj.Angle) if "Angle" in obj.PropertiesList else 0.0,
+        edge=_sub_shape(obj, "Curve", ("Edge",)),
+        reference=_sub_shape(obj, "Reference", ("Face", "Edge")),
+        angle=float(obj.Angle),
+        region_loop=_loop_shape(obj),
     )
     spec.validate()
     return spec
@@ -124,6 +146,11 @@ class ConstraintFeature(VersionedState):
     def onDocumentRestored(self, obj):
         self.Type = TYPE
         _add_missing_properties(obj)
+        # Files from before a kind was added list fewer kinds: offer them all, keep the choice.
+        if list(obj.getEnumerationsOfProperty("Kind")) != list(constraints.KINDS):
+            kind = str(obj.Kind)
+            obj.Kind = list(constraints.KINDS)
+            obj.Kind = kind
 
     def execute(self, obj):
         # Check the constraint's own data now, so a bad one is marked itself, not only its Sheet.
