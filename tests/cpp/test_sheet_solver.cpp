@@ -109,6 +109,23 @@ TEST(SheetSolver, MembraneBetweenTwoFixedEdgesIsLinear) {
   EXPECT_GT((r.poles.col(1) - exact.col(1)).cwiseAbs().maxCoeff(), 1e-3);
 }
 
+TEST(SheetSolver, MembraneWithABilinearBoundaryIsTheBilinearInterpolant) {
+  // Stretch only (Laplace's equation) with every boundary pole on a twisted bilinear patch
+  // w = a + b u + c v + d u v: that patch is harmonic and lies in the space, so the Galerkin
+  // solution is the patch itself, on a non-uniform space too.
+  SplineSpace sp = SplineSpace::uniform(3, 3, 6, 5);
+  sp.knots_u[5] = 0.21;
+  sp.knots_v[6] = 0.47;
+  const Eigen::MatrixX3d exact = test::fit_poles(sp, [](double u, double v) {
+    return Eigen::Vector3d(10 * u + 2 * v, 8 * v - u, 3 + 2 * u - v + 7 * u * v);
+  });
+  SheetProblem pb = problem_with_fixed_boundary(sp, exact, flat_poles(sp));
+  pb.energy = ThinPlateWeights::isotropic(1.0, 0.0);
+  const SolveResult r = solve_sheet(pb);
+  EXPECT_LT((r.poles - exact).cwiseAbs().maxCoeff(), 1e-10);
+  EXPECT_GT((flat_poles(sp) - exact).cwiseAbs().maxCoeff(), 1.0);  // it started elsewhere
+}
+
 class RepresentableCurve : public ::testing::TestWithParam<int> {};
 
 TEST_P(RepresentableCurve, IsMetToTenDigits) {
