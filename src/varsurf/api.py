@@ -413,6 +413,8 @@ def _split_selection(selection_ex, hint):
             if obj not in sheets:
                 sheets.append(obj)
             continue
+        if not subs and _is_point_object(obj):
+            subs = ["Vertex1"]  # a Draft point or Part vertex picked as a whole
         if not subs:
             raise ValueError(f"{obj.Label} is not a Sheet: pick one of its elements instead. {hint}")
         for sub in subs:
@@ -423,6 +425,11 @@ def _split_selection(selection_ex, hint):
     if len(sheets) != 1:
         raise ValueError(f"{len(sheets)} Sheets selected: select exactly one. {hint}")
     return sheets[0], picks
+
+
+def _is_point_object(obj) -> bool:
+    shape = getattr(obj, "Shape", None)
+    return shape is not None and not shape.isNull() and len(shape.Vertexes) == 1 and not shape.Edges
 
 
 def constraint_selection_to_args(kind: str, selection_ex: Sequence):

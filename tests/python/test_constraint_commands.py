@@ -52,11 +52,27 @@ def test_point_from_a_sheet_and_a_vertex(sheet):
     assert sheet.ConstraintResiduals[0] < 1e-6
 
 
+def test_point_from_a_whole_point_object(sheet):
+    # A point object picked as a whole, without naming its vertex (as a Draft point usually is:
+    # a feature whose shape is one vertex; Draft itself needs the GUI's PySide to import).
+    import Part
+
+    doc = sheet.Document
+    point = doc.addObject("Part::Feature", "Point")
+    point.Shape = Part.Vertex(FreeCAD.Vector(60.0, 50.0, 9.0))
+    doc.recompute()
+    c = api.run_constraint_command("Point", [Sel(sheet), Sel(point)])
+    assert c is not None and c.Location[0] == point
+    assert sheet.isValid(), sheet.getStatusString()
+    assert sheet.ConstraintResiduals[0] < 1e-6
+    assert sheet.Shape.distToShape(point.Shape)[0] < 1e-6
+
+
 @pytest.mark.parametrize("selection, text", [
     (lambda s, p: [], "0 Sheets"),
     (lambda s, p: [Sel(p, "Vertex1")], "0 Sheets"),
     (lambda s, p: [Sel(s)], "needs a vertex"),
-    (lambda s, p: [Sel(s), Sel(p)], "not a Sheet"),
+    (lambda s, p: [Sel(s), Sel(s.Base[0])], "not a Sheet"),
 ])
 def test_bad_selections_create_nothing(sheet, selection, text, console_errors):
     doc = sheet.Document
