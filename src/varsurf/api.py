@@ -89,6 +89,7 @@ def make_sheet(
     max_spans: int = model.DEFAULT_MAX_SPANS,
     doc=None,
     name: str = "Sheet",
+    degree: int = model.SHEET_MIN_DEGREE,
 ):
     """Add a VarSurf Sheet to the document (it is computed at the next recompute).
 
@@ -100,6 +101,7 @@ def make_sheet(
     tolerance: distance (mm) at which a curve counts as met.
     min_spans, max_spans: spans per direction the base face is refined to, and the limit of the
         automatic refinement used when the curves cannot be met within the tolerance.
+    degree: the sheet's smallest degree in u and v (the base is elevated to it).
     """
     from varsurf.app.sheet import SheetFeature
 
@@ -121,6 +123,7 @@ def make_sheet(
     obj.Tolerance = float(tolerance)
     obj.MinSpans = int(min_spans)
     obj.MaxSpans = int(max_spans)
+    obj.Degree = int(degree)
     if FreeCAD.GuiUp:
         from varsurf.gui.view_providers import ViewProviderSheet
 

@@ -31,9 +31,11 @@ FIT_TO_TOLERANCE = 0.25
 #: The base face's knot vectors are refined (knot insertion: the base shape is unchanged) to at
 #: least this many spans per direction; curves off the iso lines need that freedom.
 DEFAULT_MIN_SPANS = 16
-#: Bases of lower degree (planes and ruled faces convert to degree 1) are elevated to cubic so
-#: the sheet can bend smoothly.
+#: Bases of lower degree (planes and ruled faces convert to degree 1) are elevated to at least
+#: cubic by default so the sheet can bend smoothly; a Sheet may ask for a higher degree.
 SHEET_MIN_DEGREE = 3
+#: Highest degree a Sheet may ask for (OCCT allows 25; beyond 9 the basis is ill-conditioned).
+MAX_DEGREE = 9
 #: When the curves cannot be held within the tolerance even with wild poles (the solver's
 #: "conflict"), the spans are doubled up to this count before giving up.
 DEFAULT_MAX_SPANS = 64
@@ -156,9 +158,9 @@ def _energy(nat, stretch, bend, stretch_tensor, bend_tensor):
         raise SheetError(f"energy weights: {error}") from error
 
 
-def _rest_poles_in(rest_surface, space, nat, spans):
+def _rest_poles_in(rest_surface, space, nat, spans, degree):
     """Poles of an installed rest shape in the sheet's space (refined alike), or SheetError."""
-    refined = nat.refine_surface(rest_surface, spans, spans, SHEET_MIN_DEGREE)
+    refined = nat.refine_surface(rest_surface, spans, spans, degree)
     same = (
         refined.space.degree_u == space.degree_u
         and refined.space.degree_v == space.degree_v
@@ -167,8 +169,8 @@ def _rest_poles_in(rest_surface, space, nat, spans):
     )
     if not same:
         raise SheetError(
-            "the installed rest shape does not match the sheet's spline space any more (spans or "
-            "base changed): install the rest shape again, or melt it"
+            "the installed rest shape does not match the sheet's spline space any more (spans, "
+            "degree or base changed): install the rest shape again, or melt it"
         )
     return refined.poles
 
@@ -195,10 +197,12 @@ PLANE_FIT_SAMPLES = 64
 PLANE_MARGIN = 0.1
 
 
-def plane_face_for_curves(edges: Sequence, spans: int = DEFAULT_MIN_SPANS, margin: float = PLANE_MARGIN):
-    """A planar bicubic B-spline face for a sheet made from curves alone (Michalik & Bruderlin's
+def plane_face_for_curves(edges: Sequence, spans: int = DEFAULT_MIN_SPANS, margin: float = PLANE_MARGIN,
+                          degree: int = SHEET_MIN_DEGREE):
+    """A planar B-spline face for a sheet made from curves alone (Michalik & Bruderlin's
     interpolation mode): the least-squares plane of points sampled on the curves, as a rectangle
-    covering their projection with ``margin`` overhang, with ``spans`` spans per direction.
+    covering their projection with ``margin`` overhang, of ``degree`` with ``spans`` uniform
+    spans per direction (simple interior knots: the sheet is C^(degree - 1)).
 
     Raises SheetError without curves, or when the curves do not span a plane (all on one line).
     """
@@ -226,17 +230,19 @@ def plane_face_for_curves(edges: Sequence, spans: int = DEFAULT_MIN_SPANS, margi
     grow = margin * max(np.ptp(s), np.ptp(t))
     s0, s1 = s.min() - grow, s.max() + grow
     t0, t1 = t.min() - grow, t.max() + grow
+    p = int(degree)
     knots = [k / spans for k in range(spans + 1)]
-    mults = [4] + [1] * (spans - 1) + [4]
-    flat = [0.0] * 4 + knots[1:-1] + [1.0] * 4
-    greville = [sum(flat[i + 1:i + 4]) / 3.0 for i in range(len(flat) - 4)]
+    mults = [p + 1] + [1] * (spans - 1) + [p + 1]
+    flat = [0.0] * (p + 1) + knots[1:-1] + [1.0] * (p + 1)
+    # Poles at the Greville abscissae make the parametrization linear: the face is the plane.
+    greville = [sum(flat[i + 1:i + p + 1]) / p for i in range(len(flat) - p - 1)]
     V = _freecad_vector()
     poles = [
         [V(*(center + (s0 + a * (s1 - s0)) * e1 + (t0 + b * (t1 - t0)) * e2)) for b in greville]
         for a in greville
     ]
     surface = Part.BSplineSurface()
-    surface.buildFromPolesMultsKnots(poles, mults, mults, knots, knots, False, False, 3, 3)
+    surface.buildFromPolesMultsKnots(poles, mults, mults, knots, knots, False, False, p, p)
     return surface.toShape()
 
 
@@ -251,7 +257,11 @@ def solve_sheet_from_curves(edges: Sequence, **options) -> SheetOutcome:
     with a free boundary: the sheet is shaped by the curves and its energy alone."""
     options["fix_boundary"] = False
     spans = int(options.get("min_spans", DEFAULT_MIN_SPANS))
-    return solve_sheet_on_face(plane_face_for_curves(list(edges), spans=spans), edges, **options)
+    degree = options.get("degree", SHEET_MIN_DEGREE)
+    if not (isinstance(degree, int) and 2 <= degree <= MAX_DEGREE):
+        raise SheetError(f"Degree must be an integer in 2..{MAX_DEGREE} (got {degree})")
+    face = plane_face_for_curves(list(edges), spans=spans, degree=degree)
+    return solve_sheet_on_face(face, edges, **options)
 
 
 def solve_sheet_on_face(
@@ -271,6 +281,7 @@ def solve_sheet_on_face(
     exact_curves: Sequence[str] = (),
     stretch_tensor: Optional[Sequence[float]] = None,
     bend_tensor: Optional[Sequence[float]] = None,
+    degree: int = SHEET_MIN_DEGREE,
 ) -> SheetOutcome:
     """Solve the variational sheet over ``face`` that passes through ``edges``.
 
@@ -281,6 +292,7 @@ def solve_sheet_on_face(
         its pre-image, so each must lie over the face.
     stretch, bend: isotropic thin-plate weights (alpha, beta), both >= 0 and not both 0.
     tolerance: distance (mm) at which a curve counts as met.
+    degree: the sheet's degree is at least this in u and v (the base is elevated; 2..MAX_DEGREE).
     min_spans, max_spans: the base face is refined to at least min_spans spans per direction;
         while the curves contradict each other by more than the tolerance, the spans are doubled
         up to max_spans. A conflict that survives refinement (curves crossing at different
@@ -320,6 +332,8 @@ def solve_sheet_on_face(
         raise SheetError(f"Tolerance must be a positive length (got {tolerance})")
     if not 1 <= int(min_spans) <= int(max_spans) <= 512:
         raise SheetError(f"spans must satisfy 1 <= MinSpans <= MaxSpans <= 512 (got {min_spans}, {max_spans})")
+    if not (isinstance(degree, int) and 2 <= degree <= MAX_DEGREE):
+        raise SheetError(f"Degree must be an integer in 2..{MAX_DEGREE} (got {degree})")
     if not 0.0 < rank_tolerance < 1.0:
         raise SheetError(f"rank tolerance must be in (0, 1) (got {rank_tolerance})")
     if getattr(face, "ShapeType", None) != "Face":
@@ -377,7 +391,7 @@ def solve_sheet_on_face(
     options.rank_tolerance = float(rank_tolerance)
     options.fit_tolerance = FIT_TO_TOLERANCE * float(tolerance)
     while True:
-        sheet = nat.refine_surface(base, spans, spans, SHEET_MIN_DEGREE)
+        sheet = nat.refine_surface(base, spans, spans, degree)
         space = sheet.space
         terms = constraint_specs.native_terms(placed, space, nat)
         fixed = list(nat.boundary_pole_indices(space)) if fix_boundary else []
@@ -398,7 +412,7 @@ def solve_sheet_on_face(
         if rest == "base":
             problem.rest_poles = sheet.poles
         elif rest_surface is not None:
-            problem.rest_poles = _rest_poles_in(rest_surface, space, nat, spans)
+            problem.rest_poles = _rest_poles_in(rest_surface, space, nat, spans, degree)
         try:
             result = nat.solve_sheet(problem, options)
         except nat.InvalidInput as error:

@@ -65,3 +65,25 @@ def test_curves_on_one_line_cannot_make_a_sheet(doc, native):
 def test_make_sheet_without_base_or_curves_is_refused(doc, native):
     with pytest.raises(ValueError, match="needs curves"):
         varsurf.make_sheet(None, [])
+
+
+@pytest.mark.parametrize("degree, spans", [(2, 6), (5, 4)])
+def test_chosen_degree_and_span_count(doc, native, degree, spans):
+    obj = frame(doc)
+    sheet = varsurf.make_sheet(None, [obj], degree=degree, min_spans=spans)
+    doc.recompute()
+    assert sheet.isValid(), sheet.getStatusString()
+    assert (sheet.DegreeU, sheet.DegreeV) == (degree, degree)
+    # The frame's straight edges are met on any span count, so the spans are not doubled.
+    assert (sheet.PoleCountU, sheet.PoleCountV) == (spans + degree, spans + degree)
+    assert max(sheet.MaxDeviations) <= model.DEFAULT_TOLERANCE, list(sheet.MaxDeviations)
+    surface = sheet.Shape.Faces[0].Surface
+    assert (surface.UDegree, surface.VDegree) == (degree, degree)
+
+
+def test_degree_out_of_range_is_refused(doc, native):
+    obj = frame(doc)
+    with pytest.raises(model.SheetError, match="Degree must be an integer in 2..9"):
+        model.solve_sheet_from_curves(list(obj.Shape.Edges), degree=1)
+    sheet = varsurf.make_sheet(None, [obj], degree=40)
+    assert sheet.Degree == model.MAX_DEGREE  # the property clamps to its range

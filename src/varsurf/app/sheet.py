@@ -38,6 +38,7 @@ _PROPERTIES = [
     ("Bend", "App::PropertyFloatConstraint", "Sheet", "Bending weight (beta, >= 0): penalizes second derivatives, pulls toward a fair thin plate. Default 1", False),
     ("FixBoundary", "App::PropertyBool", "Sheet", "Keep the base face's boundary (its boundary poles are held)", False),
     ("Tolerance", "App::PropertyLength", "Sheet", "Distance at which a curve counts as met; the sheet fits the curves this closely and leaves the rest to fairness", False),
+    ("Degree", "App::PropertyIntegerConstraint", "Sheet", "Smallest degree of the sheet in u and v: the base is elevated to it (3: bicubic)", False),
     ("MinSpans", "App::PropertyIntegerConstraint", "Sheet", "The base face is refined (knot insertion, shape unchanged) to at least this many spans per direction", False),
     ("MaxSpans", "App::PropertyIntegerConstraint", "Sheet", "While the curves cannot be met within Tolerance, spans are doubled up to this count", False),
     ("MaxDeviations", "App::PropertyFloatList", "Result", "Largest distance (mm) from each curve to the sheet, measured on the result", True),
@@ -76,6 +77,8 @@ def _add_missing_properties(obj):
             obj.RestShape = "Base"
         elif name == "Tolerance":
             obj.Tolerance = model.DEFAULT_TOLERANCE
+        elif name == "Degree":
+            obj.Degree = (model.SHEET_MIN_DEGREE, 2, model.MAX_DEGREE, 1)
         elif name == "MinSpans":
             obj.MinSpans = (model.DEFAULT_MIN_SPANS, 1, 512, 1)
         elif name == "MaxSpans":
@@ -93,6 +96,8 @@ def _restore_constraints(obj):
     for name in ("MinSpans", "MaxSpans"):
         if name in obj.PropertiesList:
             setattr(obj, name, (min(max(int(getattr(obj, name)), 1), 512), 1, 512, 1))
+    if "Degree" in obj.PropertiesList:
+        obj.Degree = (min(max(int(obj.Degree), 2), model.MAX_DEGREE), 2, model.MAX_DEGREE, 1)
     for name, _kind, _group, _tip, output in _PROPERTIES:
         if output and name in obj.PropertiesList:
             obj.setEditorMode(name, 1)
@@ -185,6 +190,7 @@ class SheetFeature(VersionedState):
                 fix_boundary=bool(obj.FixBoundary),
                 tolerance=float(obj.Tolerance),
                 min_spans=int(obj.MinSpans),
+                degree=int(getattr(obj, "Degree", model.SHEET_MIN_DEGREE)),
                 max_spans=int(obj.MaxSpans),
                 names=names,
             )
