@@ -177,12 +177,23 @@ std::vector<QuadraturePoint> region_quadrature(const SplineSpace& space, const R
   // A product of two basis functions has total degree <= 2 (p + q) on a piece; the collapsed map
   // adds one degree along s, so n points per direction with 2 n - 1 >= 2 (p + q) + 1 are exact.
   const GaussRule& g = gauss_legendre(space.degree_u + space.degree_v + 1 + extra);
+  const GaussRule& gu = gauss_legendre(space.degree_u + 1 + extra);
+  const GaussRule& gv = gauss_legendre(space.degree_v + 1 + extra);
   const Eigen::Vector4d box = loop_box(space, loop);
   const std::vector<double> pu = pieces(space.knots_u, space.degree_u, box(0), box(1));
   const std::vector<double> pv = pieces(space.knots_v, space.degree_v, box(2), box(3));
   for (size_t a = 0; a + 1 < pu.size(); ++a)
     for (size_t b = 0; b + 1 < pv.size(); ++b) {
       const Polygon cell = clip(loop, pu[a], pu[a + 1], pv[b], pv[b + 1]);
+      const double hu = 0.5 * (pu[a + 1] - pu[a]), hv = 0.5 * (pv[b + 1] - pv[b]);
+      if (cell.size() >= 3 && std::abs(signed_area(cell) - 4.0 * hu * hv) <= 1e-12 * hu * hv) {
+        // The loop covers the whole piece: the tensor rule needs far fewer points.
+        for (size_t i = 0; i < gu.nodes.size(); ++i)
+          for (size_t j = 0; j < gv.nodes.size(); ++j)
+            out.push_back({pu[a] + hu * (gu.nodes[i] + 1.0), pv[b] + hv * (gv.nodes[j] + 1.0),
+                           gu.weights[i] * gv.weights[j] * hu * hv});
+        continue;
+      }
       for (size_t k = 1; k + 1 < cell.size(); ++k) {
         const Point &p0 = cell[0], &p1 = cell[k], &p2 = cell[k + 1];
         const double twice_area = cross(p1 - p0, p2 - p0);  // signed: bridges cancel
