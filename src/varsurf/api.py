@@ -393,6 +393,7 @@ SELECTION_HINTS = {
     "CurveAttractor": "Select a Sheet and the edge to pull onto.",
     "Ribbon": "Select a Sheet, the edge along which its normal is set and, optionally, a face or a second edge to follow.",
     "G1": "Select a Sheet, the edge along which it joins, and the face it must follow there.",
+    "G0": "Select a Sheet and the edge it must contain (e.g. the edge of the neighbouring face).",
 }
 #: Kinds that need a picked vertex from the GUI (their target is a location).
 VERTEX_KINDS = ("Point",)
@@ -468,12 +469,12 @@ def constraint_selection_to_args(kind: str, selection_ex: Sequence):
             args["location"] = of["Vertex"][0]
         return sheet, args
     refuse("Vertex")
-    if kind in constraints.CURVE_KINDS or kind == "CurveAttractor":
+    if kind in constraints.CURVE_KINDS or kind in ("CurveAttractor", "G0"):
         edges, faces = of["Edge"], of["Face"]
         if kind == "G1" and (len(edges) != 1 or len(faces) != 1):
             raise ValueError(f"a G1 needs exactly one edge and one face. {hint}")
-        if kind == "CurveAttractor" and (len(edges) != 1 or faces):
-            raise ValueError(f"a CurveAttractor needs exactly one edge. {hint}")
+        if kind in ("CurveAttractor", "G0") and (len(edges) != 1 or faces):
+            raise ValueError(f"a {kind} needs exactly one edge. {hint}")
         if kind == "Ribbon" and (not edges or len(edges) + len(faces) > 2 or len(faces) > 1):
             raise ValueError(f"a Ribbon needs one edge and at most one face or second edge. {hint}")
         args["curve"] = edges[0]

@@ -34,6 +34,7 @@ KINDS: Dict[str, Tuple[str, str]] = {
     "CurveAttractor": ("the region is pulled onto Curve (an edge) with strength Weight (residual: RMS distance)", "mm"),
     "Ribbon": ("along Curve, the sheet's normal follows Reference (a face's normal, or the strip toward a second "
                "edge; without Reference the base's own normal), turned by Angle", "deg"),
+    "G0": ("the sheet contains Curve: position continuity with the face it bounds (residual: max distance)", "mm"),
     "G1": ("the sheet contains Curve and joins Reference there tangent-continuously", "deg"),
 }
 POINT_KINDS = ("Point", "TangentU", "TangentV", "Normal", "PointInPlane", "PointOnLine")
@@ -85,6 +86,12 @@ class ConstraintSpec:
         if self.kind == "SurfaceAttractor":
             if not _is_shape(self.reference, "Face"):
                 raise fail("needs a Reference face to pull the region onto")
+            return
+        if self.kind == "G0":
+            if not _is_shape(self.edge, "Edge"):
+                raise fail("needs a Curve (an edge) for the sheet to contain")
+            if self.weight == 0.0:
+                raise fail("a constraint's weight must be > 0")
             return
         if self.kind == "CurveAttractor":
             if not _is_shape(self.edge, "Edge"):
@@ -156,6 +163,8 @@ def place(specs: Sequence[ConstraintSpec], base, nat) -> List[PlacedSpec]:
                 p.u, p.v = uf + spec.uv[0] * (ul - uf), vf + spec.uv[1] * (vl - vf)
         if spec.kind in CURVE_KINDS:
             _place_curve(p, base, nat)
+        if spec.kind == "G0":
+            _place_incidence(p, base, nat)
         if spec.kind in SHAPE_KINDS:
             target = spec.reference if spec.kind == "SurfaceAttractor" else spec.edge
             try:
@@ -216,6 +225,17 @@ def _place_loop(spec: ConstraintSpec, base, nat):
     except nat.InvalidInput as error:
         raise fail(f"{error} (projected onto the base)") from error
     return loop
+
+
+def _place_incidence(p: PlacedSpec, base, nat):
+    """A G0 join: the curve's pre-image on the base and an incidence constraint."""
+    s = p.spec
+    try:
+        curve = nat.curve_from_edge_brep(s.edge.exportBrepToString())
+        pre = nat.project_curve(base, curve)
+    except (nat.InvalidInput, nat.GeometryError) as error:
+        raise ConstraintError(f"{s.name}: {error}") from error
+    p.curve = nat.CurveConstraint(preimage=pre.curve, target=curve, weight=s.weight)
 
 
 def _place_curve(p: PlacedSpec, base, nat):
@@ -293,6 +313,8 @@ def native_terms(placed: Sequence[PlacedSpec], space, nat) -> NativeTerms:
             out.ribbons.append(p.ribbon)
             if p.curve is not None:
                 out.curves.append(p.curve)
+        elif kind == "G0":
+            out.curves.append(p.curve)
         elif kind in SHAPE_KINDS:
             out.shape_attractors.append(nat.ShapeAttractor(region=region, target=p.target, strength=s.weight))
         elif kind == "Repeller":
@@ -349,6 +371,10 @@ def _angle_deg(normal, direction):
 def residual(p: PlacedSpec, surface, base) -> float:
     """How far the solved ``surface`` is from what the spec asks, in KINDS' unit."""
     s, kind = p.spec, p.spec.kind
+    if kind == "G0":
+        from varsurf import _native
+
+        return _native.max_deviation(surface, p.curve.target)
     if kind in CURVE_KINDS:
         from varsurf import _native
 

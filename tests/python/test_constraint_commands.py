@@ -20,7 +20,8 @@ def sheet(doc, native):
 
 
 @pytest.mark.parametrize("kind", [k for k in constraints.KINDS if k not in api.VERTEX_KINDS
-                                  and k not in constraints.CURVE_KINDS and k not in constraints.SHAPE_KINDS])
+                                  and k not in constraints.CURVE_KINDS and k not in constraints.SHAPE_KINDS
+                                  and k != "G0"])
 def test_every_kind_from_a_selected_sheet(sheet, kind):
     doc = sheet.Document
     lines = []
@@ -138,6 +139,7 @@ LOOP_EDGES = lambda o: [Sel(o.loop, "Edge1"), Sel(o.loop, "Edge2"), Sel(o.loop, 
     ("Ribbon", lambda o: [Sel(o.seam, "Edge1"), Sel(o.second, "Edge1")], dict(curve="Seam", reference="Second")),
     ("Ribbon", lambda o: [Sel(o.seam, "Edge1"), Sel(o.flat, "Face1")], dict(curve="Seam", reference="Flat")),
     ("CurveAttractor", lambda o: [Sel(o.second, "Edge1")], dict(curve="Second")),
+    ("G0", lambda o: [Sel(o.second, "Edge1")], dict(curve="Second")),
     ("SurfaceAttractor", lambda o: [Sel(o.roof, "Face1")], dict(reference="Roof")),
     ("SurfaceAttractor", lambda o: [Sel(o.roof, "Face1")] + LOOP_EDGES(o), dict(reference="Roof", region_loop="Loop")),
     ("PointAttractor", LOOP_EDGES, dict(region_loop="Loop")),

@@ -24,6 +24,7 @@ def _scene(doc):
         seam=add_shape(doc, "Seam", Part.LineSegment(V(60, 25, 0), V(60, 55, 0)).toShape()),
         second=add_shape(doc, "Second", Part.LineSegment(V(80, 20, 5), V(80, 60, 5)).toShape()),
         flat=add_shape(doc, "Flat", Part.makePlane(30, 40, V(60, 20, 0))),
+        lifted=add_shape(doc, "Lifted", Part.LineSegment(V(70, 20, 4), V(70, 60, 4)).toShape()),
         triangle=add_shape(doc, "Triangle", Part.makePolygon([V(45, 10, 0), V(95, 10, 0), V(70, 45, 0),
                                                               V(45, 10, 0)])),
     )
@@ -47,6 +48,7 @@ VALID = {
     "CurveAttractor": lambda o: dict(curve=(o["wire"], "Edge1"), region=(0.55, 0.75, 0.45, 0.55), weight=10.0),
     "Ribbon": lambda o: dict(curve=(o["seam"], "Edge1"), reference=(o["second"], "Edge1"), angle=5.0),
     "G1": lambda o: dict(curve=(o["seam"], "Edge1"), reference=(o["flat"], "Face1")),
+    "G0": lambda o: dict(curve=(o["lifted"], "Edge1")),
 }
 
 
@@ -112,6 +114,8 @@ BAD = [
     ("Ribbon", dict(Angle=NAN), "Angle must be finite"),
     ("G1", dict(Reference=None), "needs a Curve (an edge) and a Reference"),
     ("G1", dict(Reference="roof"), "from its reference face"),
+    ("G0", dict(Curve=None), "needs a Curve"),
+    ("G0", dict(Curve="beyond"), "beyond"),
 ]
 
 
@@ -124,7 +128,8 @@ def test_bad_input_of_every_kind_is_reported_not_crashed(doc, native, tmp_path, 
     doc.recompute()
     assert sheet.isValid(), sheet.getStatusString()
     good = poles_of(sheet)
-    links = {"edge": (scene["wire"], "Edge1"), "roof": (scene["roof"], "Face1"),
+    beyond = add_shape(doc, "Beyond", Part.LineSegment(V(70, 20, 4), V(170, 60, 4)).toShape())
+    links = {"edge": (scene["wire"], "Edge1"), "roof": (scene["roof"], "Face1"), "beyond": (beyond, "Edge1"),
              "open": (add_shape(doc, "Open", Part.makePolygon([V(45, 10, 0), V(95, 10, 0), V(70, 45, 0)])), [])}
     for prop, value in edits.items():
         setattr(c, prop, links.get(value, value) if isinstance(value, str) else value)

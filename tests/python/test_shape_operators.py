@@ -158,3 +158,15 @@ def test_ribbon_toward_a_second_edge_matches_the_strip(sheet):
     face = sheet.Shape.Faces[0]
     u, v = face.Surface.parameter(V(60, 40, 0))
     assert abs(math.degrees(face.Surface.normal(u, v).getAngle(V(0, 0, 1))) - 20.0) < 1.0
+
+
+def test_g0_join_makes_the_sheet_contain_an_edge(sheet):
+    doc = sheet.Document
+    lifted = add_shape(doc, "Lifted", Part.LineSegment(V(70, 20, 4), V(70, 60, 4)).toShape())
+    doc.recompute()
+    c = varsurf.make_constraint(sheet, "G0", curve=(lifted, "Edge1"))
+    doc.recompute()
+    assert sheet.isValid(), sheet.getStatusString()
+    assert residual_of(sheet, c) <= varsurf.DEFAULT_TOLERANCE
+    assert sheet.Shape.distToShape(lifted.Shape)[0] < 1e-6  # measured by OCCT, independently
+    assert sheet.ConstraintUnits[0] == "mm"
