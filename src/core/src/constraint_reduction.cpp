@@ -36,6 +36,35 @@ struct FreeRow {
   Eigen::RowVectorXd rhs;
   double weight;
   bool exact;
+  int id;  // global sample row
+};
+
+// A sample row's right-hand side with the fixed columns moved over.
+Eigen::RowVectorXd free_rhs(const ConstraintSamples& block, int r,
+                            const std::vector<int>& free_index, const Eigen::MatrixXd& fixed) {
+  Eigen::RowVectorXd rhs = block.rhs.row(r);
+  const auto& idx = block.index[static_cast<size_t>(r)];
+  const Eigen::VectorXd& c = block.coeff[static_cast<size_t>(r)];
+  for (size_t k = 0; k < idx.size(); ++k) {
+    const double v = c(static_cast<Eigen::Index>(k));
+    if (v != 0.0 && free_index[static_cast<size_t>(idx[k])] < 0) rhs -= v * fixed.row(idx[k]);
+  }
+  return rhs;
+}
+
+// One cluster after its SVD.
+struct Cluster {
+  std::vector<int> cols;         // free unknowns, ascending
+  std::vector<int> sample_rows;  // global ids
+  Eigen::MatrixXd to_core;       // Q_1^T (n x m) if the cluster was compressed, else empty
+  Eigen::MatrixXd u, v;          // thin SVD factors of the core matrix
+  Eigen::VectorXd s;
+  Eigen::MatrixXd beta;  // U^T core rhs
+  Eigen::MatrixXd gain;  // U^T core start residual
+  Eigen::Index numeric_rank = 0;
+  Eigen::Index rank = 0;  // kept
+  double start_sq = 0.0, weight = 0.0;
+  bool exact = false;
 };
 
 }  // namespace
@@ -43,13 +72,12 @@ struct FreeRow {
 ReducedConstraints reduce_constraints(const std::vector<ConstraintSamples>& blocks,
                                       const std::vector<int>& free_index,
                                       const Eigen::MatrixXd& fixed, int free_count,
-                                      double rank_tolerance, double fit_tolerance,
-                                      double keep_tolerance) {
-  if (!(rank_tolerance > 0.0 && rank_tolerance < 1.0))
+                                      const ReductionOptions& opt) {
+  if (!(opt.rank_tolerance > 0.0 && opt.rank_tolerance < 1.0))
     throw InvalidInput("rank tolerance must be in (0, 1)");
-  if (!(keep_tolerance >= rank_tolerance && keep_tolerance <= 1.0))
+  if (!(opt.keep_tolerance >= opt.rank_tolerance && opt.keep_tolerance <= 1.0))
     throw InvalidInput("keep tolerance must be in [rank tolerance, 1]");
-  if (!(fit_tolerance >= 0.0) || !std::isfinite(fit_tolerance))
+  if (!(opt.fit_tolerance >= 0.0) || !std::isfinite(opt.fit_tolerance))
     throw InvalidInput("fit tolerance must be a finite non-negative length");
   const Eigen::Index width = fixed.cols();
   for (const ConstraintSamples& block : blocks)
@@ -57,24 +85,22 @@ ReducedConstraints reduce_constraints(const std::vector<ConstraintSamples>& bloc
   ReducedConstraints out;
   std::vector<FreeRow> rows;
   DisjointSets sets(free_count);
+  int id = 0;
   for (const ConstraintSamples& block : blocks) {
-    for (int r = 0; r < block.rows(); ++r) {
+    for (int r = 0; r < block.rows(); ++r, ++id) {
       FreeRow row;
-      row.rhs = block.rhs.row(r);
+      row.id = id;
+      row.rhs = free_rhs(block, r, free_index, fixed);
       const auto& idx = block.index[static_cast<size_t>(r)];
       const Eigen::VectorXd& c = block.coeff[static_cast<size_t>(r)];
       row.weight = block.weight[static_cast<size_t>(r)];
       row.exact = block.exact;
       for (size_t k = 0; k < idx.size(); ++k) {
         const double v = c(static_cast<Eigen::Index>(k));
-        if (v == 0.0) continue;
         const int f = free_index[static_cast<size_t>(idx[k])];
-        if (f < 0) {
-          row.rhs -= v * fixed.row(idx[k]);
-        } else {
-          row.cols.push_back(f);
-          row.vals.push_back(v);
-        }
+        if (v == 0.0 || f < 0) continue;
+        row.cols.push_back(f);
+        row.vals.push_back(v);
       }
       ++out.samples;
       if (row.cols.empty()) continue;
@@ -90,89 +116,129 @@ ReducedConstraints reduce_constraints(const std::vector<ConstraintSamples>& bloc
   for (const auto& kv : cluster_rows) roots.push_back(kv.first);
   std::sort(roots.begin(), roots.end());  // deterministic row order
 
-  std::vector<Eigen::Triplet<double>> trip;
-  std::vector<Eigen::RowVectorXd> rhs;
-  int rank_total = 0;
+  std::vector<Cluster> clusters;
   std::vector<int> local(static_cast<size_t>(free_count), -1);
   for (int root : roots) {
     const std::vector<size_t>& members = cluster_rows[root];
-    std::vector<int> cols;
+    Cluster cl;
     for (size_t i : members)
       for (int c : rows[i].cols)
         if (local[static_cast<size_t>(c)] < 0) {
           local[static_cast<size_t>(c)] = 0;
-          cols.push_back(c);
+          cl.cols.push_back(c);
         }
-    std::sort(cols.begin(), cols.end());
-    for (size_t k = 0; k < cols.size(); ++k)
-      local[static_cast<size_t>(cols[k])] = static_cast<int>(k);
+    std::sort(cl.cols.begin(), cl.cols.end());
+    for (size_t k = 0; k < cl.cols.size(); ++k)
+      local[static_cast<size_t>(cl.cols[k])] = static_cast<int>(k);
 
     const Eigen::Index m = static_cast<Eigen::Index>(members.size());
-    const Eigen::Index n = static_cast<Eigen::Index>(cols.size());
+    const Eigen::Index n = static_cast<Eigen::Index>(cl.cols.size());
     Eigen::MatrixXd b = Eigen::MatrixXd::Zero(m, n);
     Eigen::MatrixXd d(m, width);
-    double cluster_weight = 0.0;
-    bool exact = false;  // an exact constraint in the cluster: no discrepancy truncation
     for (Eigen::Index i = 0; i < m; ++i) {
       const FreeRow& row = rows[members[static_cast<size_t>(i)]];
       for (size_t k = 0; k < row.cols.size(); ++k)
         b(i, local[static_cast<size_t>(row.cols[k])]) += row.vals[k];
       d.row(i) = row.rhs;
-      cluster_weight += row.weight;
-      exact = exact || row.exact;
+      cl.weight += row.weight;
+      cl.exact = cl.exact || row.exact;
+      cl.sample_rows.push_back(row.id);
     }
-    for (int c : cols) local[static_cast<size_t>(c)] = -1;
+    for (int c : cl.cols) local[static_cast<size_t>(c)] = -1;
 
     // Tall clusters (many samples, few poles) are compressed by QR first: same solution set,
     // and the SVD then works on an n x n matrix.
     // The start shape's residual decides how many directions to fit: a homogeneous constraint
     // (a normal, rhs 0) is far from met by a start that violates it, not already met.
     Eigen::MatrixXd start(n, width);
-    for (Eigen::Index k = 0; k < n; ++k) start.row(k) = fixed.row(cols[static_cast<size_t>(k)]);
+    for (Eigen::Index k = 0; k < n; ++k) start.row(k) = fixed.row(cl.cols[static_cast<size_t>(k)]);
     const Eigen::MatrixXd d_start = d - b * start;
-    Eigen::MatrixXd core = b;
-    Eigen::MatrixXd core_rhs = d, core_start = d_start;
+    Eigen::MatrixXd core = b, core_rhs = d, core_start = d_start;
     if (m > n) {
       Eigen::HouseholderQR<Eigen::MatrixXd> qr(b);
       core = qr.matrixQR().topRows(n).triangularView<Eigen::Upper>();
-      core_rhs = (qr.householderQ().transpose() * d).topRows(n);
-      core_start = (qr.householderQ().transpose() * d_start).topRows(n);
+      cl.to_core = (qr.householderQ() * Eigen::MatrixXd::Identity(m, n)).transpose();
+      core_rhs = cl.to_core * d;
+      core_start = cl.to_core * d_start;
     }
     Eigen::BDCSVD<Eigen::MatrixXd> svd(core, Eigen::ComputeThinU | Eigen::ComputeThinV);
-    const Eigen::VectorXd& s = svd.singularValues();
-    if (s.size() == 0 || !(s(0) > 0.0)) continue;
-    if (!s.allFinite()) throw InvalidInput("constraint values are not finite");
-    const Eigen::MatrixXd beta = svd.matrixU().transpose() * core_rhs;
-    const Eigen::MatrixXd gain = svd.matrixU().transpose() * core_start;
-    Eigen::Index numeric_rank = 0;
-    while (numeric_rank < s.size() && s(numeric_rank) > rank_tolerance * s(0)) ++numeric_rank;
-    // Residual left by each truncation; the full-rank one is what no choice of poles removes:
-    // constraints that contradict each other (curves crossing at different heights).
-    double residual = d_start.squaredNorm();
-    const double best = std::max(0.0, residual - gain.topRows(numeric_rank).squaredNorm());
-    const double allowed = best + fit_tolerance * fit_tolerance * cluster_weight;
-    // Well-conditioned directions are always kept: they cannot throw poles far (|coefficient| <=
-    // |data| / (keep_tolerance s_max)), and dropping one that the start happens to meet would let
-    // the solve drift off it. Only the weak ones are left to the discrepancy test.
-    Eigen::Index rank = 0;
-    while (rank < numeric_rank) {
-      const bool strong = s(rank) >= keep_tolerance * s(0);
-      if (!strong && !exact && fit_tolerance > 0.0 && residual <= allowed) break;
-      residual -= gain.row(rank).squaredNorm();
-      ++rank;
-    }
-    if (cluster_weight > 0.0)
-      out.conflict = std::max(out.conflict, std::sqrt(best / cluster_weight));
-    const Eigen::MatrixXd vr = svd.matrixV().leftCols(rank);
-    const Eigen::MatrixXd br = beta.topRows(rank).array().colwise() / s.head(rank).array();
-    for (Eigen::Index r = 0; r < rank; ++r) {
-      for (Eigen::Index k = 0; k < n; ++k) {
-        if (vr(k, r) != 0.0)
-          trip.emplace_back(rank_total + static_cast<int>(r), cols[static_cast<size_t>(k)],
-                            vr(k, r));
+    cl.s = svd.singularValues();
+    if (cl.s.size() == 0 || !(cl.s(0) > 0.0)) continue;
+    if (!cl.s.allFinite()) throw InvalidInput("constraint values are not finite");
+    cl.u = svd.matrixU();
+    cl.v = svd.matrixV();
+    cl.beta = cl.u.transpose() * core_rhs;
+    cl.gain = cl.u.transpose() * core_start;
+    while (cl.numeric_rank < cl.s.size() && cl.s(cl.numeric_rank) > opt.rank_tolerance * cl.s(0))
+      ++cl.numeric_rank;
+    cl.start_sq = d_start.squaredNorm();
+    // Residual that no choice of poles removes: constraints that contradict each other (curves
+    // crossing at different heights).
+    const double best = std::max(0.0, cl.start_sq - cl.gain.topRows(cl.numeric_rank).squaredNorm());
+    if (cl.weight > 0.0) out.conflict = std::max(out.conflict, std::sqrt(best / cl.weight));
+    if (opt.truncation == Truncation::discrepancy) {
+      const double allowed = best + opt.fit_tolerance * opt.fit_tolerance * cl.weight;
+      // Well-conditioned directions are always kept: they cannot throw poles far (|coefficient|
+      // <= |data| / (keep_tolerance s_max)), and dropping one that the start happens to meet
+      // would let the solve drift off it. Only the weak ones are left to the discrepancy test.
+      double residual = cl.start_sq;
+      while (cl.rank < cl.numeric_rank) {
+        const bool strong = cl.s(cl.rank) >= opt.keep_tolerance * cl.s(0);
+        if (!strong && !cl.exact && opt.fit_tolerance > 0.0 && residual <= allowed) break;
+        residual -= cl.gain.row(cl.rank).squaredNorm();
+        ++cl.rank;
       }
+    }
+    clusters.push_back(std::move(cl));
+  }
+
+  if (opt.truncation == Truncation::lcurve) {
+    // One SVD of all constraints is the union of the clusters' (they share no unknowns): merge
+    // their directions by singular value and keep the largest up to the L-curve's corner.
+    struct Direction {
+      double sigma, gain_sq;
+      size_t cluster;
+    };
+    std::vector<Direction> all;
+    double total_sq = 0.0;
+    for (size_t c = 0; c < clusters.size(); ++c) {
+      total_sq += clusters[c].start_sq;
+      for (Eigen::Index i = 0; i < clusters[c].numeric_rank; ++i)
+        all.push_back({clusters[c].s(i), clusters[c].gain.row(i).squaredNorm(), c});
+    }
+    std::stable_sort(all.begin(), all.end(),
+                     [](const Direction& a, const Direction& b) { return a.sigma > b.sigma; });
+    Eigen::VectorXd sigma(static_cast<Eigen::Index>(all.size())), gain(sigma.size());
+    for (size_t i = 0; i < all.size(); ++i) {
+      sigma(static_cast<Eigen::Index>(i)) = all[i].sigma;
+      gain(static_cast<Eigen::Index>(i)) = all[i].gain_sq;
+    }
+    out.lcurve = lcurve(sigma, gain, total_sq);
+    for (int i = 0; i < out.lcurve.corner; ++i)
+      ++clusters[all[static_cast<size_t>(i)].cluster].rank;
+  }
+
+  std::vector<Eigen::Triplet<double>> trip;
+  std::vector<Eigen::RowVectorXd> rhs;
+  int rank_total = 0;
+  for (const Cluster& cl : clusters) {
+    const Eigen::Index rank = cl.rank;
+    const Eigen::Index n = static_cast<Eigen::Index>(cl.cols.size());
+    const Eigen::MatrixXd br = cl.beta.topRows(rank).array().colwise() / cl.s.head(rank).array();
+    for (Eigen::Index r = 0; r < rank; ++r) {
+      for (Eigen::Index k = 0; k < n; ++k)
+        if (cl.v(k, r) != 0.0)
+          trip.emplace_back(rank_total + static_cast<int>(r), cl.cols[static_cast<size_t>(k)],
+                            cl.v(k, r));
       rhs.push_back(br.row(r));
     }
+    ReducedConstraints::ClusterMap map;
+    map.sample_rows = cl.sample_rows;
+    map.first_row = rank_total;
+    const Eigen::MatrixXd ut = cl.u.leftCols(rank).transpose();
+    map.transform = cl.s.head(rank).cwiseInverse().asDiagonal() *
+                    (cl.to_core.size() ? Eigen::MatrixXd(ut * cl.to_core) : ut);
+    out.maps.push_back(std::move(map));
     rank_total += static_cast<int>(rank);
     ++out.clusters;
   }
@@ -180,6 +246,26 @@ ReducedConstraints reduce_constraints(const std::vector<ConstraintSamples>& bloc
   out.rows.setFromTriplets(trip.begin(), trip.end());
   out.rhs.resize(rank_total, width);
   for (int r = 0; r < rank_total; ++r) out.rhs.row(r) = rhs[static_cast<size_t>(r)];
+  return out;
+}
+
+Eigen::MatrixXd reduced_rhs(const ReducedConstraints& red,
+                            const std::vector<ConstraintSamples>& blocks,
+                            const std::vector<int>& free_index, const Eigen::MatrixXd& fixed) {
+  std::vector<std::pair<const ConstraintSamples*, int>> where;  // global id -> (block, row)
+  for (const ConstraintSamples& block : blocks)
+    for (int r = 0; r < block.rows(); ++r) where.emplace_back(&block, r);
+  Eigen::MatrixXd out(red.rhs.rows(), fixed.cols());
+  for (const auto& map : red.maps) {
+    Eigen::MatrixXd d(static_cast<Eigen::Index>(map.sample_rows.size()), fixed.cols());
+    for (size_t i = 0; i < map.sample_rows.size(); ++i) {
+      const size_t g = static_cast<size_t>(map.sample_rows[i]);
+      if (g >= where.size()) throw InvalidInput("the moved constraints have fewer samples");
+      d.row(static_cast<Eigen::Index>(i)) =
+          free_rhs(*where[g].first, where[g].second, free_index, fixed);
+    }
+    out.middleRows(map.first_row, map.transform.rows()) = map.transform * d;
+  }
   return out;
 }
 

@@ -6,8 +6,24 @@
 #include <vector>
 
 #include "varsurf/core/constraints.hpp"
+#include "varsurf/core/lcurve.hpp"
 
 namespace varsurf {
+
+// How many singular directions of the constraints are fitted.
+enum class Truncation {
+  // Per cluster of constraints: the discrepancy principle (see reduce_constraints).
+  discrepancy,
+  // Over all constraints at once: the corner of the L-curve (Michalik & Bruderlin 4.2).
+  lcurve,
+};
+
+struct ReductionOptions {
+  double rank_tolerance = 1e-9;
+  double fit_tolerance = 0.0;
+  double keep_tolerance = 1e-2;
+  Truncation truncation = Truncation::discrepancy;
+};
 
 struct ReducedConstraints {
   Eigen::SparseMatrix<double, Eigen::RowMajor> rows;  // rank x free unknowns, orthonormal rows
@@ -15,23 +31,37 @@ struct ReducedConstraints {
   int samples = 0;
   int clusters = 0;
   double conflict = 0.0;  // largest RMS residual that no pole choice removes, over clusters
+  LCurve lcurve;          // with Truncation::lcurve
+  // rhs rows [first_row, first_row + transform.rows()) = transform * (right-hand sides of the
+  // cluster's sample rows, fixed columns moved over): what a drag recomputes.
+  struct ClusterMap {
+    std::vector<int> sample_rows;  // global sample row ids (blocks concatenated)
+    Eigen::MatrixXd transform;     // kept rows x sample rows
+    int first_row = 0;
+  };
+  std::vector<ClusterMap> maps;
 };
 
 // `free_index[k]` is the unknown of column k, or -1 for a fixed column whose value `fixed.row(k)`
 // (as wide as the samples' right-hand sides) moves to the right-hand side. Rows touching no free
 // pole are dropped. Within each cluster of rows that share unknowns, B p = d (least squares) is
 // replaced by V_r^T p = S_r^-1 U_r^T d from the SVD B = U S V^T truncated at rank_tolerance *
-// s_max: exactly the set of least-squares minimizers. With fit_tolerance > 0 the truncation also
-// stops at the first rank whose least-squares residual, counted from the start values
-// (fixed.row(k) holds them for free columns too; an RMS distance, since sample weights sum to each
-// constraint's weight), is within fit_tolerance of the best the cluster can reach: the
-// discrepancy principle; directions with singular values of at least keep_tolerance * s_max are
-// kept regardless. Directions beyond it are left to the energy instead of being fitted to
-// data the space cannot hold, which is what makes coarse sheets go wild.
+// s_max: exactly the set of least-squares minimizers. With fit_tolerance > 0 the discrepancy
+// truncation also stops at the first rank whose least-squares residual, counted from the start
+// values (fixed.row(k) holds them for free columns too; an RMS distance, since sample weights sum
+// to each constraint's weight), is within fit_tolerance of the best the cluster can reach;
+// directions with singular values of at least keep_tolerance * s_max are kept regardless.
+// Directions beyond it are left to the energy instead of being fitted to data the space cannot
+// hold, which is what makes coarse sheets go wild. The L-curve truncation keeps the globally
+// largest singular directions up to the L-curve's corner instead.
 ReducedConstraints reduce_constraints(const std::vector<ConstraintSamples>& blocks,
                                       const std::vector<int>& free_index,
                                       const Eigen::MatrixXd& fixed, int free_count,
-                                      double rank_tolerance, double fit_tolerance,
-                                      double keep_tolerance);
+                                      const ReductionOptions& options);
+
+// The reduced right-hand sides for new samples with the same matrices (moved targets).
+Eigen::MatrixXd reduced_rhs(const ReducedConstraints& reduced,
+                            const std::vector<ConstraintSamples>& blocks,
+                            const std::vector<int>& free_index, const Eigen::MatrixXd& fixed);
 
 }  // namespace varsurf

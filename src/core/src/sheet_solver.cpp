@@ -1,12 +1,11 @@
 #include "varsurf/core/sheet_solver.hpp"
 
-#include <Eigen/SparseLU>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <string>
 
-#include "constraint_reduction.hpp"
+#include "constrained_solve.hpp"
 #include "varsurf/core/errors.hpp"
 
 namespace varsurf {
@@ -72,105 +71,9 @@ Eigen::MatrixXd flatten(const Eigen::MatrixX3d& m) {  // rows 3 k + c
   return out;
 }
 
-// One equality-constrained quadratic problem: minimize x^T Q x - 2 f^T x over the free columns
-// subject to the constraint samples (reduced to independent rows), with fixed columns at x0.
-// Each column of f / x0 is one right-hand side sharing Q and the constraint matrix.
-struct Quadratic {
-  Sparse q;
-  Eigen::MatrixXd f;
-  Eigen::MatrixXd x0;       // start values, and the values of fixed columns
-  std::vector<bool> fixed;  // per column
-  std::vector<ConstraintSamples> blocks;
-};
-
 Eigen::MatrixXd solve_quadratic(const Quadratic& pb, const SolveOptions& opt, SolveReport& rep) {
-  const int total = static_cast<int>(pb.q.rows());
-  std::vector<int> free_index(static_cast<size_t>(total), -1);
-  std::vector<int> free_cols;
-  for (int k = 0; k < total; ++k)
-    if (!pb.fixed[static_cast<size_t>(k)]) {
-      free_index[static_cast<size_t>(k)] = static_cast<int>(free_cols.size());
-      free_cols.push_back(k);
-    }
-  const int n = static_cast<int>(free_cols.size());
-  rep.unknowns = n;
-  Eigen::MatrixXd x = pb.x0;
-  if (n == 0) return x;
-  const Eigen::Index width = pb.x0.cols();
-
-  auto t = Clock::now();
-  const ReducedConstraints red = reduce_constraints(
-      pb.blocks, free_index, pb.x0, n, opt.rank_tolerance, opt.fit_tolerance, opt.keep_tolerance);
-  const int r = static_cast<int>(red.rows.rows());
-  rep.constraint_samples = red.samples;
-  rep.constraint_rank = r;
-  rep.clusters = red.clusters;
-  rep.conflict = red.conflict;
-  rep.reduce_seconds = seconds_since(t);
-
-  // KKT system [Q_ff, A^T; A, 0] [x_f; y] = [f_f - Q_fc x_c; b] (Welch & Witkin eq. 9).
-  t = Clock::now();
-  double diag_mean = 0.0;
-  for (int k : free_cols) diag_mean += pb.q.coeff(k, k);
-  diag_mean /= n;
-  const double eps = opt.regularization * (diag_mean > 0.0 ? diag_mean : 1.0);
-
-  std::vector<Eigen::Triplet<double>> trip;
-  trip.reserve(static_cast<size_t>(pb.q.nonZeros() + 2 * red.rows.nonZeros()));
-  Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(n + r, width);
-  for (int k = 0; k < n; ++k) rhs.row(k) = pb.f.row(free_cols[static_cast<size_t>(k)]);
-  for (int col = 0; col < pb.q.outerSize(); ++col) {
-    const int fc = free_index[static_cast<size_t>(col)];
-    for (Sparse::InnerIterator it(pb.q, col); it; ++it) {
-      const int fr = free_index[static_cast<size_t>(it.row())];
-      if (fr < 0) continue;
-      if (fc >= 0)
-        trip.emplace_back(fr, fc, it.value());
-      else
-        rhs.row(fr) -= it.value() * pb.x0.row(col);
-    }
-  }
-  for (int row = 0; row < r; ++row) {
-    for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(red.rows, row); it; ++it) {
-      trip.emplace_back(n + row, static_cast<int>(it.col()), it.value());
-      trip.emplace_back(static_cast<int>(it.col()), n + row, it.value());
-    }
-  }
-  rhs.bottomRows(r) = red.rhs;
-  Sparse kkt(n + r, n + r);
-  kkt.setFromTriplets(trip.begin(), trip.end());
-  kkt.makeCompressed();
-  // The factored matrix carries eps on the unknowns' diagonal so that directions neither energy
-  // nor constraints determine stay where they started; refinement against the exact matrix then
-  // removes the eps bias from every determined direction (a proximal-point iteration).
-  Sparse shifted = kkt;
-  for (int i = 0; i < n; ++i) shifted.coeffRef(i, i) += eps;
-
-  Eigen::SparseLU<Sparse, Eigen::COLAMDOrdering<int>> lu;
-  lu.analyzePattern(shifted);
-  lu.factorize(shifted);
-  if (lu.info() != Eigen::Success)
-    throw SolveFailure("the constrained system is singular: " + lu.lastErrorMessage());
-  rep.factor_seconds = seconds_since(t);
-
-  // One factorization serves every right-hand side (x, y and z when separable).
-  t = Clock::now();
-  Eigen::MatrixXd shifted_rhs = rhs;
-  for (int i = 0; i < n; ++i)
-    shifted_rhs.row(i) += eps * pb.x0.row(free_cols[static_cast<size_t>(i)]);
-  Eigen::MatrixXd sol = lu.solve(shifted_rhs);
-  const double rhs_norm = std::max(rhs.norm(), 1e-300);
-  for (int step = 0; step < opt.refinement_steps; ++step) {
-    const Eigen::MatrixXd res = rhs - kkt * sol;
-    if (!(res.norm() > 1e-15 * rhs_norm)) break;
-    sol += lu.solve(res);
-  }
-  if (!sol.allFinite()) throw SolveFailure("the solve produced non-finite poles");
-  rep.kkt_residual = (rhs - kkt * sol).norm() / rhs_norm;
-  if (r > 0) rep.constraint_residual = (red.rows * sol.topRows(n) - red.rhs).cwiseAbs().maxCoeff();
-  for (int i = 0; i < n; ++i) x.row(free_cols[static_cast<size_t>(i)]) = sol.row(i);
-  rep.solve_seconds = seconds_since(t);
-  return x;
+  const ConstrainedSolve solver(pb, opt, rep);
+  return solver.solve(pb.f, solver.reduced_rhs(), rep);
 }
 
 Eigen::MatrixX3d unflatten(const Eigen::MatrixXd& x) {
@@ -239,42 +142,19 @@ Eigen::MatrixXd iterate_nonlinear(const SheetProblem& pb, const SolveOptions& op
 
 }  // namespace
 
-SolveResult solve_sheet(const SheetProblem& pb, const SolveOptions& opt) {
-  const auto start = Clock::now();
-  validate_problem(pb, opt);
-  SolveResult result;
-  SolveReport& rep = result.report;
-  const SplineSpace& sp = pb.space;
-  const int poles = sp.size();
+namespace {
 
-  auto t = Clock::now();
-  Sparse h = assemble_thin_plate(sp, pb.energy);
-  QuadraticTerms terms(poles);
-  if (pb.rest_poles.rows() != 0) terms.separable_f += h * pb.rest_poles;
+// The sheet's quadratic problem, assembled once.
+struct Assembled {
+  Quadratic quad;
   OperatorScales scales;
-  if (!pb.attractors.empty() || !pb.directors.empty() || !pb.repellers.empty() ||
-      !pb.shape_attractors.empty())
-    scales = operator_scales(sp, h);
-  for (size_t i = 0; i < pb.attractors.size(); ++i) {
-    try {
-      add_attractor(sp, pb.attractors[i], scales.value, terms);
-    } catch (const InvalidInput& e) {
-      throw InvalidInput("attractor " + std::to_string(i) + ": " + e.what());
-    }
-  }
-  for (size_t i = 0; i < pb.directors.size(); ++i) {
-    try {
-      add_director(sp, pb.directors[i], scales.gradient, terms);
-    } catch (const InvalidInput& e) {
-      throw InvalidInput("director " + std::to_string(i) + ": " + e.what());
-    }
-  }
-  if (!terms.separable.empty()) {
-    Sparse extra(poles, poles);
-    extra.setFromTriplets(terms.separable.begin(), terms.separable.end());
-    h += extra;
-  }
+  bool nonlinear = false;
+};
 
+// Constraint samples of the problem, in the solve's ordering (separable ones made coupled when
+// the solve is coupled).
+std::vector<ConstraintSamples> sample_constraints(const SheetProblem& pb, bool coupled_solve) {
+  const SplineSpace& sp = pb.space;
   std::vector<ConstraintSamples> separable, coupled;
   sample_all(
       pb.points, "point constraint", [&](const auto& c) { return sample_point(sp, c); }, separable);
@@ -294,19 +174,59 @@ SolveResult solve_sheet(const SheetProblem& pb, const SolveOptions& opt) {
       [&](const auto& c) { return sample_line_point(sp, c); }, coupled);
   sample_all(
       pb.ribbons, "ribbon", [&](const auto& c) { return sample_ribbon(sp, c); }, coupled);
+  if (!coupled_solve) return separable;
+  std::vector<ConstraintSamples> out;
+  for (const ConstraintSamples& s : separable) out.push_back(to_coupled(s));
+  for (ConstraintSamples& s : coupled) out.push_back(std::move(s));
+  return out;
+}
 
-  const bool nonlinear =
-      !pb.repellers.empty() || !pb.shape_attractors.empty() || pb.pressure != 0.0;
+bool has_coupled_constraints(const SheetProblem& pb) {
+  return !pb.normals.empty() || !pb.plane_points.empty() || !pb.line_points.empty() ||
+         !pb.ribbons.empty();
+}
+
+Assembled assemble(const SheetProblem& pb, const SolveOptions& opt, SolveReport& rep) {
+  const SplineSpace& sp = pb.space;
+  const int poles = sp.size();
+  Assembled out;
+  Sparse h = assemble_thin_plate(sp, pb.energy);
+  QuadraticTerms terms(poles);
+  if (pb.rest_poles.rows() != 0) terms.separable_f += h * pb.rest_poles;
+  if (!pb.attractors.empty() || !pb.directors.empty() || !pb.repellers.empty() ||
+      !pb.shape_attractors.empty())
+    out.scales = operator_scales(sp, h);
+  for (size_t i = 0; i < pb.attractors.size(); ++i) {
+    try {
+      add_attractor(sp, pb.attractors[i], out.scales.value, terms);
+    } catch (const InvalidInput& e) {
+      throw InvalidInput("attractor " + std::to_string(i) + ": " + e.what());
+    }
+  }
+  for (size_t i = 0; i < pb.directors.size(); ++i) {
+    try {
+      add_director(sp, pb.directors[i], out.scales.gradient, terms);
+    } catch (const InvalidInput& e) {
+      throw InvalidInput("director " + std::to_string(i) + ": " + e.what());
+    }
+  }
+  if (!terms.separable.empty()) {
+    Sparse extra(poles, poles);
+    extra.setFromTriplets(terms.separable.begin(), terms.separable.end());
+    h += extra;
+  }
   if (!std::isfinite(pb.pressure)) throw InvalidInput("pressure must be finite");
-  Quadratic quad;
-  rep.coupled = opt.force_coupled || nonlinear || !coupled.empty() || terms.uses_coupled();
+  out.nonlinear = !pb.repellers.empty() || !pb.shape_attractors.empty() || pb.pressure != 0.0;
+  rep.coupled =
+      opt.force_coupled || out.nonlinear || has_coupled_constraints(pb) || terms.uses_coupled();
+  Quadratic& quad = out.quad;
+  quad.blocks = sample_constraints(pb, rep.coupled);
   if (!rep.coupled) {
     quad.q = std::move(h);
     quad.f = terms.separable_f;
     quad.x0 = pb.initial_poles;
     quad.fixed.assign(static_cast<size_t>(poles), false);
     for (int k : pb.fixed_poles) quad.fixed[static_cast<size_t>(k)] = true;
-    quad.blocks = std::move(separable);
   } else {
     quad.q = kron_identity3(h);
     if (terms.uses_coupled()) {
@@ -319,20 +239,138 @@ SolveResult solve_sheet(const SheetProblem& pb, const SolveOptions& opt) {
     quad.fixed.assign(static_cast<size_t>(3 * poles), false);
     for (int k : pb.fixed_poles)
       for (int c = 0; c < 3; ++c) quad.fixed[static_cast<size_t>(3 * k + c)] = true;
-    for (const ConstraintSamples& s : separable) quad.blocks.push_back(to_coupled(s));
-    for (ConstraintSamples& s : coupled) quad.blocks.push_back(std::move(s));
   }
-  rep.assemble_seconds = seconds_since(t);
+  return out;
+}
 
-  Eigen::MatrixXd x = solve_quadratic(quad, opt, rep);
-  if (nonlinear) x = iterate_nonlinear(pb, opt, scales, quad, x, rep);
-  if (!rep.coupled) {
-    result.poles = x;
-  } else {
-    result.poles = unflatten(x);
-  }
+Eigen::MatrixX3d to_poles(const Eigen::MatrixXd& x, bool coupled) {
+  return coupled ? unflatten(x) : Eigen::MatrixX3d(x);
+}
+
+}  // namespace
+
+SolveResult solve_sheet(const SheetProblem& pb, const SolveOptions& opt) {
+  const auto start = Clock::now();
+  validate_problem(pb, opt);
+  SolveResult result;
+  SolveReport& rep = result.report;
+  auto t = Clock::now();
+  const Assembled as = assemble(pb, opt, rep);
+  rep.assemble_seconds = seconds_since(t);
+  Eigen::MatrixXd x = solve_quadratic(as.quad, opt, rep);
+  if (as.nonlinear) x = iterate_nonlinear(pb, opt, as.scales, as.quad, x, rep);
+  result.poles = to_poles(x, rep.coupled);
   rep.total_seconds = seconds_since(start);
   return result;
+}
+
+struct PreparedSheet::State {
+  SheetProblem problem;
+  SolveOptions options;
+  Assembled assembled;
+  std::unique_ptr<ConstrainedSolve> solver;
+  SolveResult result;
+};
+
+PreparedSheet::PreparedSheet(const SheetProblem& pb, const SolveOptions& opt) : state_(new State) {
+  const auto start = Clock::now();
+  validate_problem(pb, opt);
+  State& st = *state_;
+  st.problem = pb;
+  st.options = opt;
+  SolveReport& rep = st.result.report;
+  auto t = Clock::now();
+  st.assembled = assemble(pb, opt, rep);
+  rep.assemble_seconds = seconds_since(t);
+  if (st.assembled.nonlinear)
+    throw InvalidInput(
+        "repellers, shape attractors and pressure are solved by iteration: "
+        "there is no factorization to keep");
+  st.solver = std::make_unique<ConstrainedSolve>(st.assembled.quad, opt, rep);
+  const Eigen::MatrixXd x = st.solver->solve(st.assembled.quad.f, st.solver->reduced_rhs(), rep);
+  st.result.poles = to_poles(x, rep.coupled);
+  rep.total_seconds = seconds_since(start);
+}
+
+PreparedSheet::~PreparedSheet() = default;
+PreparedSheet::PreparedSheet(PreparedSheet&&) noexcept = default;
+PreparedSheet& PreparedSheet::operator=(PreparedSheet&&) noexcept = default;
+
+const SolveResult& PreparedSheet::result() const {
+  return state_->result;
+}
+
+namespace {
+
+// The same constraint matrices up to rounding (a rigidly moved curve keeps its arc-length
+// weights only to rounding).
+bool same_samples(const std::vector<ConstraintSamples>& a,
+                  const std::vector<ConstraintSamples>& b) {
+  if (a.size() != b.size()) return false;
+  const auto close = [](double x, double y) {
+    return std::abs(x - y) <= 1e-12 * std::max(std::abs(x), std::abs(y));
+  };
+  for (size_t i = 0; i < a.size(); ++i) {
+    if (a[i].index != b[i].index || a[i].exact != b[i].exact) return false;
+    for (size_t r = 0; r < a[i].weight.size(); ++r)
+      if (!close(a[i].weight[r], b[i].weight[r])) return false;
+    for (size_t r = 0; r < a[i].coeff.size(); ++r)
+      for (Eigen::Index k = 0; k < a[i].coeff[r].size(); ++k)
+        if (!close(a[i].coeff[r](k), b[i].coeff[r](k))) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+SolveResult PreparedSheet::update(const SheetProblem& moved) {
+  const auto start = Clock::now();
+  State& st = *state_;
+  const SheetProblem& pb = st.problem;
+  validate_problem(moved, st.options);
+  const auto same_space = [](const SplineSpace& a, const SplineSpace& b) {
+    return a.degree_u == b.degree_u && a.degree_v == b.degree_v && a.knots_u == b.knots_u &&
+           a.knots_v == b.knots_v && a.weights.size() == b.weights.size() && a.weights == b.weights;
+  };
+  const bool same_setup =
+      same_space(pb.space, moved.space) && pb.fixed_poles == moved.fixed_poles &&
+      pb.energy.alpha == moved.energy.alpha && pb.energy.beta == moved.energy.beta &&
+      pb.rest_poles.rows() == moved.rest_poles.rows() &&
+      (pb.rest_poles.rows() == 0 || pb.rest_poles == moved.rest_poles) &&
+      pb.attractors.size() == moved.attractors.size() &&
+      pb.directors.size() == moved.directors.size() && moved.repellers.empty() &&
+      moved.shape_attractors.empty() && moved.pressure == 0.0 &&
+      has_coupled_constraints(pb) == has_coupled_constraints(moved);
+  if (!same_setup)
+    throw InvalidInput(
+        "update: only constraint targets may move (the space, fixed poles, energy, "
+        "rest shape or operators changed): prepare the sheet again");
+  for (size_t i = 0; i < pb.attractors.size(); ++i) {
+    const Attractor &a = pb.attractors[i], &b = moved.attractors[i];
+    if (a.kind != b.kind || a.origin != b.origin || a.direction != b.direction ||
+        a.strength != b.strength || a.region.loop != b.region.loop || a.region.u0 != b.region.u0 ||
+        a.region.u1 != b.region.u1 || a.region.v0 != b.region.v0 || a.region.v1 != b.region.v1)
+      throw InvalidInput("update: an attractor changed: prepare the sheet again");
+  }
+  for (size_t i = 0; i < pb.directors.size(); ++i)
+    if (pb.directors[i].direction != moved.directors[i].direction ||
+        pb.directors[i].strength != moved.directors[i].strength)
+      throw InvalidInput("update: a director changed: prepare the sheet again");
+  if (moved.initial_poles != pb.initial_poles)
+    throw InvalidInput("update: the start poles changed: prepare the sheet again");
+  SolveResult out;
+  out.report = st.result.report;
+  const std::vector<ConstraintSamples> blocks = sample_constraints(moved, out.report.coupled);
+  if (!same_samples(blocks, st.assembled.quad.blocks))
+    throw InvalidInput(
+        "update: constraints were added, removed or re-placed (not only moved): "
+        "prepare the sheet again");
+  const Eigen::MatrixXd b = st.solver->reduced_rhs(blocks);
+  const Eigen::MatrixXd x = st.solver->solve(st.assembled.quad.f, b, out.report);
+  out.poles = to_poles(x, out.report.coupled);
+  out.report.assemble_seconds = out.report.reduce_seconds = out.report.factor_seconds = 0.0;
+  out.report.total_seconds = seconds_since(start);
+  return out;
 }
 
 }  // namespace varsurf

@@ -9,10 +9,13 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <memory>
+#include <string>
 #include <vector>
 
 #include "varsurf/core/constraints.hpp"
 #include "varsurf/core/external_energy.hpp"
+#include "varsurf/core/lcurve.hpp"
 #include "varsurf/core/point_constraints.hpp"
 #include "varsurf/core/ribbon_constraint.hpp"
 #include "varsurf/core/spline_space.hpp"
@@ -43,7 +46,23 @@ struct SheetProblem {
   std::vector<int> fixed_poles;  // flat indices held at initial_poles
 };
 
+// How the equality-constrained quadratic problem is solved (the constraints are always first
+// reduced to independent orthonormal rows, cluster by cluster).
+enum class SolveMode {
+  automatic,  // exact up to a size, conjugate gradients beyond it (the report says which)
+  exact,      // Lagrange multipliers: the sparse KKT system, LU with refinement (W&W eq. 9)
+  penalty,    // W&W eq. 10: energy + mu^2 |A x - b|^2 factored once (sparse Cholesky), the
+              // constraint residual removed by refinement steps (multiplier updates)
+  cg,         // constraints eliminated by projection onto their null space, then
+              // Jacobi-preconditioned conjugate gradients on the energy (Veltkamp & Wesselink 6)
+  tsvd,       // truncated SVD at the L-curve corner; the rest of the poles stay nearest the start
+  mtsvd,      // truncated SVD at the L-curve corner; the rest minimize the energy (side constraint)
+};
+
+const char* to_string(SolveMode mode);
+
 struct SolveOptions {
+  SolveMode mode = SolveMode::automatic;
   // Singular values of a constraint cluster below rank_tolerance * largest are treated as zero.
   double rank_tolerance = 1e-9;
   // RMS distance (model units) at which a constraint cluster counts as met: its least-squares
@@ -63,16 +82,26 @@ struct SolveOptions {
   // Solve the coupled 3n system even when every term is separable (the separable solve is
   // cheaper and gives the same poles).
   bool force_coupled = false;
-  // Repellers, shape attractors and pressure: Gauss-Newton / fixed-point steps, each at most step_limit (relative
-  // to the start shape's size) per pole, until no pole moves more than nonlinear_tolerance
-  // (relative) or max_iterations is reached.
+  // Repellers, shape attractors and pressure: Gauss-Newton / fixed-point steps, each at most
+  // step_limit (relative to the start shape's size) per pole, until no pole moves more than
+  // nonlinear_tolerance (relative) or max_iterations is reached.
   int max_iterations = 100;
   double step_limit = 0.05;
   double nonlinear_tolerance = 1e-9;
+  // Penalty mode: mu^2 relative to the energy's mean diagonal.
+  double penalty_weight = 1e4;
+  // CG mode: stop when the projected residual falls below this fraction of its start.
+  double cg_tolerance = 1e-13;
+  // Automatic mode: more free unknowns than this are solved by CG instead of a factorization.
+  int direct_limit = 400000;
 };
 
 struct SolveReport {
-  int unknowns = 0;  // free poles (per coordinate), or free coordinates if coupled
+  SolveMode mode = SolveMode::exact;  // the mode used (automatic resolved)
+  std::string mode_reason;            // why, in words
+  int inner_iterations = 0;           // penalty refinement steps or CG iterations (largest)
+  LCurve lcurve;                      // tsvd and mtsvd: the L-curve and its corner
+  int unknowns = 0;                   // free poles (per coordinate), or free coordinates if coupled
   bool coupled = false;
   int iterations = 0;      // nonlinear steps taken (0 for a quadratic problem)
   bool converged = true;   // false if max_iterations ran out
@@ -100,5 +129,28 @@ struct SolveResult {
 
 // Throws InvalidInput for inconsistent problems, SolveFailure if the KKT system is singular.
 SolveResult solve_sheet(const SheetProblem& problem, const SolveOptions& options = {});
+
+// A solve kept for interactive edits: when only constraint targets move (a dragged point, a
+// curve moved with the same pre-image, a new tangent or plane origin), update() recomputes the
+// reduced right-hand sides and back-substitutes with the kept factorization.
+class PreparedSheet {
+ public:
+  // Solves the problem (quadratic terms only: repellers, shape attractors and pressure iterate
+  // and are refused with InvalidInput).
+  explicit PreparedSheet(const SheetProblem& problem, const SolveOptions& options = {});
+  ~PreparedSheet();
+  PreparedSheet(PreparedSheet&&) noexcept;
+  PreparedSheet& operator=(PreparedSheet&&) noexcept;
+
+  const SolveResult& result() const;
+
+  // The same problem with moved targets. InvalidInput if anything else changed (the constraints'
+  // matrices, their number, the space, fixed poles, energy or operators): prepare again.
+  SolveResult update(const SheetProblem& moved);
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
 
 }  // namespace varsurf

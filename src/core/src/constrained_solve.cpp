@@ -1,0 +1,333 @@
+#include "constrained_solve.hpp"
+
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseLU>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <string>
+
+#include "varsurf/core/errors.hpp"
+
+namespace varsurf {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using Sparse = Eigen::SparseMatrix<double>;
+
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+}  // namespace
+
+const char* to_string(SolveMode mode) {
+  switch (mode) {
+    case SolveMode::automatic:
+      return "automatic";
+    case SolveMode::exact:
+      return "exact";
+    case SolveMode::penalty:
+      return "penalty";
+    case SolveMode::cg:
+      return "cg";
+    case SolveMode::tsvd:
+      return "tsvd";
+    case SolveMode::mtsvd:
+      return "mtsvd";
+  }
+  return "unknown";
+}
+
+struct ConstrainedSolve::Impl {
+  SolveOptions opt;
+  SolveMode mode = SolveMode::exact;
+  std::vector<int> free_cols, free_index;
+  int n = 0, r = 0;
+  Eigen::Index width = 1;
+  Eigen::MatrixXd x0;        // all columns
+  Eigen::MatrixXd x0_free;   // n x width
+  Eigen::MatrixXd coupling;  // Q_fc x_c, n x width
+  ReducedConstraints red;
+  Sparse a;     // r x n, orthonormal rows
+  Sparse q_ff;  // n x n
+  double eps = 0.0;
+  // exact, mtsvd
+  Sparse kkt;
+  Eigen::SparseLU<Sparse, Eigen::COLAMDOrdering<int>> lu;
+  // penalty
+  double mu2 = 0.0;
+  Eigen::SimplicialLDLT<Sparse> ldlt;
+  // cg
+  Eigen::VectorXd inv_diag;
+
+  Eigen::MatrixXd energy_rhs(const Eigen::MatrixXd& f) const {  // f_f - Q_fc x_c
+    Eigen::MatrixXd out(n, width);
+    for (int i = 0; i < n; ++i) out.row(i) = f.row(free_cols[static_cast<size_t>(i)]);
+    return out - coupling;
+  }
+  Eigen::VectorXd project(const Eigen::VectorXd& v) const {  // onto null(A): A has orthonormal rows
+    return r > 0 ? Eigen::VectorXd(v - a.transpose() * (a * v)) : v;
+  }
+  Eigen::MatrixXd solve_kkt(const Eigen::MatrixXd& g, const Eigen::MatrixXd& b,
+                            SolveReport& rep) const;
+  Eigen::MatrixXd solve_penalty(const Eigen::MatrixXd& g, const Eigen::MatrixXd& b,
+                                SolveReport& rep) const;
+  Eigen::MatrixXd solve_cg(const Eigen::MatrixXd& g, const Eigen::MatrixXd& b,
+                           SolveReport& rep) const;
+};
+
+ConstrainedSolve::ConstrainedSolve(const Quadratic& pb, const SolveOptions& opt, SolveReport& rep)
+    : impl_(new Impl) {
+  Impl& m = *impl_;
+  m.opt = opt;
+  const int total = static_cast<int>(pb.q.rows());
+  m.width = pb.x0.cols();
+  m.x0 = pb.x0;
+  m.free_index.assign(static_cast<size_t>(total), -1);
+  for (int k = 0; k < total; ++k)
+    if (!pb.fixed[static_cast<size_t>(k)]) {
+      m.free_index[static_cast<size_t>(k)] = static_cast<int>(m.free_cols.size());
+      m.free_cols.push_back(k);
+    }
+  m.n = static_cast<int>(m.free_cols.size());
+  rep.unknowns = m.n;
+
+  // The mode, before the reduction (the L-curve modes truncate differently).
+  m.mode = opt.mode;
+  if (m.mode == SolveMode::automatic) {
+    if (m.n <= opt.direct_limit) {
+      m.mode = SolveMode::exact;
+      rep.mode_reason = "exact: " + std::to_string(m.n) + " unknowns, sparse KKT factorization";
+    } else {
+      m.mode = SolveMode::cg;
+      rep.mode_reason = "cg: " + std::to_string(m.n) + " unknowns, more than the " +
+                        std::to_string(opt.direct_limit) + " factored directly";
+    }
+  } else {
+    rep.mode_reason = std::string(to_string(m.mode)) + ": chosen";
+  }
+  rep.mode = m.mode;
+  if (m.n == 0) return;
+
+  auto t = Clock::now();
+  ReductionOptions ro;
+  ro.rank_tolerance = opt.rank_tolerance;
+  ro.fit_tolerance = opt.fit_tolerance;
+  ro.keep_tolerance = opt.keep_tolerance;
+  ro.truncation = (m.mode == SolveMode::tsvd || m.mode == SolveMode::mtsvd)
+                      ? Truncation::lcurve
+                      : Truncation::discrepancy;
+  m.red = reduce_constraints(pb.blocks, m.free_index, pb.x0, m.n, ro);
+  m.r = static_cast<int>(m.red.rows.rows());
+  m.a = m.red.rows;
+  rep.constraint_samples = m.red.samples;
+  rep.constraint_rank = m.r;
+  rep.clusters = m.red.clusters;
+  rep.conflict = m.red.conflict;
+  rep.lcurve = m.red.lcurve;
+  rep.reduce_seconds = seconds_since(t);
+
+  t = Clock::now();
+  m.x0_free.resize(m.n, m.width);
+  for (int i = 0; i < m.n; ++i) m.x0_free.row(i) = pb.x0.row(m.free_cols[static_cast<size_t>(i)]);
+  std::vector<Eigen::Triplet<double>> qt;
+  qt.reserve(static_cast<size_t>(pb.q.nonZeros()));
+  m.coupling = Eigen::MatrixXd::Zero(m.n, m.width);
+  double diag_mean = 0.0;
+  for (int col = 0; col < pb.q.outerSize(); ++col) {
+    const int fc = m.free_index[static_cast<size_t>(col)];
+    for (Sparse::InnerIterator it(pb.q, col); it; ++it) {
+      const int fr = m.free_index[static_cast<size_t>(it.row())];
+      if (fr < 0) continue;
+      if (fc >= 0) {
+        qt.emplace_back(fr, fc, it.value());
+        if (fr == fc) diag_mean += it.value();
+      } else {
+        m.coupling.row(fr) += it.value() * pb.x0.row(col);
+      }
+    }
+  }
+  m.q_ff.resize(m.n, m.n);
+  m.q_ff.setFromTriplets(qt.begin(), qt.end());
+  diag_mean /= m.n;
+  const double scale = diag_mean > 0.0 ? diag_mean : 1.0;
+  m.eps = opt.regularization * scale;
+
+  if (m.mode == SolveMode::exact || m.mode == SolveMode::mtsvd) {
+    // KKT system [Q_ff, A^T; A, 0] [x_f; y] = [f_f - Q_fc x_c; b] (Welch & Witkin eq. 9).
+    std::vector<Eigen::Triplet<double>> trip = qt;
+    for (int row = 0; row < m.r; ++row)
+      for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(m.red.rows, row); it;
+           ++it) {
+        trip.emplace_back(m.n + row, static_cast<int>(it.col()), it.value());
+        trip.emplace_back(static_cast<int>(it.col()), m.n + row, it.value());
+      }
+    m.kkt.resize(m.n + m.r, m.n + m.r);
+    m.kkt.setFromTriplets(trip.begin(), trip.end());
+    m.kkt.makeCompressed();
+    // The factored matrix carries eps on the unknowns' diagonal so that directions neither
+    // energy nor constraints determine stay where they started; refinement against the exact
+    // matrix then removes the eps bias from every determined direction (a proximal iteration).
+    Sparse shifted = m.kkt;
+    for (int i = 0; i < m.n; ++i) shifted.coeffRef(i, i) += m.eps;
+    m.lu.analyzePattern(shifted);
+    m.lu.factorize(shifted);
+    if (m.lu.info() != Eigen::Success)
+      throw SolveFailure("the constrained system is singular: " + m.lu.lastErrorMessage());
+  } else if (m.mode == SolveMode::penalty) {
+    if (!(opt.penalty_weight > 0.0) || !std::isfinite(opt.penalty_weight))
+      throw InvalidInput("penalty weight must be a positive number");
+    m.mu2 = opt.penalty_weight * scale;
+    // The reduced rows are orthonormal, so A^T A is as well conditioned as A: forming it costs
+    // no accuracy, and a sparse Cholesky of the normal matrix replaces W&W's sparse QR of the
+    // stacked system (which would need a square root of the energy).
+    Sparse m_pen = m.q_ff + Sparse(m.mu2 * (m.a.transpose() * m.a));
+    for (int i = 0; i < m.n; ++i) m_pen.coeffRef(i, i) += m.eps;
+    m.ldlt.compute(m_pen);
+    if (m.ldlt.info() != Eigen::Success)
+      throw SolveFailure("the penalty system could not be factored (not positive definite)");
+  } else if (m.mode == SolveMode::cg) {
+    m.inv_diag.resize(m.n);
+    for (int i = 0; i < m.n; ++i) {
+      const double d = m.q_ff.coeff(i, i) + m.eps;
+      m.inv_diag(i) = d > 0.0 ? 1.0 / d : 1.0;
+    }
+  }
+  rep.factor_seconds = seconds_since(t);
+}
+
+ConstrainedSolve::~ConstrainedSolve() = default;
+
+const Eigen::MatrixXd& ConstrainedSolve::reduced_rhs() const {
+  return impl_->red.rhs;
+}
+
+Eigen::MatrixXd ConstrainedSolve::reduced_rhs(const std::vector<ConstraintSamples>& moved) const {
+  return varsurf::reduced_rhs(impl_->red, moved, impl_->free_index, impl_->x0);
+}
+
+Eigen::MatrixXd ConstrainedSolve::Impl::solve_kkt(const Eigen::MatrixXd& g,
+                                                  const Eigen::MatrixXd& b,
+                                                  SolveReport& rep) const {
+  Eigen::MatrixXd rhs(n + r, width);
+  rhs.topRows(n) = g;
+  rhs.bottomRows(r) = b;
+  Eigen::MatrixXd shifted_rhs = rhs;
+  shifted_rhs.topRows(n) += eps * x0_free;
+  Eigen::MatrixXd sol = lu.solve(shifted_rhs);
+  const double rhs_norm = std::max(rhs.norm(), 1e-300);
+  int steps = 0;
+  for (; steps < opt.refinement_steps; ++steps) {
+    const Eigen::MatrixXd res = rhs - kkt * sol;
+    if (!(res.norm() > 1e-15 * rhs_norm)) break;
+    sol += lu.solve(res);
+  }
+  rep.inner_iterations = steps;
+  rep.kkt_residual = (rhs - kkt * sol).norm() / rhs_norm;
+  return sol.topRows(n);
+}
+
+Eigen::MatrixXd ConstrainedSolve::Impl::solve_penalty(const Eigen::MatrixXd& g,
+                                                      const Eigen::MatrixXd& b,
+                                                      SolveReport& rep) const {
+  // Method of multipliers on the one factorization of Q + eps I + mu^2 A^T A: each step is a
+  // back-substitution that shrinks the constraint residual (W&W's refinement of eq. 10), with
+  // the eps pull re-centred on the last iterate so that its bias vanishes too.
+  Eigen::MatrixXd x = x0_free, lambda = Eigen::MatrixXd::Zero(r, width), center = x0_free;
+  const double scale = std::max({1.0, b.cwiseAbs().maxCoeff(), x0_free.cwiseAbs().maxCoeff()});
+  int it = 0;
+  for (it = 1; it <= 500; ++it) {
+    Eigen::MatrixXd rhs = g + eps * center;
+    if (r > 0) rhs += a.transpose() * (mu2 * b - lambda);
+    const Eigen::MatrixXd next = ldlt.solve(rhs);
+    const double move = (next - x).cwiseAbs().maxCoeff();
+    x = next;
+    center = x;
+    double violation = 0.0;
+    if (r > 0) {
+      const Eigen::MatrixXd res = a * x - b;
+      lambda += mu2 * res;
+      violation = res.cwiseAbs().maxCoeff();
+    }
+    if (violation <= 1e-13 * scale && move <= 1e-13 * scale) break;
+  }
+  rep.inner_iterations = std::min(it, 500);
+  return x;
+}
+
+Eigen::MatrixXd ConstrainedSolve::Impl::solve_cg(const Eigen::MatrixXd& g, const Eigen::MatrixXd& b,
+                                                 SolveReport& rep) const {
+  // Elimination: x = x_s + P y with x_s the start projected onto {A x = b} and P the projector
+  // onto null(A); conjugate gradients on the energy over that affine set, preconditioned by
+  // P D^-1 P (Jacobi), which keeps every iterate feasible.
+  Eigen::MatrixXd out(n, width);
+  const int max_it = std::max(1000, 20 * n);
+  int worst = 0;
+  for (Eigen::Index c = 0; c < width; ++c) {
+    Eigen::VectorXd x = x0_free.col(c);
+    if (r > 0) x += a.transpose() * (b.col(c) - a * x);
+    auto apply = [&](const Eigen::VectorXd& v) { return Eigen::VectorXd(q_ff * v + eps * v); };
+    const Eigen::VectorXd rhs = g.col(c) + eps * x0_free.col(c);
+    Eigen::VectorXd res = project(rhs - apply(x));
+    Eigen::VectorXd z = project(inv_diag.cwiseProduct(res));
+    Eigen::VectorXd p = z;
+    double rz = res.dot(z);
+    const double stop = opt.cg_tolerance * std::max(res.norm(), 1e-300);
+    int it = 0;
+    while (it < max_it && res.norm() > stop) {
+      const Eigen::VectorXd qp = project(apply(p));
+      const double pqp = p.dot(qp);
+      if (!(pqp > 0.0)) break;  // nothing left to lower along p
+      const double alpha = rz / pqp;
+      x += alpha * p;
+      res -= alpha * qp;
+      z = project(inv_diag.cwiseProduct(res));
+      const double rz_next = res.dot(z);
+      p = z + (rz_next / rz) * p;
+      rz = rz_next;
+      ++it;
+    }
+    worst = std::max(worst, it);
+    out.col(c) = x;
+  }
+  rep.inner_iterations = worst;
+  return out;
+}
+
+Eigen::MatrixXd ConstrainedSolve::solve(const Eigen::MatrixXd& f, const Eigen::MatrixXd& b,
+                                        SolveReport& rep) const {
+  const Impl& m = *impl_;
+  Eigen::MatrixXd x = m.x0;
+  if (m.n == 0) return x;
+  const auto t = Clock::now();
+  if (b.rows() != m.r || b.cols() != m.width) throw InvalidInput("reduced right-hand side size");
+  Eigen::MatrixXd sol;
+  switch (m.mode) {
+    case SolveMode::exact:
+    case SolveMode::mtsvd:
+      sol = m.solve_kkt(m.energy_rhs(f), b, rep);
+      break;
+    case SolveMode::penalty:
+      sol = m.solve_penalty(m.energy_rhs(f), b, rep);
+      break;
+    case SolveMode::cg:
+      sol = m.solve_cg(m.energy_rhs(f), b, rep);
+      break;
+    case SolveMode::tsvd:
+    case SolveMode::automatic:
+      // Michalik & Bruderlin eq. 3-4: F = F_k + V_{k+1} V_{k+1}^T F_0, i.e. the start moved
+      // by the least change that meets the kept rows.
+      sol = m.x0_free;
+      if (m.r > 0) sol += m.a.transpose() * (b - m.a * m.x0_free);
+      break;
+  }
+  if (!sol.allFinite()) throw SolveFailure("the solve produced non-finite poles");
+  if (m.r > 0) rep.constraint_residual = (m.a * sol - b).cwiseAbs().maxCoeff();
+  for (int i = 0; i < m.n; ++i) x.row(m.free_cols[static_cast<size_t>(i)]) = sol.row(i);
+  rep.solve_seconds = seconds_since(t);
+  return x;
+}
+
+}  // namespace varsurf

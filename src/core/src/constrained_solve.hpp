@@ -1,0 +1,46 @@
+// The equality-constrained quadratic problem behind every sheet solve, and its solve modes.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <memory>
+#include <vector>
+
+#include "constraint_reduction.hpp"
+#include "varsurf/core/sheet_solver.hpp"
+
+namespace varsurf {
+
+// minimize x^T Q x - 2 f^T x over the free columns subject to the constraint samples (reduced to
+// independent rows), with fixed columns at x0. Each column of f / x0 is one right-hand side
+// sharing Q and the constraint matrix.
+struct Quadratic {
+  Eigen::SparseMatrix<double> q;
+  Eigen::MatrixXd f;
+  Eigen::MatrixXd x0;       // start values, and the values of fixed columns
+  std::vector<bool> fixed;  // per column
+  std::vector<ConstraintSamples> blocks;
+};
+
+// Reduces the constraints and factors what the mode needs once; solve() may then be called for
+// new right-hand sides (moved targets) at the cost of back-substitution.
+class ConstrainedSolve {
+ public:
+  ConstrainedSolve(const Quadratic& problem, const SolveOptions& options, SolveReport& report);
+  ~ConstrainedSolve();
+
+  // All columns (fixed ones at x0) for energy right-hand side f and reduced constraint
+  // right-hand side b (rank x width).
+  Eigen::MatrixXd solve(const Eigen::MatrixXd& f, const Eigen::MatrixXd& b,
+                        SolveReport& report) const;
+
+  const Eigen::MatrixXd& reduced_rhs() const;
+  // The reduced right-hand side of moved samples (same matrices as the prepared ones).
+  Eigen::MatrixXd reduced_rhs(const std::vector<ConstraintSamples>& moved) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace varsurf
