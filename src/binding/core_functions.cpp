@@ -22,6 +22,16 @@ void bind_core_functions(py::module_& m) {
         "Minimize the sheet energy subject to the problem's constraints; returns SolveResult. "
         "Raises InvalidInput for inconsistent problems, SolveFailure for singular systems.");
 
+  py::class_<PreparedSheet>(m, "PreparedSheet",
+                            "A solve that keeps its factorization: update() re-solves for moved "
+                            "constraint targets by back-substitution (for dragging).")
+      .def(py::init<const SheetProblem&, const SolveOptions&>(), "problem"_a,
+           "options"_a = SolveOptions(), py::call_guard<py::gil_scoped_release>())
+      .def_property_readonly("result", &PreparedSheet::result)
+      .def("update", &PreparedSheet::update, "moved"_a, py::call_guard<py::gil_scoped_release>(),
+           "SolveResult for the same problem with moved targets; InvalidInput if anything else "
+           "changed.");
+
   m.def(
       "boundary_pole_indices",
       [](const SplineSpace& space) {

@@ -257,6 +257,23 @@ void bind_core_types(py::module_& m) {
       .def_readwrite("pressure", &SheetProblem::pressure,
                      "Inflate (> 0, along w_u x w_v) or deflate (< 0); iterated.");
 
+  py::enum_<SolveMode>(m, "SolveMode", "How the constrained problem is solved.")
+      .value("automatic", SolveMode::automatic)
+      .value("exact", SolveMode::exact)
+      .value("penalty", SolveMode::penalty)
+      .value("cg", SolveMode::cg)
+      .value("tsvd", SolveMode::tsvd)
+      .value("mtsvd", SolveMode::mtsvd);
+
+  py::class_<LCurve>(m, "LCurve",
+                     "The L-curve of a TSVD/MTSVD solve: per truncation k the "
+                     "residual norm and the solution norm, and the chosen corner.")
+      .def(py::init<>())
+      .def_readonly("k", &LCurve::k)
+      .def_readonly("residual", &LCurve::residual)
+      .def_readonly("solution_norm", &LCurve::solution_norm)
+      .def_readonly("corner", &LCurve::corner);
+
   py::class_<SolveOptions>(m, "SolveOptions", "Numerical settings of solve_sheet.")
       .def(py::init([](double rank_tolerance, double fit_tolerance, double regularization,
                        int refinement_steps, int max_unknowns) {
@@ -293,10 +310,22 @@ void bind_core_types(py::module_& m) {
       .def_readwrite("nonlinear_tolerance", &SolveOptions::nonlinear_tolerance,
                      "Converged when no pole moves more than this (relative to the size).")
       .def_readwrite("force_coupled", &SolveOptions::force_coupled,
-                     "Solve one 3n system even when every term is separable.");
+                     "Solve one 3n system even when every term is separable.")
+      .def_readwrite("mode", &SolveOptions::mode, "SolveMode (default automatic).")
+      .def_readwrite("penalty_weight", &SolveOptions::penalty_weight,
+                     "Penalty mode: mu^2 relative to the energy's mean diagonal.")
+      .def_readwrite("cg_tolerance", &SolveOptions::cg_tolerance,
+                     "CG mode: relative reduction of the projected residual.")
+      .def_readwrite("direct_limit", &SolveOptions::direct_limit,
+                     "Automatic mode: more free unknowns than this use CG.");
 
   py::class_<SolveReport>(m, "SolveReport", "Sizes, residuals and timings of a solve.")
       .def(py::init<>())
+      .def_readonly("mode", &SolveReport::mode, "The SolveMode used (automatic resolved).")
+      .def_readonly("mode_reason", &SolveReport::mode_reason, "Why that mode, in words.")
+      .def_readonly("inner_iterations", &SolveReport::inner_iterations,
+                    "Penalty refinement steps or CG iterations.")
+      .def_readonly("lcurve", &SolveReport::lcurve, "The L-curve (tsvd and mtsvd modes).")
       .def_readonly("unknowns", &SolveReport::unknowns)
       .def_readonly("constraint_samples", &SolveReport::constraint_samples)
       .def_readonly("constraint_rank", &SolveReport::constraint_rank)
@@ -309,8 +338,6 @@ void bind_core_types(py::module_& m) {
       .def_readonly("conflict", &SolveReport::conflict,
                     "RMS distance by which the constraints contradict each other (near 0 when "
                     "compatible).")
-      .def_readonly("conflict", &SolveReport::conflict,
-                    "RMS distance by which the constraints contradict each other.")
       .def_readonly("constraint_residual", &SolveReport::constraint_residual)
       .def_readonly("kkt_residual", &SolveReport::kkt_residual)
       .def_readonly("assemble_seconds", &SolveReport::assemble_seconds)

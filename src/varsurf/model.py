@@ -39,6 +39,8 @@ MAX_DEGREE = 9
 #: When the curves cannot be held within the tolerance even with wild poles (the solver's
 #: "conflict"), the spans are doubled up to this count before giving up.
 DEFAULT_MAX_SPANS = 64
+#: Solve modes a Sheet offers (see _native.SolveMode): Automatic picks by size and says which.
+SOLVE_MODES = ("Automatic", "Exact", "Penalty", "CG", "TSVD", "MTSVD")
 #: Relative singular value below which constraint rows are numerically dependent.
 DEFAULT_RANK_TOLERANCE = 1e-9
 #: Points per curve at which the result's distance to the curve is measured.
@@ -89,6 +91,10 @@ class SheetOutcome:
     constraint_units: List[str] = field(default_factory=list)  # "mm" or "deg"
     iterations: int = 0  # nonlinear steps (repellers, pressure)
     converged: bool = True
+    solve_mode: str = ""  # the mode used, and why
+    lcurve_residuals: List[float] = field(default_factory=list)  # TSVD/MTSVD: rho_k
+    lcurve_norms: List[float] = field(default_factory=list)  # eta_k
+    lcurve_corner: int = 0  # the chosen truncation k
 
     @property
     def max_deviation(self) -> float:
@@ -97,7 +103,7 @@ class SheetOutcome:
     def summary(self) -> str:
         lines = [
             f"poles {self.pole_count_u} x {self.pole_count_v}, degree {self.degree_u} x {self.degree_v}",
-            f"unknowns {self.unknowns}, constraint rank {self.constraint_rank}",
+            f"unknowns {self.unknowns}, constraint rank {self.constraint_rank}, {self.solve_mode}",
             f"solve {self.solve_seconds:.3f} s, total {self.total_seconds:.3f} s",
         ]
         for name, dev in zip(self.curve_names, self.max_deviations):
@@ -282,6 +288,7 @@ def solve_sheet_on_face(
     stretch_tensor: Optional[Sequence[float]] = None,
     bend_tensor: Optional[Sequence[float]] = None,
     degree: int = SHEET_MIN_DEGREE,
+    solve_mode: str = "Automatic",
 ) -> SheetOutcome:
     """Solve the variational sheet over ``face`` that passes through ``edges``.
 
@@ -293,6 +300,8 @@ def solve_sheet_on_face(
     stretch, bend: isotropic thin-plate weights (alpha, beta), both >= 0 and not both 0.
     tolerance: distance (mm) at which a curve counts as met.
     degree: the sheet's degree is at least this in u and v (the base is elevated; 2..MAX_DEGREE).
+    solve_mode: one of SOLVE_MODES: Exact (Lagrange/KKT), Penalty, CG, TSVD or MTSVD (the L-curve
+        chooses how many constraint directions are fitted), or Automatic.
     min_spans, max_spans: the base face is refined to at least min_spans spans per direction;
         while the curves contradict each other by more than the tolerance, the spans are doubled
         up to max_spans. A conflict that survives refinement (curves crossing at different
@@ -334,6 +343,8 @@ def solve_sheet_on_face(
         raise SheetError(f"spans must satisfy 1 <= MinSpans <= MaxSpans <= 512 (got {min_spans}, {max_spans})")
     if not (isinstance(degree, int) and 2 <= degree <= MAX_DEGREE):
         raise SheetError(f"Degree must be an integer in 2..{MAX_DEGREE} (got {degree})")
+    if solve_mode not in SOLVE_MODES:
+        raise SheetError(f"SolveMode must be one of {', '.join(SOLVE_MODES)} (got {solve_mode!r})")
     if not 0.0 < rank_tolerance < 1.0:
         raise SheetError(f"rank tolerance must be in (0, 1) (got {rank_tolerance})")
     if getattr(face, "ShapeType", None) != "Face":
@@ -390,6 +401,7 @@ def solve_sheet_on_face(
     options = _build(nat.SolveOptions)
     options.rank_tolerance = float(rank_tolerance)
     options.fit_tolerance = FIT_TO_TOLERANCE * float(tolerance)
+    options.mode = getattr(nat.SolveMode, solve_mode.lower())
     while True:
         sheet = nat.refine_surface(base, spans, spans, degree)
         space = sheet.space
@@ -455,4 +467,8 @@ def solve_sheet_on_face(
         iterations=int(report.iterations),
         converged=bool(report.converged),
         report=report,
+        solve_mode=str(report.mode_reason),
+        lcurve_residuals=[float(x) for x in report.lcurve.residual],
+        lcurve_norms=[float(x) for x in report.lcurve.solution_norm],
+        lcurve_corner=int(report.lcurve.corner),
     )

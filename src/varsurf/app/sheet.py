@@ -38,6 +38,11 @@ _PROPERTIES = [
     ("Bend", "App::PropertyFloatConstraint", "Sheet", "Bending weight (beta, >= 0): penalizes second derivatives, pulls toward a fair thin plate. Default 1", False),
     ("FixBoundary", "App::PropertyBool", "Sheet", "Keep the base face's boundary (its boundary poles are held)", False),
     ("Tolerance", "App::PropertyLength", "Sheet", "Distance at which a curve counts as met; the sheet fits the curves this closely and leaves the rest to fairness", False),
+    ("SolveMode", "App::PropertyEnumeration", "Solver", "Exact: Lagrange multipliers (KKT). Penalty: penalty with refinement. CG: constraints eliminated, conjugate gradients. TSVD / MTSVD: the L-curve decides how much of the curves is fitted (MTSVD smooths the rest by the energy). Automatic: by size", False),
+    ("SolveModeUsed", "App::PropertyString", "Result", "The solve mode used and why", True),
+    ("LCurveResiduals", "App::PropertyFloatList", "Result", "TSVD/MTSVD: constraint residual norm per truncation k (the L-curve's x)", True),
+    ("LCurveNorms", "App::PropertyFloatList", "Result", "TSVD/MTSVD: solution change norm per truncation k (the L-curve's y)", True),
+    ("LCurveCorner", "App::PropertyInteger", "Result", "TSVD/MTSVD: the truncation k chosen at the L-curve's corner", True),
     ("Degree", "App::PropertyIntegerConstraint", "Sheet", "Smallest degree of the sheet in u and v: the base is elevated to it (3: bicubic)", False),
     ("MinSpans", "App::PropertyIntegerConstraint", "Sheet", "The base face is refined (knot insertion, shape unchanged) to at least this many spans per direction", False),
     ("MaxSpans", "App::PropertyIntegerConstraint", "Sheet", "While the curves cannot be met within Tolerance, spans are doubled up to this count", False),
@@ -77,6 +82,8 @@ def _add_missing_properties(obj):
             obj.RestShape = "Base"
         elif name == "Tolerance":
             obj.Tolerance = model.DEFAULT_TOLERANCE
+        elif name == "SolveMode":
+            obj.SolveMode = list(model.SOLVE_MODES)
         elif name == "Degree":
             obj.Degree = (model.SHEET_MIN_DEGREE, 2, model.MAX_DEGREE, 1)
         elif name == "MinSpans":
@@ -154,9 +161,12 @@ def _clear_results(obj, status):
     obj.MaxDeviations = []
     obj.CurveNames = []
     obj.ConstraintRank = 0
-    for name in ("ConstraintNames", "ConstraintResiduals", "ConstraintUnits"):
+    for name in ("ConstraintNames", "ConstraintResiduals", "ConstraintUnits", "LCurveResiduals", "LCurveNorms"):
         if name in obj.PropertiesList:
             setattr(obj, name, [])
+    if "SolveModeUsed" in obj.PropertiesList:
+        obj.SolveModeUsed = ""
+        obj.LCurveCorner = 0
     obj.SolveTime = 0.0
     obj.Status = status
 
@@ -191,6 +201,7 @@ class SheetFeature(VersionedState):
                 tolerance=float(obj.Tolerance),
                 min_spans=int(obj.MinSpans),
                 degree=int(getattr(obj, "Degree", model.SHEET_MIN_DEGREE)),
+                solve_mode=str(obj.SolveMode),
                 max_spans=int(obj.MaxSpans),
                 names=names,
             )
@@ -218,6 +229,10 @@ class SheetFeature(VersionedState):
 
         obj.Shape = outcome.shape
         obj.MaxDeviations = [float(d) for d in outcome.max_deviations]
+        obj.SolveModeUsed = outcome.solve_mode
+        obj.LCurveResiduals = outcome.lcurve_residuals
+        obj.LCurveNorms = outcome.lcurve_norms
+        obj.LCurveCorner = outcome.lcurve_corner
         obj.CurveNames = list(outcome.curve_names)
         obj.PoleCountU = outcome.pole_count_u
         obj.PoleCountV = outcome.pole_count_v
