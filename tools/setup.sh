@@ -4,7 +4,7 @@ set -euo pipefail
 
 PACKAGES=(
   build-essential cmake pkg-config
-  libeigen3-dev libsuitesparse-dev
+  libeigen3-dev libsuitesparse-dev libopenblas0-pthread
   libocct-foundation-dev libocct-modeling-data-dev libocct-modeling-algorithms-dev
   libocct-data-exchange-dev libocct-ocaf-dev libocct-visualization-dev
   pybind11-dev python3-pybind11 python3-dev python3-numpy python3-pytest

@@ -317,7 +317,10 @@ void bind_core_types(py::module_& m) {
       .def_readwrite("cg_tolerance", &SolveOptions::cg_tolerance,
                      "CG mode: relative reduction of the projected residual.")
       .def_readwrite("direct_limit", &SolveOptions::direct_limit,
-                     "Automatic mode: more free unknowns than this use CG.");
+                     "Automatic mode: more free unknowns than this use CG.")
+      .def_readwrite("cluster_limit", &SolveOptions::cluster_limit,
+                     "Automatic mode: larger groups of interacting constraints use the penalty "
+                     "mode.");
 
   py::class_<SolveReport>(m, "SolveReport", "Sizes, residuals and timings of a solve.")
       .def(py::init<>())

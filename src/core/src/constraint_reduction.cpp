@@ -249,6 +249,30 @@ ReducedConstraints reduce_constraints(const std::vector<ConstraintSamples>& bloc
   return out;
 }
 
+int largest_cluster(const std::vector<ConstraintSamples>& blocks,
+                    const std::vector<int>& free_index, int free_count) {
+  DisjointSets sets(free_count);
+  std::vector<bool> used(static_cast<size_t>(free_count), false);
+  for (const ConstraintSamples& block : blocks)
+    for (const auto& idx : block.index) {
+      int first = -1;
+      for (int k : idx) {
+        const int f = free_index[static_cast<size_t>(k)];
+        if (f < 0) continue;
+        used[static_cast<size_t>(f)] = true;
+        if (first < 0)
+          first = f;
+        else
+          sets.unite(first, f);
+      }
+    }
+  std::unordered_map<int, int> size;
+  int largest = 0;
+  for (int f = 0; f < free_count; ++f)
+    if (used[static_cast<size_t>(f)]) largest = std::max(largest, ++size[sets.find(f)]);
+  return largest;
+}
+
 Eigen::MatrixXd reduced_rhs(const ReducedConstraints& red,
                             const std::vector<ConstraintSamples>& blocks,
                             const std::vector<int>& free_index, const Eigen::MatrixXd& fixed) {

@@ -59,6 +59,11 @@ ReducedConstraints reduce_constraints(const std::vector<ConstraintSamples>& bloc
                                       const Eigen::MatrixXd& fixed, int free_count,
                                       const ReductionOptions& options);
 
+// Free unknowns in the largest cluster of constraint rows sharing unknowns: what the reduction's
+// dense SVDs cost (cubic in it) and how dense the reduced rows make the KKT system.
+int largest_cluster(const std::vector<ConstraintSamples>& blocks,
+                    const std::vector<int>& free_index, int free_count);
+
 // The reduced right-hand sides for new samples with the same matrices (moved targets).
 Eigen::MatrixXd reduced_rhs(const ReducedConstraints& reduced,
                             const std::vector<ConstraintSamples>& blocks,

@@ -67,7 +67,7 @@ ConstraintSamples sample_point(const SplineSpace& space, const PointConstraint& 
   return out;
 }
 
-ConstraintSamples sample_curve(const SplineSpace& space, const CurveConstraint& c) {
+CurveSampling curve_sampling(const SplineSpace& space, const CurveConstraint& c) {
   c.preimage.validate("curve pre-image");
   c.target.validate("target curve");
   check_weight(c.weight, "curve constraint");
@@ -80,36 +80,58 @@ ConstraintSamples sample_curve(const SplineSpace& space, const CurveConstraint& 
 
   const std::vector<double> pieces = curve_pieces(space, c.preimage, &c.target);
   const GaussRule& g = gauss_legendre(gauss_points_along(space, c.preimage));
-
-  struct Sample {
-    Eigen::Vector2d uv;
-    Eigen::Vector3d point;
-    double weight;
-  };
-  std::vector<Sample> samples;
-  double length = 0.0;
+  CurveSampling out;
   for (size_t i = 0; i + 1 < pieces.size(); ++i) {
     const double a = pieces[i], h = 0.5 * (pieces[i + 1] - pieces[i]);
     for (size_t q = 0; q < g.nodes.size(); ++q) {
-      const double t = a + h * (g.nodes[q] + 1.0);
-      const Eigen::MatrixXd d = c.target.derivatives(t, 1);
-      const double ds = g.weights[q] * h * d.row(1).norm();
-      length += ds;
-      samples.push_back(
-          {clamp_to_domain(space, c.preimage.evaluate(t), t), d.row(0).transpose(), ds});
+      out.t.push_back(a + h * (g.nodes[q] + 1.0));
+      out.rule_weight.push_back(g.weights[q] * h);
     }
   }
-  if (!(length > 0.0) || !std::isfinite(length)) throw InvalidInput("target curve has zero length");
+  return out;
+}
 
-  ConstraintSamples out;
-  std::vector<Eigen::RowVector3d> rhs;
-  out.index.reserve(samples.size());
-  for (const Sample& s : samples) {
-    if (s.weight <= 0.0) continue;  // a stationary point of the target carries no arc length
-    append_row(out, space.basis(s.uv(0), s.uv(1), 0), std::sqrt(c.weight * s.weight / length),
-               s.point, rhs);
+void curve_rhs(const CurveConstraint& c, const CurveSampling& s, Eigen::MatrixXd& rhs,
+               std::vector<double>& weights, std::vector<bool>& kept) {
+  std::vector<double> ds(s.t.size());
+  std::vector<Eigen::RowVector3d> points(s.t.size());
+  double length = 0.0;
+  for (size_t k = 0; k < s.t.size(); ++k) {
+    const Eigen::MatrixXd d = c.target.derivatives(s.t[k], 1);
+    ds[k] = s.rule_weight[k] * d.row(1).norm();
+    points[k] = d.row(0);
+    length += ds[k];
   }
-  out.rhs = stack(rhs);
+  if (!(length > 0.0) || !std::isfinite(length)) throw InvalidInput("target curve has zero length");
+  std::vector<Eigen::RowVector3d> rows;
+  weights.clear();
+  kept.assign(s.t.size(), false);
+  for (size_t k = 0; k < s.t.size(); ++k) {
+    if (ds[k] <= 0.0) continue;  // a stationary point of the target carries no arc length
+    kept[k] = true;
+    const double w = c.weight * ds[k] / length;
+    rows.push_back(std::sqrt(w) * points[k]);
+    weights.push_back(w);
+  }
+  rhs = stack(rows);
+}
+
+ConstraintSamples sample_curve(const SplineSpace& space, const CurveConstraint& c) {
+  const CurveSampling s = curve_sampling(space, c);
+  ConstraintSamples out;
+  std::vector<bool> kept;
+  curve_rhs(c, s, out.rhs, out.weight, kept);
+  out.index.reserve(out.weight.size());
+  size_t row = 0;
+  for (size_t k = 0; k < s.t.size(); ++k) {
+    if (!kept[k]) continue;
+    const double sqrt_w = std::sqrt(out.weight[row]);
+    const Eigen::Vector2d uv = clamp_to_domain(space, c.preimage.evaluate(s.t[k]), s.t[k]);
+    const BasisSample b = space.basis(uv(0), uv(1), 0);
+    out.index.push_back(b.index);
+    out.coeff.push_back(sqrt_w * b.values.row(0).transpose());
+    ++row;
+  }
   out.exact = c.exact;
   return out;
 }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <string>
 
 #include "constrained_solve.hpp"
@@ -153,13 +154,22 @@ struct Assembled {
 
 // Constraint samples of the problem, in the solve's ordering (separable ones made coupled when
 // the solve is coupled).
-std::vector<ConstraintSamples> sample_constraints(const SheetProblem& pb, bool coupled_solve) {
+using CurveSampler = std::function<ConstraintSamples(size_t, const CurveConstraint&)>;
+
+std::vector<ConstraintSamples> sample_constraints(const SheetProblem& pb, bool coupled_solve,
+                                                  const CurveSampler& curve_sampler = nullptr) {
   const SplineSpace& sp = pb.space;
   std::vector<ConstraintSamples> separable, coupled;
   sample_all(
       pb.points, "point constraint", [&](const auto& c) { return sample_point(sp, c); }, separable);
-  sample_all(
-      pb.curves, "curve", [&](const auto& c) { return sample_curve(sp, c); }, separable);
+  for (size_t i = 0; i < pb.curves.size(); ++i) {
+    try {
+      separable.push_back(curve_sampler ? curve_sampler(i, pb.curves[i])
+                                        : sample_curve(sp, pb.curves[i]));
+    } catch (const InvalidInput& e) {
+      throw InvalidInput("curve " + std::to_string(i) + ": " + e.what());
+    }
+  }
   sample_all(
       pb.tangents, "tangent constraint", [&](const auto& c) { return sample_tangent(sp, c); },
       separable);
@@ -186,7 +196,8 @@ bool has_coupled_constraints(const SheetProblem& pb) {
          !pb.ribbons.empty();
 }
 
-Assembled assemble(const SheetProblem& pb, const SolveOptions& opt, SolveReport& rep) {
+Assembled assemble(const SheetProblem& pb, const SolveOptions& opt, SolveReport& rep,
+                   const CurveSampler& curve_sampler = nullptr) {
   const SplineSpace& sp = pb.space;
   const int poles = sp.size();
   Assembled out;
@@ -220,7 +231,7 @@ Assembled assemble(const SheetProblem& pb, const SolveOptions& opt, SolveReport&
   rep.coupled =
       opt.force_coupled || out.nonlinear || has_coupled_constraints(pb) || terms.uses_coupled();
   Quadratic& quad = out.quad;
-  quad.blocks = sample_constraints(pb, rep.coupled);
+  quad.blocks = sample_constraints(pb, rep.coupled, curve_sampler);
   if (!rep.coupled) {
     quad.q = std::move(h);
     quad.f = terms.separable_f;
@@ -268,6 +279,10 @@ struct PreparedSheet::State {
   SheetProblem problem;
   SolveOptions options;
   Assembled assembled;
+  // Per curve: where it is sampled and its separable samples, so that a moved target costs only
+  // evaluations of the target, not of the sheet's basis.
+  std::vector<CurveSampling> curve_samplings;
+  std::vector<ConstraintSamples> curve_blocks;
   std::unique_ptr<ConstrainedSolve> solver;
   SolveResult result;
 };
@@ -280,7 +295,11 @@ PreparedSheet::PreparedSheet(const SheetProblem& pb, const SolveOptions& opt) : 
   st.options = opt;
   SolveReport& rep = st.result.report;
   auto t = Clock::now();
-  st.assembled = assemble(pb, opt, rep);
+  st.assembled = assemble(pb, opt, rep, [&](size_t, const CurveConstraint& c) {
+    st.curve_samplings.push_back(curve_sampling(pb.space, c));
+    st.curve_blocks.push_back(sample_curve(pb.space, c));
+    return st.curve_blocks.back();
+  });
   rep.assemble_seconds = seconds_since(t);
   if (st.assembled.nonlinear)
     throw InvalidInput(
@@ -360,7 +379,24 @@ SolveResult PreparedSheet::update(const SheetProblem& moved) {
     throw InvalidInput("update: the start poles changed: prepare the sheet again");
   SolveResult out;
   out.report = st.result.report;
-  const std::vector<ConstraintSamples> blocks = sample_constraints(moved, out.report.coupled);
+  const auto same_curve = [](const BSplineCurve& a, const BSplineCurve& b) {
+    return a.degree == b.degree && a.knots == b.knots && a.poles.rows() == b.poles.rows() &&
+           a.poles.cols() == b.poles.cols();
+  };
+  const CurveSampler moved_curve = [&](size_t i, const CurveConstraint& c) {
+    const CurveConstraint& was = pb.curves[i];
+    if (!same_curve(c.preimage, was.preimage) || c.preimage.poles != was.preimage.poles ||
+        !same_curve(c.target, was.target) || c.weight != was.weight || c.exact != was.exact)
+      throw InvalidInput("update: a curve's pre-image, knots or weight changed: prepare again");
+    ConstraintSamples block = st.curve_blocks[i];  // same rows; new right-hand sides
+    std::vector<bool> kept;
+    curve_rhs(c, st.curve_samplings[i], block.rhs, block.weight, kept);
+    if (block.weight.size() != block.index.size())
+      throw InvalidInput("update: a curve's samples changed: prepare the sheet again");
+    return block;
+  };
+  const std::vector<ConstraintSamples> blocks =
+      sample_constraints(moved, out.report.coupled, moved_curve);
   if (!same_samples(blocks, st.assembled.quad.blocks))
     throw InvalidInput(
         "update: constraints were added, removed or re-placed (not only moved): "

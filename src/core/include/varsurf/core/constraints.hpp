@@ -55,6 +55,19 @@ ConstraintSamples sample_point(const SplineSpace& space, const PointConstraint& 
 // Throws InvalidInput if the pre-image leaves the sheet's domain.
 ConstraintSamples sample_curve(const SplineSpace& space, const CurveConstraint& c);
 
+// Where sample_curve samples: parameters and quadrature weights (before arc length). They depend
+// on the pre-image and the target's knots only, so a target moved with the same knots reuses them.
+struct CurveSampling {
+  std::vector<double> t;
+  std::vector<double> rule_weight;
+};
+CurveSampling curve_sampling(const SplineSpace& space, const CurveConstraint& c);
+
+// sample_curve's right-hand sides and row weights for the target at the sampling's parameters;
+// kept[k] is false for parameters dropped (no arc length there). No basis is evaluated.
+void curve_rhs(const CurveConstraint& c, const CurveSampling& sampling, Eigen::MatrixXd& rhs,
+               std::vector<double>& weights, std::vector<bool>& kept);
+
 // Largest |w(c(t)) - D(t)| over `samples` parameters evenly spaced on the curve: the incidence
 // error as the solver sees it (through the pre-image).
 double incidence_error(const SplineSpace& space, const Eigen::MatrixX3d& poles,
