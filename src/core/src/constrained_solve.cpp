@@ -74,10 +74,11 @@ struct ConstrainedSolve::Impl {
 #endif
     return ldlt.solve(rhs);
   }
-  Sparse samples;                    // B: sample rows x n
-  Eigen::MatrixXd sample_rhs;        // D: sample rows x width (fixed columns moved over)
-  std::vector<int> sample_block;     // block of each sample row
-  std::vector<double> block_weight;  // sum of the sample weights of each block
+  Sparse samples;                     // B: sample rows x n
+  Eigen::MatrixXd sample_rhs;         // D: sample rows x width (fixed columns moved over)
+  std::vector<int> sample_block;      // block of each sample row
+  std::vector<double> sample_weight;  // w of each sample row (coupled rows: per coordinate)
+  std::vector<double> block_weight;   // sum of the sample weights of each block
   std::vector<bool> block_exact;
   mutable Eigen::MatrixXd bregman_offset;  // d_k - D of the last solve: a warm start for drags
   // cg
@@ -281,6 +282,7 @@ void ConstrainedSolve::Impl::setup_samples(const std::vector<ConstraintSamples>&
       }
       // A row on fixed poles only still counts in its constraint's residual.
       sample_block.push_back(static_cast<int>(bi));
+      sample_weight.push_back(block.weight[static_cast<size_t>(k)]);
       weight += block.weight[static_cast<size_t>(k)];
     }
     block_weight.push_back(weight);
@@ -364,9 +366,15 @@ Eigen::MatrixXd ConstrainedSolve::Impl::solve_penalty(const Eigen::MatrixXd& g,
       continue;
     }
     const Eigen::MatrixXd res = d - samples * x;
-    std::vector<double> sq(blocks, 0.0);
-    for (Eigen::Index i = 0; i < rows; ++i)
-      sq[static_cast<size_t>(sample_block[static_cast<size_t>(i)])] += res.row(i).squaredNorm();
+    std::vector<double> sq(blocks, 0.0), far(blocks, 0.0);
+    for (Eigen::Index i = 0; i < rows; ++i) {
+      const size_t b = static_cast<size_t>(sample_block[static_cast<size_t>(i)]);
+      const double r2 = res.row(i).squaredNorm();
+      sq[b] += r2;
+      // The row is scaled by sqrt(w): its distance is |res| / sqrt(w).
+      if (sample_weight[static_cast<size_t>(i)] > 0.0)
+        far[b] = std::max(far[b], std::sqrt(r2 / sample_weight[static_cast<size_t>(i)]));
+    }
     met = true;
     bool stalled = true;
     worst = 0.0;
@@ -374,7 +382,8 @@ Eigen::MatrixXd ConstrainedSolve::Impl::solve_penalty(const Eigen::MatrixXd& g,
       const double rms = block_weight[b] > 0.0 ? std::sqrt(sq[b] / block_weight[b]) : 0.0;
       worst = std::max(worst, rms);
       const bool exact = block_exact[b] || opt.fit_tolerance == 0.0;
-      if (exact || rms > opt.fit_tolerance) met = false;
+      if (exact || rms > opt.fit_tolerance || far[b] > opt.max_fit_factor * opt.fit_tolerance)
+        met = false;
       if (rms < previous[b] * (1.0 - 1e-6) && rms > 1e-13 * scale) stalled = false;
       previous[b] = rms;
     }

@@ -1,13 +1,13 @@
 #include "varsurf/occ/deviation.hpp"
 
-#include <GeomAPI_ProjectPointOnCurve.hxx>
-#include <GeomAPI_ProjectPointOnSurf.hxx>
+#include <Extrema_GenLocateExtPS.hxx>
+#include <Extrema_POnSurf.hxx>
+#include <GeomAdaptor_Surface.hxx>
 #include <Geom_BSplineSurface.hxx>
+#include <ShapeAnalysis_Surface.hxx>
 
 #include <algorithm>
-#include <array>
 #include <cmath>
-#include <limits>
 
 #include "varsurf/core/errors.hpp"
 #include "varsurf/occ/geom_convert.hpp"
@@ -23,33 +23,44 @@ double max_deviation(const BSplineSurface& surface, const BSplineCurve& target, 
     throw InvalidInput("max_deviation needs between 2 and 10^7 samples");
   const Handle(Geom_BSplineSurface) geom = to_geom(surface);
   return guarded("measuring the deviation", [&] {
-    double u1, u2, v1, v2;
-    geom->Bounds(u1, u2, v1, v2);
-    GeomAPI_ProjectPointOnSurf on_surface;
-    on_surface.Init(geom, u1, u2, v1, v2);
-    // Interior extrema miss points whose closest sheet point is on the boundary.
-    std::array<GeomAPI_ProjectPointOnCurve, 4> on_boundary;
-    on_boundary[0].Init(geom->UIso(u1), v1, v2);
-    on_boundary[1].Init(geom->UIso(u2), v1, v2);
-    on_boundary[2].Init(geom->VIso(v1), u1, u2);
-    on_boundary[3].Init(geom->VIso(v2), u1, u2);
-    const std::array<gp_Pnt, 4> corners = {geom->Value(u1, v1), geom->Value(u1, v2),
-                                           geom->Value(u2, v1), geom->Value(u2, v2)};
-    double worst = 0.0;
+    // Newton on the normal projection from the last closest point (Extrema_GenLocateExtPS), with
+    // ShapeAnalysis_Surface's global search (which also finds boundary points) for the first
+    // sample and wherever Newton fails or does worse than the step between samples allows.
+    // Measured per curve of 200 samples: 20 ms with a global extremum search and boundary
+    // projections per sample, 13 ms marching with ShapeAnalysis_Surface::NextValueOfUV, 24 ms with
+    // the distance criterion, about 1 ms this way.
+    ShapeAnalysis_Surface analysis(geom);
+    GeomAdaptor_Surface adaptor(geom);
+    Extrema_GenLocateExtPS locate(adaptor, 1e-12, 1e-12);
+    double worst = 0.0, last_gap = 0.0;
+    gp_Pnt2d uv;
+    gp_Pnt previous;
     const double t0 = target.first(), t1 = target.last();
     for (int i = 0; i < samples; ++i) {
       const double t = i == samples - 1 ? t1 : t0 + (t1 - t0) * i / (samples - 1);
       const Eigen::VectorXd p = target.evaluate(t);
       const gp_Pnt point(p(0), p(1), p(2));
-      double best = std::numeric_limits<double>::infinity();
-      on_surface.Perform(point);
-      if (on_surface.NbPoints() > 0) best = on_surface.LowerDistance();
-      for (GeomAPI_ProjectPointOnCurve& b : on_boundary) {
-        b.Perform(point);
-        if (b.NbPoints() > 0) best = std::min(best, b.LowerDistance());
+      const double step = i > 0 ? point.Distance(previous) : 0.0;
+      previous = point;
+      double gap = 0.0;
+      bool local = false;
+      if (i > 0) {
+        locate.Perform(point, uv.X(), uv.Y(), Standard_False);
+        if (locate.IsDone()) {
+          gap = std::sqrt(locate.SquareDistance());
+          double u = 0.0, v = 0.0;
+          locate.Point().Parameter(u, v);
+          // The closest distance moves by at most the step between samples.
+          local = gap <= last_gap + step + 1e-12;
+          if (local) uv = gp_Pnt2d(u, v);
+        }
       }
-      for (const gp_Pnt& c : corners) best = std::min(best, c.Distance(point));
-      worst = std::max(worst, best);
+      if (!local) {
+        uv = analysis.ValueOfUV(point, 1e-11);
+        gap = analysis.Gap();
+      }
+      last_gap = gap;
+      worst = std::max(worst, gap);
     }
     return worst;
   });

@@ -88,8 +88,10 @@ struct SolveOptions {
   int max_iterations = 100;
   double step_limit = 0.05;
   double nonlinear_tolerance = 1e-9;
-  // Penalty mode: mu^2 relative to the energy's mean diagonal.
+  // Penalty mode: mu^2 relative to the energy's mean diagonal; refinement also continues while
+  // a sample of a constraint is farther than max_fit_factor * fit_tolerance from it.
   double penalty_weight = 1e4;
+  double max_fit_factor = 4.0;
   // CG mode: stop when the projected residual falls below this fraction of its start.
   double cg_tolerance = 1e-13;
   // Automatic mode: more free unknowns than this are solved by CG instead of a factorization;

@@ -1,0 +1,248 @@
+#!/usr/bin/env python3
+"""VarSurf benchmarks: prints the tables of the README's "Benchmarks" section.
+
+    /usr/bin/python3 bench/run_bench.py [--quick]
+
+1. Scaling of the solver (bench/sheet_bench.cpp, one process per size so that peak memory is that
+   size's own): bicubic sheets of 16^2 .. 256^2 poles, 4 wavy boundary curves and 10 interior
+   non-isoparametric curves; assembly, factorization, full solve and drag update, the fitted
+   exponent of time against pole count.
+2. VarSurf against FreeCAD's Surface Filling (OCCT GeomPlate) on the same curves in the same
+   process: time, largest distance from every curve to the result (sampled densely and measured
+   by OCCT projection, independently of either solver), degree, poles and a fairness figure
+   (the integral of k1^2 + k2^2 over the face, sampled).
+3. Michalik & Bruderlin's sizes (TSVD / MTSVD) and 4. Du & Qin's sheet sizes.
+"""
+
+import json
+import math
+import os
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+REPO = Path(__file__).resolve().parents[1]
+BENCH = REPO / "build" / "bench" / "varsurf_sheet_bench"
+FREECAD_LIB = "/usr/lib/freecad-python3/lib"
+
+
+def run_case(*args):
+    out = subprocess.run([str(BENCH), *map(str, args)], check=True, capture_output=True, text=True)
+    return [json.loads(line) for line in out.stdout.splitlines() if line.startswith("{")]
+
+
+def fitted_exponent(xs, ys):
+    lx = [math.log(x) for x in xs]
+    ly = [math.log(y) for y in ys]
+    mx, my = sum(lx) / len(lx), sum(ly) / len(ly)
+    return sum((a - mx) * (b - my) for a, b in zip(lx, ly)) / sum((a - mx) ** 2 for a in lx)
+
+
+def ms(seconds):
+    return f"{1000.0 * seconds:.1f}"
+
+
+def scaling(sizes):
+    print("\n## 1. Scaling: 4 wavy boundary curves + 10 interior curves, automatic mode\n")
+    print("| poles | unknowns | mode | assemble ms | factor ms | solve ms | full ms | drag ms | peak MiB | max dev mm |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
+    rows = []
+    for n in sizes:
+        (r,) = run_case("scaling", n, 10)
+        rows.append(r)
+        print(f"| {n}x{n} | {r['unknowns']} | {r['mode']} | {ms(r['assemble'])} | {ms(r['factor'])} | "
+              f"{ms(r['solve'])} | {ms(r['full'])} | {ms(r['drag'])} | {r['peak_mib']:.0f} | {r['max_dev']:.2g} |")
+    big = [r for r in rows if r["poles"] >= 32]
+    if len(big) >= 2:
+        counts = [r["poles"] ** 2 for r in big]
+        print(f"\nFitted exponent of full-solve time against pole count ({big[0]['poles']}^2 .. "
+              f"{big[-1]['poles']}^2): {fitted_exponent(counts, [r['full'] for r in big]):.2f}; "
+              f"of drag time: {fitted_exponent(counts, [r['drag'] for r in big]):.2f}")
+    return rows
+
+
+def michalik_bruderlin():
+    print("\n## 3. Michalik & Bruderlin's cases\n")
+    print("| case | poles | constraint rows | mode | ms | L-curve corner / directions | max dev mm |")
+    print("|---|---|---|---|---|---|---|")
+    for r in run_case("mb"):
+        corner = f"{r['corner']} / {r['directions']}" if r["directions"] else "-"
+        print(f"| {r['name']} | {r['poles']} | {r['rows']} | {r['mode']} | {ms(r['seconds'])} | {corner} | {r['max_dev']:.2g} |")
+
+
+def du_qin():
+    print("\n## 4. Du & Qin's sheet sizes (4 boundary + 3 interior curves)\n")
+    print("| poles | unknowns | ms | max dev mm |")
+    print("|---|---|---|---|")
+    for r in run_case("duqin"):
+        print(f"| {r['poles']}x{r['poles']} | {r['unknowns']} | {ms(r['seconds'])} | {r['max_dev']:.2g} |")
+
+
+# ------------------------------------------------------------------------------------------------
+# 2. against Surface Filling
+
+
+def _freecad():
+    if FREECAD_LIB not in sys.path:
+        sys.path.append(FREECAD_LIB)
+    if str(REPO / "src") not in sys.path:
+        sys.path.insert(0, str(REPO / "src"))
+    import FreeCAD  # noqa: F401
+    import Part  # noqa: F401
+
+    return FreeCAD, Part
+
+
+def _curve(Part, V, fn, n=65):
+    points = [V(*fn(k / (n - 1))) for k in range(n)]
+    c = Part.BSplineCurve()
+    c.interpolate(points)
+    return c.toShape()
+
+
+def _case_curves(Part, V, amplitude, interior):
+    """Four boundary curves of a 100 mm square (z = amplitude sin(2 pi t), corners at 0) and
+    `interior` slanted wavy curves inside."""
+    L = 100.0
+    wave = lambda t: amplitude * math.sin(2 * math.pi * t)  # noqa: E731
+    boundary = [
+        _curve(Part, V, lambda t: (L * t, 0.0, wave(t))),
+        _curve(Part, V, lambda t: (L, L * t, wave(t))),
+        _curve(Part, V, lambda t: (L * (1 - t), L, wave(t))),
+        _curve(Part, V, lambda t: (0.0, L * (1 - t), wave(t))),
+    ]
+    inner = []
+    for j in range(interior):
+        a = 0.2 + 0.6 * (j + 0.5) / interior - 0.05
+        inner.append(_curve(Part, V, lambda t, a=a, j=j: (L * (a + 0.1 * t), L * (0.15 + 0.7 * t),
+                                                         6.0 + 3.0 * math.sin(3 * math.pi * t + j))))
+    return boundary, inner
+
+
+def _flat_square(Part, V, spans=16):
+    knots = [k / spans for k in range(spans + 1)]
+    mults = [4] + [1] * (spans - 1) + [4]
+    flat = [0.0] * 4 + knots[1:-1] + [1.0] * 4
+    g = [sum(flat[i + 1:i + 4]) / 3.0 for i in range(len(flat) - 4)]
+    s = Part.BSplineSurface()
+    s.buildFromPolesMultsKnots([[V(100 * a, 100 * b, 0) for b in g] for a in g], mults, mults, knots, knots,
+                               False, False, 3, 3)
+    return s.toShape()
+
+
+def _max_distance(face, edges, samples=200):
+    """Largest distance from points sampled on the edges to the face's surface (OCCT projection)."""
+    surface = face.Surface
+    worst = 0.0
+    for edge in edges:
+        for p in edge.discretize(samples):
+            u, v = surface.parameter(p)
+            worst = max(worst, (surface.value(u, v) - p).Length)
+    return worst
+
+
+def _fairness(face, n=60):
+    """Integral of k1^2 + k2^2 over the face's parameter box, by the midpoint rule."""
+    surface = face.Surface
+    u0, u1, v0, v1 = face.ParameterRange
+    du, dv = (u1 - u0) / n, (v1 - v0) / n
+    total = 0.0
+    for i in range(n):
+        for j in range(n):
+            u, v = u0 + (i + 0.5) * du, v0 + (j + 0.5) * dv
+            try:
+                k1 = surface.curvature(u, v, "Max")
+                k2 = surface.curvature(u, v, "Min")
+            except Exception:  # undefined normal: skip the sample
+                continue
+            d1 = surface.getD1(u, v) if hasattr(surface, "getD1") else None
+            if d1 is not None:
+                su, sv = d1[1], d1[2]
+            else:
+                su = (surface.value(min(u + 1e-6, u1), v) - surface.value(u, v)) * (1e6)
+                sv = (surface.value(u, min(v + 1e-6, v1)) - surface.value(u, v)) * (1e6)
+            total += (k1 * k1 + k2 * k2) * su.cross(sv).Length * du * dv
+    return total
+
+
+def filling_comparison():
+    FreeCAD, Part = _freecad()
+    V = FreeCAD.Vector
+    from varsurf import model
+
+    print("\n## 2. VarSurf against FreeCAD's Surface Filling (GeomPlate), same curves, same run\n")
+    print("| case | VarSurf ms | Filling ms | time ratio | VarSurf max dev mm | Filling max dev mm | dev ratio "
+          "| VarSurf degree / poles | Filling degree / poles | fairness VarSurf / Filling |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
+    # (name, boundary wave amplitude, interior curves, VarSurf tolerance in mm)
+    cases = [("flat boundary, 1 interior", 0.0, 1, 0.01), ("wavy boundary, 1 interior", 5.0, 1, 0.01),
+             ("wavy boundary, 3 interior", 5.0, 3, 0.01), ("wavy boundary, 6 interior", 5.0, 6, 0.01),
+             ("wavy boundary, 3 interior, tolerance 1e-3", 5.0, 3, 0.001),
+             ("wavy boundary, 6 interior, tolerance 1e-3", 5.0, 6, 0.001)]
+    doc = FreeCAD.newDocument("Bench")
+    for name, amplitude, interior, tolerance in cases:
+        boundary, inner = _case_curves(Part, V, amplitude, interior)
+        edges = boundary + inner
+        base = _flat_square(Part, V)
+        t = time.perf_counter()
+        ours = model.solve_sheet_on_face(base, edges, fix_boundary=False, tolerance=tolerance)
+        ours_s = time.perf_counter() - t
+        objs = []
+        for k, e in enumerate(edges):
+            o = doc.addObject("Part::Feature", f"C{k}")
+            o.Shape = e
+            objs.append(o)
+        doc.recompute()
+        filling = doc.addObject("Surface::Filling", "Filling")
+        filling.BoundaryEdges = [(o, "Edge1") for o in objs[:4]]
+        if inner:
+            filling.UnboundEdges = [(o, "Edge1") for o in objs[4:]]
+        t = time.perf_counter()
+        doc.recompute()
+        fill_s = time.perf_counter() - t
+        if not filling.isValid() or filling.Shape.isNull() or not filling.Shape.Faces:
+            print(f"| {name} | {ms(ours_s)} | failed: {filling.getStatusString()} | | | | | | | |")
+            continue
+        ff = filling.Shape.Faces[0]
+        of = ours.shape
+        dev_o, dev_f = _max_distance(of, edges), _max_distance(ff, edges)
+        fair_o, fair_f = _fairness(of), _fairness(ff)
+        so, sf = of.Surface, ff.Surface
+        print(f"| {name} | {ms(ours_s)} | {ms(fill_s)} | {fill_s / ours_s:.1f}x | {dev_o:.2g} | {dev_f:.2g} | "
+              f"{dev_f / max(dev_o, 1e-300):.0f}x | {so.UDegree}x{so.VDegree} / {so.NbUPoles}x{so.NbVPoles} | "
+              f"{getattr(sf, 'UDegree', '?')}x{getattr(sf, 'VDegree', '?')} / "
+              f"{getattr(sf, 'NbUPoles', '?')}x{getattr(sf, 'NbVPoles', '?')} | {fair_o:.3g} / {fair_f:.3g} |")
+        for o in [filling] + objs:
+            doc.removeObject(o.Name)
+    FreeCAD.closeDocument(doc.Name)
+
+
+def main():
+    quick = "--quick" in sys.argv
+    if not BENCH.exists():
+        sys.exit(f"{BENCH} is missing: build first (bash tools/build.sh)")
+    print("# VarSurf benchmarks")
+    print(f"\nMachine: {os.cpu_count()} cores, {platform_line()}")
+    scaling([16, 32, 64] if quick else [16, 32, 64, 128, 256])
+    filling_comparison()
+    michalik_bruderlin()
+    du_qin()
+
+
+def platform_line():
+    import platform
+
+    cpu = ""
+    try:
+        for line in Path("/proc/cpuinfo").read_text().splitlines():
+            if line.startswith("model name"):
+                cpu = line.split(":", 1)[1].strip()
+                break
+    except OSError:
+        pass
+    return f"{cpu or platform.processor()}, {platform.platform()}"
+
+
+if __name__ == "__main__":
+    main()
