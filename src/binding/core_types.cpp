@@ -318,6 +318,11 @@ void bind_core_types(py::module_& m) {
                      "CG mode: relative reduction of the projected residual.")
       .def_readwrite("direct_limit", &SolveOptions::direct_limit,
                      "Automatic mode: more free unknowns than this use CG.")
+      .def_readwrite("krylov_limit", &SolveOptions::krylov_limit,
+                     "TSVD/MTSVD: larger constraint groups are truncated by CGLS iterations.")
+      .def_readwrite("max_fit_factor", &SolveOptions::max_fit_factor,
+                     "Penalty mode: refine while a sample is farther than this times "
+                     "fit_tolerance.")
       .def_readwrite("cluster_limit", &SolveOptions::cluster_limit,
                      "Automatic mode: larger groups of interacting constraints use the penalty "
                      "mode.");

@@ -283,6 +283,42 @@ TEST(SolveModes, MtsvdRemovesTheAliasingOfTsvdOnAnIllPosedCurve) {
   EXPECT_LT(rms_incidence(pb.space, mtsvd.poles, c), 2e-3);
 }
 
+TEST(SolveModes, KrylovTruncationForLargeConstraintGroups) {
+  // The same ill-posed case through the Krylov path (forced by a low limit): CGLS iterations
+  // stopped at the L-curve's corner stand in for the truncated SVD; MTSVD then lets the energy
+  // place what that fit leaves free.
+  SheetProblem pb;
+  pb.space = SplineSpace::uniform(3, 3, 5, 7);
+  pb.initial_poles = flat_poles(pb.space);
+  pb.energy = ThinPlateWeights::isotropic(0.1, 1.0);
+  CurveConstraint c;
+  c.preimage = test::line_curve(Eigen::Vector2d(0.05, 0.1), Eigen::Vector2d(0.95, 0.8));
+  std::vector<double> fine;
+  for (int i = 0; i <= 256; ++i) fine.push_back(i / 256.0);
+  c.target = test::fit_piecewise_curve(fine, 5, 3, [](double t) {
+    return Eigen::VectorXd(Eigen::Vector3d(0.05 + 0.9 * t, 0.1 + 0.7 * t,
+                                           0.15 * std::sin(5 * t) + 2e-3 * std::sin(90 * t)));
+  });
+  pb.curves.push_back(c);
+  SolveOptions o = with_mode(SolveMode::tsvd);
+  o.krylov_limit = 10;
+  const SolveResult tsvd = solve_sheet(pb, o);
+  o.mode = SolveMode::mtsvd;
+  const SolveResult mtsvd = solve_sheet(pb, o);
+  for (const SolveResult* r : {&tsvd, &mtsvd}) {
+    EXPECT_NE(r->report.mode_reason.find("Krylov"), std::string::npos) << r->report.mode_reason;
+    const LCurve& lc = r->report.lcurve;
+    ASSERT_GT(lc.k.size(), 3u);
+    EXPECT_GT(lc.corner, 1);
+    if (r == &tsvd) {
+      EXPECT_EQ(r->report.inner_iterations, lc.corner);
+    }
+    EXPECT_LT(rms_incidence(pb.space, r->poles, c), 3e-3) << to_string(r->report.mode);
+  }
+  // The energy norm places what the constraints leave free: a smoother sheet.
+  EXPECT_LT(bending(pb.space, mtsvd.poles), 0.5 * bending(pb.space, tsvd.poles));
+}
+
 TEST(PreparedSheet, MovedTargetsEqualAFreshSolve) {
   // Directions weaker than 1e-5 of the strongest are dropped, so that rounding in the data
   // (amplified by 1 / sigma) stays below the comparison's 1e-10.

@@ -84,6 +84,10 @@ struct ConstrainedSolve::Impl {
   mutable Eigen::MatrixXd bregman_offset;  // d_k - D of the last solve: a warm start for drags
   // cg
   Eigen::VectorXd inv_diag;
+  // tsvd / mtsvd on large constraint groups: CGLS iterations as the regularizing truncation
+  bool krylov = false;
+  Eigen::MatrixXd solve_krylov(const Eigen::MatrixXd& g, const Eigen::MatrixXd& d,
+                               SolveReport& rep) const;
 
   Eigen::MatrixXd energy_rhs(const Eigen::MatrixXd& f) const {  // f_f - Q_fc x_c
     Eigen::MatrixXd out(n, width);
@@ -148,7 +152,15 @@ ConstrainedSolve::ConstrainedSolve(const Quadratic& pb, const SolveOptions& opt,
   if (m.n == 0) return;
 
   auto t = Clock::now();
-  if (m.mode == SolveMode::penalty) {
+  if ((m.mode == SolveMode::tsvd || m.mode == SolveMode::mtsvd) &&
+      largest_cluster(pb.blocks, m.free_index, m.n) > opt.krylov_limit) {
+    m.krylov = true;
+    rep.mode_reason +=
+        " (Krylov: CGLS iterations truncated at the L-curve corner; the largest "
+        "constraint group exceeds " +
+        std::to_string(opt.krylov_limit) + " unknowns for a dense SVD)";
+  }
+  if (m.mode == SolveMode::penalty || m.krylov) {
     m.setup_samples(pb.blocks);
     rep.constraint_samples = static_cast<int>(m.samples.rows());
     rep.reduce_seconds = seconds_since(t);
@@ -197,7 +209,9 @@ ConstrainedSolve::ConstrainedSolve(const Quadratic& pb, const SolveOptions& opt,
   const double scale = diag_mean > 0.0 ? diag_mean : 1.0;
   m.eps = opt.regularization * scale;
 
-  if (m.mode == SolveMode::exact || m.mode == SolveMode::mtsvd) {
+  if (m.krylov && m.mode == SolveMode::tsvd) {
+    // CGLS needs no factorization.
+  } else if ((m.mode == SolveMode::exact || m.mode == SolveMode::mtsvd) && !m.krylov) {
     // KKT system [Q_ff, A^T; A, 0] [x_f; y] = [f_f - Q_fc x_c; b] (Welch & Witkin eq. 9).
     std::vector<Eigen::Triplet<double>> trip = qt;
     for (int row = 0; row < m.r; ++row)
@@ -218,7 +232,7 @@ ConstrainedSolve::ConstrainedSolve(const Quadratic& pb, const SolveOptions& opt,
     m.lu.factorize(shifted);
     if (m.lu.info() != Eigen::Success)
       throw SolveFailure("the constrained system is singular: " + m.lu.lastErrorMessage());
-  } else if (m.mode == SolveMode::penalty) {
+  } else if (m.mode == SolveMode::penalty || m.krylov) {
     if (!(opt.penalty_weight > 0.0) || !std::isfinite(opt.penalty_weight))
       throw InvalidInput("penalty weight must be a positive number");
     // W&W eq. 10 minimizes |(mu B; H) p - (mu d; f)|; its normal equations (Q + mu^2 B^T B) p =
@@ -259,11 +273,11 @@ ConstrainedSolve::ConstrainedSolve(const Quadratic& pb, const SolveOptions& opt,
 ConstrainedSolve::~ConstrainedSolve() = default;
 
 const Eigen::MatrixXd& ConstrainedSolve::reduced_rhs() const {
-  return impl_->mode == SolveMode::penalty ? impl_->sample_rhs : impl_->red.rhs;
+  return (impl_->mode == SolveMode::penalty || impl_->krylov) ? impl_->sample_rhs : impl_->red.rhs;
 }
 
 Eigen::MatrixXd ConstrainedSolve::reduced_rhs(const std::vector<ConstraintSamples>& moved) const {
-  if (impl_->mode == SolveMode::penalty) return impl_->samples_rhs(moved);
+  if (impl_->mode == SolveMode::penalty || impl_->krylov) return impl_->samples_rhs(moved);
   return varsurf::reduced_rhs(impl_->red, moved, impl_->free_index, impl_->x0);
 }
 
@@ -398,6 +412,57 @@ Eigen::MatrixXd ConstrainedSolve::Impl::solve_penalty(const Eigen::MatrixXd& g,
   return x;
 }
 
+Eigen::MatrixXd ConstrainedSolve::Impl::solve_krylov(const Eigen::MatrixXd& g,
+                                                     const Eigen::MatrixXd& d,
+                                                     SolveReport& rep) const {
+  // CGLS on min |B (x - x0) - r0| from x0: its iterations filter the constraints' singular
+  // directions like a truncated SVD (Hansen's regularizing iterations), and the L-curve over the
+  // iteration count chooses where to stop. A first run draws the L-curve, a second stops at its
+  // corner: the TSVD answer. MTSVD keeps what that fit asks of the constraints (B x_k, data now
+  // consistent) and lets the energy place the rest, through the penalty mode's factorization
+  // (Michalik & Bruderlin: take k from TSVD, then solve the side constraint once).
+  const int max_it = std::min(std::max(n, 1), 400);
+  const Eigen::MatrixXd r0 = d - samples * x0_free;
+  auto run = [&](int stop_at, std::vector<double>* rho, std::vector<double>* eta) {
+    Eigen::MatrixXd y = Eigen::MatrixXd::Zero(n, width), r = r0;
+    Eigen::MatrixXd s = samples.transpose() * r, p = s;
+    Eigen::VectorXd gamma = s.colwise().squaredNorm().transpose();
+    const double floor = 1e-28 * std::max(gamma.maxCoeff(), 1e-300);
+    for (int k = 1; k <= stop_at; ++k) {
+      for (Eigen::Index c = 0; c < width; ++c) {
+        if (!(gamma(c) > floor)) continue;
+        const Eigen::VectorXd q = samples * p.col(c);
+        const double qq = q.squaredNorm();
+        if (!(qq > 0.0)) continue;
+        const double alpha = gamma(c) / qq;
+        y.col(c) += alpha * p.col(c);
+        r.col(c) -= alpha * q;
+        s.col(c) = samples.transpose() * r.col(c);
+        const double next = s.col(c).squaredNorm();
+        p.col(c) = s.col(c) + (next / gamma(c)) * p.col(c);
+        gamma(c) = next;
+      }
+      if (rho) {
+        rho->push_back(r.norm());
+        eta->push_back(y.norm());
+      }
+      if (!(gamma.maxCoeff() > floor)) break;
+    }
+    return Eigen::MatrixXd(x0_free + y);
+  };
+  LCurve curve;
+  run(max_it, &curve.residual, &curve.solution_norm);
+  for (size_t k = 0; k < curve.residual.size(); ++k) curve.k.push_back(static_cast<int>(k + 1));
+  curve.corner = lcurve_corner(curve.residual, curve.solution_norm);
+  rep.lcurve = curve;
+  const Eigen::MatrixXd xk = run(curve.corner, nullptr, nullptr);
+  if (mode == SolveMode::tsvd) {
+    rep.inner_iterations = curve.corner;
+    return xk;
+  }
+  return solve_penalty(g, samples * xk, rep);
+}
+
 Eigen::MatrixXd ConstrainedSolve::Impl::solve_cg(const Eigen::MatrixXd& g, const Eigen::MatrixXd& b,
                                                  SolveReport& rep) const {
   // Elimination: x = x_s + P y with x_s the start projected onto {A x = b} and P the projector
@@ -443,31 +508,34 @@ Eigen::MatrixXd ConstrainedSolve::solve(const Eigen::MatrixXd& f, const Eigen::M
   Eigen::MatrixXd x = m.x0;
   if (m.n == 0) return x;
   const auto t = Clock::now();
-  const Eigen::Index expected = m.mode == SolveMode::penalty ? m.samples.rows() : m.r;
+  const Eigen::Index expected = (m.mode == SolveMode::penalty || m.krylov) ? m.samples.rows() : m.r;
   if (b.rows() != expected || b.cols() != m.width)
     throw InvalidInput("reduced right-hand side size");
   Eigen::MatrixXd sol;
-  switch (m.mode) {
-    case SolveMode::exact:
-    case SolveMode::mtsvd:
-      sol = m.solve_kkt(m.energy_rhs(f), b, rep);
-      break;
-    case SolveMode::penalty:
-      sol = m.solve_penalty(m.energy_rhs(f), b, rep);
-      break;
-    case SolveMode::cg:
-      sol = m.solve_cg(m.energy_rhs(f), b, rep);
-      break;
-    case SolveMode::tsvd:
-    case SolveMode::automatic:
-      // Michalik & Bruderlin eq. 3-4: F = F_k + V_{k+1} V_{k+1}^T F_0, i.e. the start moved
-      // by the least change that meets the kept rows.
-      sol = m.x0_free;
-      if (m.r > 0) sol += m.a.transpose() * (b - m.a * m.x0_free);
-      break;
-  }
+  if (m.krylov) {
+    sol = m.solve_krylov(m.energy_rhs(f), b, rep);
+  } else
+    switch (m.mode) {
+      case SolveMode::exact:
+      case SolveMode::mtsvd:
+        sol = m.solve_kkt(m.energy_rhs(f), b, rep);
+        break;
+      case SolveMode::penalty:
+        sol = m.solve_penalty(m.energy_rhs(f), b, rep);
+        break;
+      case SolveMode::cg:
+        sol = m.solve_cg(m.energy_rhs(f), b, rep);
+        break;
+      case SolveMode::tsvd:
+      case SolveMode::automatic:
+        // Michalik & Bruderlin eq. 3-4: F = F_k + V_{k+1} V_{k+1}^T F_0, i.e. the start moved
+        // by the least change that meets the kept rows.
+        sol = m.x0_free;
+        if (m.r > 0) sol += m.a.transpose() * (b - m.a * m.x0_free);
+        break;
+    }
   if (!sol.allFinite()) throw SolveFailure("the solve produced non-finite poles");
-  if (m.mode == SolveMode::penalty) {
+  if (m.mode == SolveMode::penalty || m.krylov) {
     if (m.samples.rows() > 0) rep.constraint_residual = (m.samples * sol - b).cwiseAbs().maxCoeff();
   } else if (m.r > 0) {
     rep.constraint_residual = (m.a * sol - b).cwiseAbs().maxCoeff();

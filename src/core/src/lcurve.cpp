@@ -7,6 +7,43 @@
 
 namespace varsurf {
 
+int lcurve_corner(const std::vector<double>& residual, const std::vector<double>& solution_norm) {
+  if (residual.size() != solution_norm.size()) throw InvalidInput("L-curve: sizes differ");
+  const size_t n = residual.size();
+  if (n < 3) return static_cast<int>(n);
+  // Knee of the log-log curve, axes normalized to [0, 1].
+  std::vector<double> x(n), y(n);
+  for (size_t i = 0; i < n; ++i) {
+    x[i] = std::log10(std::max(residual[i], 1e-300));
+    y[i] = std::log10(std::max(solution_norm[i], 1e-300));
+  }
+  auto normalize = [](std::vector<double>& v) {
+    const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
+    const double a = *lo, span = *hi - *lo;
+    for (double& t : v) t = span > 0.0 ? (t - a) / span : 0.0;
+  };
+  normalize(x);
+  normalize(y);
+  const double dx = x.back() - x.front(), dy = y.back() - y.front();
+  const double len = std::hypot(dx, dy);
+  double best = -1.0;
+  int corner = static_cast<int>(n);
+  for (size_t i = 0; i < n; ++i) {
+    // Signed distance from the chord; positive on the side of the origin (small rho, small eta).
+    const double d = len > 0.0 ? (dx * (y[i] - y.front()) - dy * (x[i] - x.front())) / len : 0.0;
+    if (d > best) {
+      best = d;
+      corner = static_cast<int>(i + 1);
+    }
+  }
+  // A well-posed problem has no corner: no point lies clearly below the chord (no L), or past the
+  // knee the solution norm barely grows, so every direction is stable and all are kept (Hansen:
+  // truncate only where the norm blows up).
+  if (best <= 0.02 || solution_norm.back() <= 2.0 * solution_norm[static_cast<size_t>(corner - 1)])
+    corner = static_cast<int>(n);
+  return corner;
+}
+
 LCurve lcurve(const Eigen::VectorXd& sigma, const Eigen::VectorXd& gain_sq, double total_sq) {
   if (sigma.size() != gain_sq.size()) throw InvalidInput("L-curve: sizes differ");
   if (!sigma.allFinite() || !gain_sq.allFinite() || !std::isfinite(total_sq))
@@ -32,35 +69,7 @@ LCurve lcurve(const Eigen::VectorXd& sigma, const Eigen::VectorXd& gain_sq, doub
     out.corner = static_cast<int>(n);
     return out;
   }
-  // Knee of the log-log curve, axes normalized to [0, 1].
-  std::vector<double> x(static_cast<size_t>(n)), y(static_cast<size_t>(n));
-  for (size_t i = 0; i < x.size(); ++i) {
-    x[i] = std::log10(out.residual[i]);
-    y[i] = std::log10(std::max(out.solution_norm[i], 1e-300));
-  }
-  auto normalize = [](std::vector<double>& v) {
-    const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
-    const double a = *lo, span = *hi - *lo;
-    for (double& t : v) t = span > 0.0 ? (t - a) / span : 0.0;
-  };
-  normalize(x);
-  normalize(y);
-  const double dx = x.back() - x.front(), dy = y.back() - y.front();
-  const double len = std::hypot(dx, dy);
-  double best = -1.0;
-  out.corner = static_cast<int>(n);
-  for (size_t i = 0; i < x.size(); ++i) {
-    // Signed distance from the chord; positive on the side of the origin (small rho, small eta).
-    const double d = len > 0.0 ? (dx * (y[i] - y.front()) - dy * (x[i] - x.front())) / len : 0.0;
-    if (d > best) {
-      best = d;
-      out.corner = static_cast<int>(i + 1);
-    }
-  }
-  // A well-posed problem has no corner: past the knee the solution norm barely grows, so every
-  // direction is stable and all are kept (Hansen: truncate only where the norm blows up).
-  if (out.solution_norm.back() <= 2.0 * out.solution_norm[static_cast<size_t>(out.corner - 1)])
-    out.corner = static_cast<int>(n);
+  out.corner = lcurve_corner(out.residual, out.solution_norm);
   return out;
 }
 

@@ -24,4 +24,8 @@ struct LCurve {
 // mismatched or unsorted input.
 LCurve lcurve(const Eigen::VectorXd& sigma, const Eigen::VectorXd& gain_sq, double total_sq);
 
+// The corner (1-based) of any discrete L-curve given by its points, e.g. the iterates of a
+// regularizing Krylov method: the knee rule and the well-posed rule of lcurve().
+int lcurve_corner(const std::vector<double>& residual, const std::vector<double>& solution_norm);
+
 }  // namespace varsurf

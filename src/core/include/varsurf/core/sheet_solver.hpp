@@ -102,6 +102,9 @@ struct SolveOptions {
   // mode's refinement converges slowly in weak directions.
   int direct_limit = 400000;
   int cluster_limit = 200;
+  // TSVD / MTSVD: constraint groups with more unknowns than this are truncated by CGLS
+  // iterations (a Krylov method) instead of a dense SVD.
+  int krylov_limit = 1500;
 };
 
 struct SolveReport {
