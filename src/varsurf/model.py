@@ -430,7 +430,14 @@ def solve_sheet_on_face(
         except nat.InvalidInput as error:
             raise SheetError(str(error)) from error
         conflict = float(result.report.conflict)
-        if conflict <= tolerance or 2 * spans > max_spans:
+        deviations = None
+        if conflict <= tolerance:
+            # The fit is judged per curve by its RMS; a curve can still stray further somewhere.
+            trial = _build(nat.BSplineSurface, space=space, poles=result.poles)
+            deviations = [float(nat.max_deviation(trial, c, DEVIATION_SAMPLES)) for c in targets]
+            if max(deviations, default=0.0) <= tolerance:
+                break
+        if 2 * spans > max_spans:
             break
         spans *= 2
 
@@ -445,7 +452,8 @@ def solve_sheet_on_face(
             "curves close to a kept boundary must reach it smoothly (or turn FixBoundary off)."
         )
     shape = _single_face(shape_from_brep(nat.face_brep(surface)))
-    deviations = [float(nat.max_deviation(surface, c, DEVIATION_SAMPLES)) for c in targets]
+    if deviations is None:
+        deviations = [float(nat.max_deviation(surface, c, DEVIATION_SAMPLES)) for c in targets]
     residuals = [float(constraint_specs.residual(p, surface, base)) for p in placed]
     report = result.report
     return SheetOutcome(
