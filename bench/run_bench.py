@@ -45,14 +45,15 @@ def ms(seconds):
 
 def scaling(sizes):
     print("\n## 1. Scaling: 4 wavy boundary curves + 10 interior curves, automatic mode\n")
-    print("| poles | unknowns | mode | assemble ms | factor ms | solve ms | full ms | drag ms | peak MiB | max dev mm |")
-    print("|---|---|---|---|---|---|---|---|---|---|")
+    print("| poles | unknowns | mode | assemble ms | factor ms | solve ms | full ms | drag ms | add a pin ms | peak MiB | max dev mm |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|")
     rows = []
     for n in sizes:
         (r,) = run_case("scaling", n, 10)
         rows.append(r)
         print(f"| {n}x{n} | {r['unknowns']} | {r['mode']} | {ms(r['assemble'])} | {ms(r['factor'])} | "
-              f"{ms(r['solve'])} | {ms(r['full'])} | {ms(r['drag'])} | {r['peak_mib']:.0f} | {r['max_dev']:.2g} |")
+              f"{ms(r['solve'])} | {ms(r['full'])} | {ms(r['drag'])} | {ms(r['change'])} | {r['peak_mib']:.0f} | "
+              f"{r['max_dev']:.2g} |")
     big = [r for r in rows if r["poles"] >= 32]
     if len(big) >= 2:
         counts = [r["poles"] ** 2 for r in big]

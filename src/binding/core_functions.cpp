@@ -30,7 +30,11 @@ void bind_core_functions(py::module_& m) {
       .def_property_readonly("result", &PreparedSheet::result)
       .def("update", &PreparedSheet::update, "moved"_a, py::call_guard<py::gil_scoped_release>(),
            "SolveResult for the same problem with moved targets; InvalidInput if anything else "
-           "changed.");
+           "changed.")
+      .def("change", &PreparedSheet::change, "changed"_a, py::call_guard<py::gil_scoped_release>(),
+           "SolveResult with constraints added, removed or re-placed: keeps the energy's assembly "
+           "and unchanged curves' samples, rebuilds the constraint side; later updates start from "
+           "it.");
 
   m.def(
       "boundary_pole_indices",

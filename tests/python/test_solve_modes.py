@@ -72,8 +72,13 @@ def test_prepared_sheet_drag_equals_a_fresh_solve(native):
     assert abs(dragged.poles - fresh.poles).max() < 1e-10
     assert abs(dragged.poles - prepared.result.poles).max() > 1e-3
     problem.points = [nat.PointConstraint(u=0.5, v=0.6, target=[0.45, 0.6, 0.3])]  # re-placed
-    with pytest.raises(nat.InvalidInput, match="prepare the sheet again"):
+    with pytest.raises(nat.InvalidInput, match="use change"):
         prepared.update(problem)
+    changed = prepared.change(problem)  # the constraint side rebuilt, the energy kept
+    assert abs(changed.poles - nat.solve_sheet(problem).poles).max() < 1e-10
+    problem.energy = nat.ThinPlateWeights.isotropic(1.0, 1.0)
+    with pytest.raises(nat.InvalidInput, match="prepare the sheet again"):
+        prepared.change(problem)
 
 
 def test_unknown_mode_is_refused(sheet):

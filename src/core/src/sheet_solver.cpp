@@ -342,15 +342,26 @@ bool same_samples(const std::vector<ConstraintSamples>& a,
 
 }  // namespace
 
-SolveResult PreparedSheet::update(const SheetProblem& moved) {
-  const auto start = Clock::now();
-  State& st = *state_;
-  const SheetProblem& pb = st.problem;
-  validate_problem(moved, st.options);
-  const auto same_space = [](const SplineSpace& a, const SplineSpace& b) {
-    return a.degree_u == b.degree_u && a.degree_v == b.degree_v && a.knots_u == b.knots_u &&
-           a.knots_v == b.knots_v && a.weights.size() == b.weights.size() && a.weights == b.weights;
-  };
+namespace {
+
+bool same_space(const SplineSpace& a, const SplineSpace& b) {
+  return a.degree_u == b.degree_u && a.degree_v == b.degree_v && a.knots_u == b.knots_u &&
+         a.knots_v == b.knots_v && a.weights.size() == b.weights.size() && a.weights == b.weights;
+}
+
+bool same_curve_shape(const BSplineCurve& a, const BSplineCurve& b) {
+  return a.degree == b.degree && a.knots == b.knots && a.poles.rows() == b.poles.rows() &&
+         a.poles.cols() == b.poles.cols();
+}
+
+bool same_curve(const CurveConstraint& a, const CurveConstraint& b) {
+  return same_curve_shape(a.preimage, b.preimage) && a.preimage.poles == b.preimage.poles &&
+         same_curve_shape(a.target, b.target) && a.target.poles == b.target.poles &&
+         a.weight == b.weight && a.exact == b.exact;
+}
+
+// Everything but the constraints is as prepared: the energy and its assembly can be kept.
+void check_same_setup(const SheetProblem& pb, const SheetProblem& moved) {
   const bool same_setup =
       same_space(pb.space, moved.space) && pb.fixed_poles == moved.fixed_poles &&
       pb.energy.alpha == moved.energy.alpha && pb.energy.beta == moved.energy.beta &&
@@ -358,12 +369,11 @@ SolveResult PreparedSheet::update(const SheetProblem& moved) {
       (pb.rest_poles.rows() == 0 || pb.rest_poles == moved.rest_poles) &&
       pb.attractors.size() == moved.attractors.size() &&
       pb.directors.size() == moved.directors.size() && moved.repellers.empty() &&
-      moved.shape_attractors.empty() && moved.pressure == 0.0 &&
-      has_coupled_constraints(pb) == has_coupled_constraints(moved);
+      moved.shape_attractors.empty() && moved.pressure == 0.0;
   if (!same_setup)
     throw InvalidInput(
-        "update: only constraint targets may move (the space, fixed poles, energy, "
-        "rest shape or operators changed): prepare the sheet again");
+        "update: only constraints may change (the space, fixed poles, energy, rest shape or "
+        "operators changed): prepare the sheet again");
   for (size_t i = 0; i < pb.attractors.size(); ++i) {
     const Attractor &a = pb.attractors[i], &b = moved.attractors[i];
     if (a.kind != b.kind || a.origin != b.origin || a.direction != b.direction ||
@@ -377,36 +387,86 @@ SolveResult PreparedSheet::update(const SheetProblem& moved) {
       throw InvalidInput("update: a director changed: prepare the sheet again");
   if (moved.initial_poles != pb.initial_poles)
     throw InvalidInput("update: the start poles changed: prepare the sheet again");
+}
+
+}  // namespace
+
+SolveResult PreparedSheet::update(const SheetProblem& moved) {
+  const auto start = Clock::now();
+  State& st = *state_;
+  const SheetProblem& pb = st.problem;
+  validate_problem(moved, st.options);
+  check_same_setup(pb, moved);
+  if (has_coupled_constraints(pb) != has_coupled_constraints(moved))
+    throw InvalidInput("update: constraints were added or removed: use change()");
   SolveResult out;
   out.report = st.result.report;
-  const auto same_curve = [](const BSplineCurve& a, const BSplineCurve& b) {
-    return a.degree == b.degree && a.knots == b.knots && a.poles.rows() == b.poles.rows() &&
-           a.poles.cols() == b.poles.cols();
-  };
   const CurveSampler moved_curve = [&](size_t i, const CurveConstraint& c) {
+    if (i >= pb.curves.size())
+      throw InvalidInput("update: constraints were added or removed: use change()");
     const CurveConstraint& was = pb.curves[i];
-    if (!same_curve(c.preimage, was.preimage) || c.preimage.poles != was.preimage.poles ||
-        !same_curve(c.target, was.target) || c.weight != was.weight || c.exact != was.exact)
-      throw InvalidInput("update: a curve's pre-image, knots or weight changed: prepare again");
+    if (!same_curve_shape(c.preimage, was.preimage) || c.preimage.poles != was.preimage.poles ||
+        !same_curve_shape(c.target, was.target) || c.weight != was.weight || c.exact != was.exact)
+      throw InvalidInput("update: a curve's pre-image, knots or weight changed: use change()");
     ConstraintSamples block = st.curve_blocks[i];  // same rows; new right-hand sides
     std::vector<bool> kept;
     curve_rhs(c, st.curve_samplings[i], block.rhs, block.weight, kept);
     if (block.weight.size() != block.index.size())
-      throw InvalidInput("update: a curve's samples changed: prepare the sheet again");
+      throw InvalidInput("update: a curve's samples changed: use change()");
     return block;
   };
   const std::vector<ConstraintSamples> blocks =
       sample_constraints(moved, out.report.coupled, moved_curve);
   if (!same_samples(blocks, st.assembled.quad.blocks))
     throw InvalidInput(
-        "update: constraints were added, removed or re-placed (not only moved): "
-        "prepare the sheet again");
+        "update: constraints were added, removed or re-placed (not only moved): use change()");
   const Eigen::MatrixXd b = st.solver->reduced_rhs(blocks);
   const Eigen::MatrixXd x = st.solver->solve(st.assembled.quad.f, b, out.report);
   out.poles = to_poles(x, out.report.coupled);
   out.report.assemble_seconds = out.report.reduce_seconds = out.report.factor_seconds = 0.0;
   out.report.total_seconds = seconds_since(start);
   return out;
+}
+
+SolveResult PreparedSheet::change(const SheetProblem& changed) {
+  const auto start = Clock::now();
+  State& st = *state_;
+  validate_problem(changed, st.options);
+  check_same_setup(st.problem, changed);
+  SolveReport rep;
+  if (!st.result.report.coupled && has_coupled_constraints(changed)) {
+    // A constraint now couples x, y and z: the unknowns' layout changes, so start over. (The
+    // other way round the coupled layout simply stays.)
+    *this = PreparedSheet(changed, st.options);
+    return state_->result;
+  }
+  // The energy (and its assembly) stays; curves already sampled are reused, new ones sampled.
+  auto t = Clock::now();
+  std::vector<CurveSampling> samplings;
+  std::vector<ConstraintSamples> curve_blocks;
+  const CurveSampler reuse = [&](size_t, const CurveConstraint& c) {
+    for (size_t j = 0; j < st.problem.curves.size(); ++j)
+      if (same_curve(c, st.problem.curves[j])) {
+        samplings.push_back(st.curve_samplings[j]);
+        curve_blocks.push_back(st.curve_blocks[j]);
+        return curve_blocks.back();
+      }
+    samplings.push_back(curve_sampling(changed.space, c));
+    curve_blocks.push_back(sample_curve(changed.space, c));
+    return curve_blocks.back();
+  };
+  rep.coupled = st.result.report.coupled;
+  st.assembled.quad.blocks = sample_constraints(changed, rep.coupled, reuse);
+  rep.assemble_seconds = seconds_since(t);
+  st.solver = std::make_unique<ConstrainedSolve>(st.assembled.quad, st.options, rep);
+  const Eigen::MatrixXd x = st.solver->solve(st.assembled.quad.f, st.solver->reduced_rhs(), rep);
+  st.problem = changed;
+  st.curve_samplings = std::move(samplings);
+  st.curve_blocks = std::move(curve_blocks);
+  st.result.poles = to_poles(x, rep.coupled);
+  rep.total_seconds = seconds_since(start);
+  st.result.report = rep;
+  return st.result;
 }
 
 }  // namespace varsurf

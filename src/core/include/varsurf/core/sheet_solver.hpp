@@ -143,7 +143,8 @@ SolveResult solve_sheet(const SheetProblem& problem, const SolveOptions& options
 
 // A solve kept for interactive edits: when only constraint targets move (a dragged point, a
 // curve moved with the same pre-image, a new tangent or plane origin), update() recomputes the
-// reduced right-hand sides and back-substitutes with the kept factorization.
+// reduced right-hand sides and back-substitutes with the kept factorization; when constraints
+// are added or removed, change() rebuilds only the constraint side.
 class PreparedSheet {
  public:
   // Solves the problem (quadratic terms only: repellers, shape attractors and pressure iterate
@@ -158,6 +159,12 @@ class PreparedSheet {
   // The same problem with moved targets. InvalidInput if anything else changed (the constraints'
   // matrices, their number, the space, fixed poles, energy or operators): prepare again.
   SolveResult update(const SheetProblem& moved);
+
+  // The same sheet with constraints added, removed or re-placed: the energy's assembly and the
+  // samples of unchanged curves are kept; the constraints are reduced and the system factored
+  // again. The result is then the prepared state for further updates. InvalidInput if anything
+  // but the constraints changed.
+  SolveResult change(const SheetProblem& changed);
 
  private:
   struct State;
