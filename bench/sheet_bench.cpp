@@ -124,17 +124,20 @@ double max_parametric_deviation(const SheetProblem& pb, const Eigen::MatrixX3d& 
   return worst;
 }
 
-SolveMode parse_mode(const std::string& name) {
+SolveMode parse_mode(std::string name, bool& qr) {
+  qr = name == "penalty-qr";
+  if (qr) name = "penalty";
   for (SolveMode m : {SolveMode::automatic, SolveMode::exact, SolveMode::penalty, SolveMode::cg,
                       SolveMode::tsvd, SolveMode::mtsvd})
     if (name == to_string(m)) return m;
   throw std::runtime_error("unknown mode " + name);
 }
 
-int scaling(int poles, int interior, SolveMode mode) {
+int scaling(int poles, int interior, SolveMode mode, bool qr) {
   const SheetProblem pb = scaling_problem(poles, interior);
   SolveOptions opt;
   opt.mode = mode;
+  opt.penalty_qr = qr;
   opt.fit_tolerance = 0.0025;  // what a Sheet uses at its default tolerance (0.01 mm / 4)
   const double t0 = now();
   PreparedSheet prepared(pb, opt);
@@ -165,13 +168,14 @@ int scaling(int poles, int interior, SolveMode mode) {
   const double change = now() - tc;
   std::printf(
       "{\"case\": \"scaling\", \"poles\": %d, \"interior\": %d, \"unknowns\": %d, "
-      "\"mode\": \"%s\", \"assemble\": %.6f, \"reduce\": %.6f, \"factor\": %.6f, \"solve\": %.6f, "
+      "\"mode\": \"%s%s\", \"assemble\": %.6f, \"reduce\": %.6f, \"factor\": %.6f, \"solve\": "
+      "%.6f, "
       "\"full\": %.6f, \"drag\": %.6f, \"change\": %.6f, \"rank\": %d, \"inner\": %d, "
       "\"peak_mib\": %.1f, "
       "\"max_dev\": %.3g}\n",
-      poles, interior, r.unknowns, to_string(r.mode), r.assemble_seconds, r.reduce_seconds,
-      r.factor_seconds, r.solve_seconds, full, drag, change, r.constraint_rank, r.inner_iterations,
-      peak_mib(), max_dev);
+      poles, interior, r.unknowns, to_string(r.mode), qr ? " (QR)" : "", r.assemble_seconds,
+      r.reduce_seconds, r.factor_seconds, r.solve_seconds, full, drag, change, r.constraint_rank,
+      r.inner_iterations, peak_mib(), max_dev);
   return 0;
 }
 
@@ -248,9 +252,11 @@ int duqin() {
 int main(int argc, char** argv) {
   try {
     const std::string what = argc > 1 ? argv[1] : "";
-    if (what == "scaling" && (argc == 4 || argc == 5))
-      return scaling(std::atoi(argv[2]), std::atoi(argv[3]),
-                     parse_mode(argc == 5 ? argv[4] : "automatic"));
+    if (what == "scaling" && (argc == 4 || argc == 5)) {
+      bool qr = false;
+      const SolveMode mode = parse_mode(argc == 5 ? argv[4] : "automatic", qr);
+      return scaling(std::atoi(argv[2]), std::atoi(argv[3]), mode, qr);
+    }
     if (what == "mb") return mb();
     if (what == "duqin") return duqin();
     std::fprintf(stderr, "usage: %s scaling <poles> <interior> [mode] | mb | duqin\n", argv[0]);

@@ -320,6 +320,9 @@ void bind_core_types(py::module_& m) {
                      "Automatic mode: more free unknowns than this use CG.")
       .def_readwrite("krylov_limit", &SolveOptions::krylov_limit,
                      "TSVD/MTSVD: larger constraint groups are truncated by CGLS iterations.")
+      .def_readwrite("penalty_qr", &SolveOptions::penalty_qr,
+                     "Penalty mode: sparse QR of the stacked system instead of Cholesky of its "
+                     "normal equations.")
       .def_readwrite("max_fit_factor", &SolveOptions::max_fit_factor,
                      "Penalty mode: refine while a sample is farther than this times "
                      "fit_tolerance.")

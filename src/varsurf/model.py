@@ -40,7 +40,7 @@ MAX_DEGREE = 9
 #: "conflict"), the spans are doubled up to this count before giving up.
 DEFAULT_MAX_SPANS = 64
 #: Solve modes a Sheet offers (see _native.SolveMode): Automatic picks by size and says which.
-SOLVE_MODES = ("Automatic", "Exact", "Penalty", "CG", "TSVD", "MTSVD")
+SOLVE_MODES = ("Automatic", "Exact", "Penalty", "PenaltyQR", "CG", "TSVD", "MTSVD")
 #: Relative singular value below which constraint rows are numerically dependent.
 DEFAULT_RANK_TOLERANCE = 1e-9
 #: Points per curve at which the result's distance to the curve is measured.
@@ -300,7 +300,8 @@ def solve_sheet_on_face(
     stretch, bend: isotropic thin-plate weights (alpha, beta), both >= 0 and not both 0.
     tolerance: distance (mm) at which a curve counts as met.
     degree: the sheet's degree is at least this in u and v (the base is elevated; 2..MAX_DEGREE).
-    solve_mode: one of SOLVE_MODES: Exact (Lagrange/KKT), Penalty, CG, TSVD or MTSVD (the L-curve
+    solve_mode: one of SOLVE_MODES: Exact (Lagrange/KKT), Penalty (sparse Cholesky; PenaltyQR:
+        sparse QR of the stacked system), CG, TSVD or MTSVD (the L-curve
         chooses how many constraint directions are fitted), or Automatic.
     min_spans, max_spans: the base face is refined to at least min_spans spans per direction;
         while the curves contradict each other by more than the tolerance, the spans are doubled
@@ -401,7 +402,8 @@ def solve_sheet_on_face(
     options = _build(nat.SolveOptions)
     options.rank_tolerance = float(rank_tolerance)
     options.fit_tolerance = FIT_TO_TOLERANCE * float(tolerance)
-    options.mode = getattr(nat.SolveMode, solve_mode.lower())
+    options.mode = getattr(nat.SolveMode, "penalty" if solve_mode == "PenaltyQR" else solve_mode.lower())
+    options.penalty_qr = solve_mode == "PenaltyQR"
     while True:
         sheet = nat.refine_surface(base, spans, spans, degree)
         space = sheet.space

@@ -116,6 +116,29 @@ TEST(SolveModes, EnergyModesAgreeOnAWellPosedProblem) {
   }
 }
 
+TEST(SolveModes, PenaltyByQrEqualsPenaltyByCholesky) {
+  // Welch & Witkin's eq. 10 factored as the stacked least-squares system (sparse QR) and through
+  // its normal equations (sparse Cholesky): the same minimizer, on a well-posed problem both equal
+  // the exact solve.
+  for (bool coupled : {false, true}) {
+    SheetProblem pb = well_posed_problem(8);
+    if (coupled) {
+      NormalConstraint nc;
+      nc.u = 0.6;
+      nc.v = 0.3;
+      nc.normal = Eigen::Vector3d(0.2, 0.1, 1.0);
+      pb.normals.push_back(nc);
+    }
+    SolveOptions qr = with_mode(SolveMode::penalty);
+    qr.penalty_qr = true;
+    const SolveResult by_qr = solve_sheet(pb, qr);
+    const SolveResult by_cholesky = solve_sheet(pb, with_mode(SolveMode::penalty));
+    const SolveResult exact = solve_sheet(pb, with_mode(SolveMode::exact));
+    EXPECT_LT((by_qr.poles - by_cholesky.poles).cwiseAbs().maxCoeff(), 1e-8) << coupled;
+    EXPECT_LT((by_qr.poles - exact.poles).cwiseAbs().maxCoeff(), 1e-8) << coupled;
+  }
+}
+
 TEST(SolveModes, ReducedModesAgreeOnAnIllConditionedCurve) {
   // A wavy curve over a slanted line: its incidence has singular values down to the rank
   // tolerance. Exact, CG and MTSVD share the reduced rows and agree; the penalty mode fits weak

@@ -4,6 +4,9 @@
 #ifdef VARSURF_HAVE_CHOLMOD
 #include <Eigen/CholmodSupport>
 #endif
+#ifdef VARSURF_HAVE_SPQR
+#include <Eigen/SPQRSupport>
+#endif
 #include <Eigen/SparseLU>
 #include <algorithm>
 #include <chrono>
@@ -69,7 +72,28 @@ struct ConstrainedSolve::Impl {
   Eigen::CholmodDecomposition<Sparse> cholmod;
   bool use_cholmod = false;
 #endif
-  Eigen::MatrixXd penalty_solve(const Eigen::MatrixXd& rhs) const {
+#ifdef VARSURF_HAVE_SPQR
+  // penalty_qr: W&W's eq. 10 as written, the stacked system (mu B; S) factored by SuiteSparseQR,
+  // S^T S = Q + eps I from a sparse Cholesky of the energy alone.
+  mutable Eigen::SPQR<Sparse> spqr;
+  Eigen::SimplicialLLT<Sparse> energy_factor;
+  bool use_qr = false;
+#endif
+  // One penalty step: argmin x^T (Q + eps I) x - 2 g^T x + mu^2 |B x - d|^2.
+  Eigen::MatrixXd penalty_step(const Eigen::MatrixXd& g, const Eigen::MatrixXd& d) const {
+#ifdef VARSURF_HAVE_SPQR
+    if (use_qr) {
+      // S^T s = g: s = L^-1 P g for P (Q + eps I) P^T = L L^T, S = L^T P.
+      const Eigen::MatrixXd s_rhs =
+          energy_factor.matrixL().solve(Eigen::MatrixXd(energy_factor.permutationP() * g));
+      Eigen::MatrixXd stacked(samples.rows() + n, width);
+      stacked.topRows(samples.rows()) = std::sqrt(mu2) * d;
+      stacked.bottomRows(n) = s_rhs;
+      return spqr.solve(stacked);
+    }
+#endif
+    Eigen::MatrixXd rhs = g;
+    if (samples.rows() > 0) rhs += mu2 * (samples.transpose() * d);
 #ifdef VARSURF_HAVE_CHOLMOD
     if (use_cholmod) return cholmod.solve(rhs);
 #endif
@@ -247,8 +271,37 @@ ConstrainedSolve::ConstrainedSolve(const Quadratic& pb, const SolveOptions& opt,
     Sparse m_pen = m.q_ff + Sparse(m.mu2 * btb);
     for (int i = 0; i < m.n; ++i) m_pen.coeffRef(i, i) += m.eps;
     bool factored = false;
+    if (opt.penalty_qr) {
+#ifdef VARSURF_HAVE_SPQR
+      Sparse q_eps = m.q_ff;
+      for (int i = 0; i < m.n; ++i) q_eps.coeffRef(i, i) += m.eps;
+      m.energy_factor.compute(q_eps);
+      if (m.energy_factor.info() != Eigen::Success)
+        throw SolveFailure("penalty (QR): the energy could not be factored");
+      const Sparse root =
+          Sparse(Sparse(m.energy_factor.matrixU()) * m.energy_factor.permutationP());
+      std::vector<Eigen::Triplet<double>> st;
+      const double mu = std::sqrt(m.mu2);
+      for (int col = 0; col < m.samples.outerSize(); ++col)
+        for (Sparse::InnerIterator it(m.samples, col); it; ++it)
+          st.emplace_back(static_cast<int>(it.row()), col, mu * it.value());
+      for (int col = 0; col < root.outerSize(); ++col)
+        for (Sparse::InnerIterator it(root, col); it; ++it)
+          st.emplace_back(static_cast<int>(m.samples.rows() + it.row()), col, it.value());
+      Sparse stacked(m.samples.rows() + m.n, m.n);
+      stacked.setFromTriplets(st.begin(), st.end());
+      stacked.makeCompressed();
+      m.spqr.compute(stacked);
+      if (m.spqr.info() != Eigen::Success)
+        throw SolveFailure("penalty (QR): SuiteSparseQR could not factor the stacked system");
+      m.use_qr = true;
+      factored = true;
+#else
+      throw InvalidInput("penalty_qr needs SuiteSparseQR, which this build does not have");
+#endif
+    }
 #ifdef VARSURF_HAVE_CHOLMOD
-    m.use_cholmod = m.n > 2000;
+    m.use_cholmod = !factored && m.n > 2000;
     if (m.use_cholmod) {
       m.cholmod.compute(m_pen);
       factored = m.cholmod.info() == Eigen::Success;
@@ -370,9 +423,7 @@ Eigen::MatrixXd ConstrainedSolve::Impl::solve_penalty(const Eigen::MatrixXd& g,
   int it = 0;
   const int max_steps = 200;  // beyond, the space is too coarse: the caller refines it
   for (it = 1; it <= max_steps; ++it) {
-    Eigen::MatrixXd rhs = g + eps * center;
-    if (rows > 0) rhs += mu2 * (samples.transpose() * dk);
-    const Eigen::MatrixXd next = penalty_solve(rhs);
+    const Eigen::MatrixXd next = penalty_step(g + eps * center, dk);
     const double move = (next - x).cwiseAbs().maxCoeff();
     x = next;
     center = x;

@@ -38,7 +38,7 @@ _PROPERTIES = [
     ("Bend", "App::PropertyFloatConstraint", "Sheet", "Bending weight (beta, >= 0): penalizes second derivatives, pulls toward a fair thin plate. Default 1", False),
     ("FixBoundary", "App::PropertyBool", "Sheet", "Keep the base face's boundary (its boundary poles are held)", False),
     ("Tolerance", "App::PropertyLength", "Sheet", "Distance at which a curve counts as met; the sheet fits the curves this closely and leaves the rest to fairness", False),
-    ("SolveMode", "App::PropertyEnumeration", "Solver", "Exact: Lagrange multipliers (KKT). Penalty: penalty with refinement. CG: constraints eliminated, conjugate gradients. TSVD / MTSVD: the L-curve decides how much of the curves is fitted (MTSVD smooths the rest by the energy). Automatic: by size", False),
+    ("SolveMode", "App::PropertyEnumeration", "Solver", "Exact: Lagrange multipliers (KKT). Penalty: penalty with refinement (PenaltyQR: by sparse QR). CG: constraints eliminated, conjugate gradients. TSVD / MTSVD: the L-curve decides how much of the curves is fitted (MTSVD smooths the rest by the energy). Automatic: by size", False),
     ("SolveModeUsed", "App::PropertyString", "Result", "The solve mode used and why", True),
     ("LCurveResiduals", "App::PropertyFloatList", "Result", "TSVD/MTSVD: constraint residual norm per truncation k (the L-curve's x)", True),
     ("LCurveNorms", "App::PropertyFloatList", "Result", "TSVD/MTSVD: solution change norm per truncation k (the L-curve's y)", True),
@@ -187,6 +187,11 @@ class SheetFeature(VersionedState):
         self.Type = TYPE
         _add_missing_properties(obj)
         _restore_constraints(obj)
+        # Files from before a mode was added list fewer modes: offer them all, keep the choice.
+        if list(obj.getEnumerationsOfProperty("SolveMode")) != list(model.SOLVE_MODES):
+            mode = str(obj.SolveMode)
+            obj.SolveMode = list(model.SOLVE_MODES)
+            obj.SolveMode = mode if mode in model.SOLVE_MODES else "Automatic"
 
     def onChanged(self, obj, prop):
         pass

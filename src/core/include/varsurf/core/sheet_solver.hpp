@@ -92,6 +92,10 @@ struct SolveOptions {
   // a sample of a constraint is farther than max_fit_factor * fit_tolerance from it.
   double penalty_weight = 1e4;
   double max_fit_factor = 4.0;
+  // Penalty mode: factor W&W's stacked least-squares system (mu B; S), S^T S the energy, by
+  // sparse QR (SuiteSparseQR) instead of its normal equations by Cholesky: B's condition number is
+  // not squared, at the price of a slower factorization.
+  bool penalty_qr = false;
   // CG mode: stop when the projected residual falls below this fraction of its start.
   double cg_tolerance = 1e-13;
   // Automatic mode: more free unknowns than this are solved by CG instead of a factorization;
