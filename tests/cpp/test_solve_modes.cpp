@@ -26,14 +26,20 @@ PointConstraint pin(double u, double v, const Eigen::Vector3d& target) {
   return p;
 }
 
-// A wavy curve over a non-isoparametric line, a pin and a fixed boundary: the energy decides
-// most poles (under-determined constraints).
-SheetProblem curve_problem(int spans) {
+// A flat unit sheet with its boundary held and a thin plate under a little tension.
+SheetProblem flat_problem(int spans) {
   SheetProblem pb;
   pb.space = SplineSpace::uniform(3, 3, spans, spans);
   pb.initial_poles = flat_poles(pb.space);
   pb.fixed_poles = boundary_pole_indices(pb.space);
   pb.energy = ThinPlateWeights::isotropic(0.1, 1.0);
+  return pb;
+}
+
+// A wavy curve over a non-isoparametric line, a pin and a fixed boundary: the energy decides
+// most poles (under-determined constraints).
+SheetProblem curve_problem(int spans) {
+  SheetProblem pb = flat_problem(spans);
   CurveConstraint c;
   c.preimage = test::line_curve(Eigen::Vector2d(0.2, 0.25), Eigen::Vector2d(0.8, 0.7));
   std::vector<double> fine;
@@ -50,11 +56,7 @@ SheetProblem curve_problem(int spans) {
 // a smooth sheet of the same space (exactly representable, well conditioned), two pins and a
 // tangent; the energy decides the rest.
 SheetProblem well_posed_problem(int spans) {
-  SheetProblem pb;
-  pb.space = SplineSpace::uniform(3, 3, spans, spans);
-  pb.initial_poles = flat_poles(pb.space);
-  pb.fixed_poles = boundary_pole_indices(pb.space);
-  pb.energy = ThinPlateWeights::isotropic(0.1, 1.0);
+  SheetProblem pb = flat_problem(spans);
   const Eigen::MatrixX3d smooth = test::fit_poles(pb.space, [](double u, double v) {
     return Eigen::Vector3d(u, v, 0.2 * std::sin(3 * u) * std::sin(3.1 * v));
   });
@@ -268,14 +270,10 @@ double rms_incidence(const SplineSpace& sp, const Eigen::MatrixX3d& poles,
   return std::sqrt(sum / (n + 1));
 }
 
-}  // namespace
-
-TEST(SolveModes, MtsvdRemovesTheAliasingOfTsvdOnAnIllPosedCurve) {
-  // Michalik & Bruderlin's case: a bicubic 8 x 10 sheet, free boundary, one curve over a
-  // non-isoparametric line whose target carries a ripple (amplitude 2e-3) that the space cannot
-  // hold: the data is noisy, the system ill-posed. TSVD keeps the L-curve's stable directions and
-  // moves the rest of the poles least (the staircase); MTSVD keeps the same directions and lets
-  // the thin-plate energy place the rest.
+// Michalik & Bruderlin's case: a bicubic 8 x 10 sheet, free boundary, one curve over a
+// non-isoparametric line whose target carries a ripple (amplitude 2e-3) that the space cannot
+// hold: noisy data, an ill-posed system.
+SheetProblem rippled_curve_problem() {
   SheetProblem pb;
   pb.space = SplineSpace::uniform(3, 3, 5, 7);
   pb.initial_poles = flat_poles(pb.space);
@@ -289,6 +287,17 @@ TEST(SolveModes, MtsvdRemovesTheAliasingOfTsvdOnAnIllPosedCurve) {
                                            0.15 * std::sin(5 * t) + 2e-3 * std::sin(90 * t)));
   });
   pb.curves.push_back(c);
+  return pb;
+}
+
+}  // namespace
+
+TEST(SolveModes, MtsvdRemovesTheAliasingOfTsvdOnAnIllPosedCurve) {
+  // TSVD keeps the L-curve's stable directions and
+  // moves the rest of the poles least (the staircase); MTSVD keeps the same directions and lets
+  // the thin-plate energy place the rest.
+  const SheetProblem pb = rippled_curve_problem();
+  const CurveConstraint& c = pb.curves[0];
   const SolveResult tsvd = solve_sheet(pb, with_mode(SolveMode::tsvd));
   const SolveResult mtsvd = solve_sheet(pb, with_mode(SolveMode::mtsvd));
   const LCurve& lc = tsvd.report.lcurve;
@@ -310,19 +319,8 @@ TEST(SolveModes, KrylovTruncationForLargeConstraintGroups) {
   // The same ill-posed case through the Krylov path (forced by a low limit): CGLS iterations
   // stopped at the L-curve's corner stand in for the truncated SVD; MTSVD then lets the energy
   // place what that fit leaves free.
-  SheetProblem pb;
-  pb.space = SplineSpace::uniform(3, 3, 5, 7);
-  pb.initial_poles = flat_poles(pb.space);
-  pb.energy = ThinPlateWeights::isotropic(0.1, 1.0);
-  CurveConstraint c;
-  c.preimage = test::line_curve(Eigen::Vector2d(0.05, 0.1), Eigen::Vector2d(0.95, 0.8));
-  std::vector<double> fine;
-  for (int i = 0; i <= 256; ++i) fine.push_back(i / 256.0);
-  c.target = test::fit_piecewise_curve(fine, 5, 3, [](double t) {
-    return Eigen::VectorXd(Eigen::Vector3d(0.05 + 0.9 * t, 0.1 + 0.7 * t,
-                                           0.15 * std::sin(5 * t) + 2e-3 * std::sin(90 * t)));
-  });
-  pb.curves.push_back(c);
+  const SheetProblem pb = rippled_curve_problem();
+  const CurveConstraint& c = pb.curves[0];
   SolveOptions o = with_mode(SolveMode::tsvd);
   o.krylov_limit = 10;
   const SolveResult tsvd = solve_sheet(pb, o);

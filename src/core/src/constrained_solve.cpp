@@ -9,22 +9,17 @@
 #endif
 #include <Eigen/SparseLU>
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <string>
 
+#include "stopwatch.hpp"
 #include "varsurf/core/errors.hpp"
 
 namespace varsurf {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
 using Sparse = Eigen::SparseMatrix<double>;
-
-double seconds_since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
 
 }  // namespace
 

@@ -1,24 +1,19 @@
 #include "varsurf/core/sheet_solver.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <functional>
 #include <string>
 
 #include "constrained_solve.hpp"
+#include "stopwatch.hpp"
 #include "varsurf/core/errors.hpp"
 
 namespace varsurf {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
 using Sparse = Eigen::SparseMatrix<double>;
-
-double seconds_since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
 
 void validate_problem(const SheetProblem& pb, const SolveOptions& opt) {
   pb.space.validate();
