@@ -17,6 +17,7 @@
 #include "varsurf/occ/normal_field.hpp"
 #include "varsurf/occ/point_projection.hpp"
 #include "varsurf/occ/shape_check.hpp"
+#include "varsurf/occ/shell_builder.hpp"
 #include "varsurf/occ/single_shape.hpp"
 #include "varsurf/occ/step_io.hpp"
 #include "varsurf/occ/surface_refinement.hpp"
@@ -85,6 +86,35 @@ void bind_occ_bridge(py::module_& m) {
            "region"_a, "target"_a, "strength"_a = 1.0)
       .def_readwrite("region", &ShapeAttractor::region)
       .def_readwrite("strength", &ShapeAttractor::strength);
+
+  m.def(
+      "trimmed_face_brep",
+      [](const BSplineSurface& surface, const std::vector<BSplineCurve>& loop, double tolerance) {
+        return occ::write_brep(occ::make_trimmed_face({surface, loop}, tolerance));
+      },
+      "surface"_a, "loop"_a, "tolerance"_a = 1e-6,
+      "BREP of the sheet's face inside a closed loop of 2D (u, v) curves chained end to start "
+      "(edges built from the pre-images, 3D curves derived).");
+
+  py::class_<occ::ShellResult>(m, "ShellResult", "Result of sew_faces_brep.")
+      .def_property_readonly("brep",
+                             [](const occ::ShellResult& r) { return occ::write_brep(r.shape); })
+      .def_readonly("closed", &occ::ShellResult::closed, "True if the faces close into a solid.")
+      .def_readonly("valid", &occ::ShellResult::valid)
+      .def_readonly("max_tolerance", &occ::ShellResult::max_tolerance)
+      .def_readonly("faces", &occ::ShellResult::faces)
+      .def_readonly("free_edges", &occ::ShellResult::free_edges)
+      .def_readonly("message", &occ::ShellResult::message);
+
+  m.def(
+      "sew_faces_brep",
+      [](const std::vector<std::string>& faces, double tolerance) {
+        std::vector<TopoDS_Face> list;
+        for (const std::string& brep : faces) list.push_back(occ::only_face(occ::read_brep(brep)));
+        return occ::sew_faces(list, tolerance);
+      },
+      "faces"_a, "tolerance"_a = 1e-6,
+      "Sew faces (BREP strings) into a shell, and a solid oriented outward when it closes.");
 
   m.def("project_point", &occ::project_point, "surface"_a, "point"_a,
         "Closest point of the sheet to a 3D point, as (u, v) and the distance.");
