@@ -106,6 +106,19 @@ void bind_occ_bridge(py::module_& m) {
       .def_readonly("free_edges", &occ::ShellResult::free_edges)
       .def_readonly("message", &occ::ShellResult::message);
 
+  py::class_<occ::JoinedSheet>(m, "JoinedSheet",
+                               "A sheet bounded by shared curves: their indices and its "
+                               "pre-images of them (with the 3D curves' parameters).")
+      .def(py::init([](BSplineSurface surface, std::vector<int> curves,
+                       std::vector<BSplineCurve> preimages) {
+             return occ::JoinedSheet{std::move(surface), std::move(curves), std::move(preimages)};
+           }),
+           "surface"_a, "curves"_a, "preimages"_a);
+
+  m.def("join_sheets", &occ::join_sheets, "curves"_a, "sheets"_a, "tolerance"_a = 1e-6,
+        "Sheets sharing 3D curves as one shell (a solid when it closes): the shared edges are "
+        "built once, with a pcurve on each sheet.");
+
   m.def(
       "sew_faces_brep",
       [](const std::vector<std::string>& faces, double tolerance) {

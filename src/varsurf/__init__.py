@@ -31,7 +31,7 @@ from varsurf.model import (  # noqa: E402
 def __getattr__(name):
     # The document-level API needs FreeCAD; load it on first use so that `import varsurf` also
     # works where only the native extension and the math are wanted.
-    if name in ("make_sheet", "make_constraint", "install_rest_shape", "melt", "export_step", "selection_to_sheet_args", "selection_problem",
+    if name in ("make_sheet", "make_constraint", "make_solid", "install_rest_shape", "melt", "export_step", "selection_to_sheet_args", "selection_problem",
                 "create_sheet_from_selection", "sheet_command_lines", "is_sheet",
                 "run_sheet_command"):
         from varsurf import api

@@ -199,6 +199,26 @@ def make_constraint(
     return obj
 
 
+def make_solid(sheets, tolerance=None, name: str = "Solid"):
+    """Add a VarSurf Solid joining ``sheets`` along the curves they share (computed at the next
+    recompute): each sheet is trimmed to the loop of its join curves and the faces are sewn into
+    a shell, a solid when they close. tolerance: sewing tolerance (mm)."""
+    from varsurf.app.solid import SolidFeature
+
+    sheets = list(sheets)
+    if not sheets:
+        raise ValueError("a Solid needs Sheets")
+    doc = sheets[0].Document
+    obj = doc.addObject("Part::FeaturePython", name)
+    SolidFeature(obj)
+    obj.Sheets = sheets
+    if tolerance is not None:
+        obj.Tolerance = float(tolerance)
+    if FreeCAD.GuiUp:
+        obj.ViewObject.Proxy = 0  # the default Part view
+    return obj
+
+
 def install_rest_shape(sheet):
     """Make the Sheet's current result its rest shape: later edits keep this shape's detail."""
     if sheet.Shape.isNull() or len(sheet.Shape.Faces) != 1:

@@ -431,6 +431,12 @@ def solve_sheet_on_face(
             result = nat.solve_sheet(problem, options)
         except nat.InvalidInput as error:
             raise SheetError(str(error)) from error
+        if not result.report.converged:
+            raise SheetError(
+                f"the nonlinear terms (pressure, repellers, shape attractors) did not settle in "
+                f"{result.report.iterations} steps (the last moved poles {result.report.last_step:.3g} mm); "
+                "a pressure needs tension to hold it: give the sheet a Stretch, or lower the pressure"
+            )
         conflict = float(result.report.conflict)
         deviations = None
         if conflict <= tolerance:

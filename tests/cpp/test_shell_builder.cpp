@@ -7,6 +7,10 @@
 #include <Geom2d_BSplineCurve.hxx>
 #include <Geom2d_Circle.hxx>
 #include <Geom2d_TrimmedCurve.hxx>
+#include <GeomConvert.hxx>
+#include <Geom_Circle.hxx>
+#include <Geom_TrimmedCurve.hxx>
+#include <gp_Ax2.hxx>
 #include <gp_Ax2d.hxx>
 #include <gp_Circ2d.hxx>
 
@@ -116,4 +120,31 @@ TEST(ShellBuilder, RejectsOpenLoopsAndCurvesOffTheSheet) {
   EXPECT_THROW(occ::make_trimmed_face({dome(1.0), {outside, back}}, 1e-6), InvalidInput);
   EXPECT_THROW(occ::make_trimmed_face({dome(1.0), circle_loop()}, 0.0), InvalidInput);
   EXPECT_THROW(occ::sew_faces({}, 1e-6), InvalidInput);
+}
+
+TEST(JoinSheets, PillowSharesOneRimEdgeSetAndMatchesTheAnalyticVolume) {
+  // The same pillow, its rim built once from the 3D unit circle with a pcurve on each dome.
+  Handle(Geom_TrimmedCurve) circle3 = new Geom_TrimmedCurve(
+      new Geom_Circle(gp_Ax2(gp::Origin(), gp::DZ(), gp::DX()), 1.0), 0.0, 2 * M_PI);
+  const BSplineCurve rim = occ::from_geom(GeomConvert::CurveToBSplineCurve(circle3));
+  Handle(Geom2d_TrimmedCurve) circle2 = new Geom2d_TrimmedCurve(
+      new Geom2d_Circle(gp_Circ2d(gp_Ax2d(gp_Pnt2d(0.5, 0.5), gp_Dir2d(1, 0)), 0.5 / kHalf)), 0.0,
+      2 * M_PI);
+  const BSplineCurve pre = occ::from_geom(Geom2dConvert::CurveToBSplineCurve(circle2));
+  const occ::ShellResult r =
+      occ::join_sheets({rim}, {{dome(1.0), {0}, {pre}}, {dome(-1.0), {0}, {pre}}}, 1e-6);
+  EXPECT_TRUE(r.closed);
+  EXPECT_TRUE(r.valid) << r.message;
+  EXPECT_EQ(r.faces, 2);
+  EXPECT_LT(r.max_tolerance, 1e-5);
+  EXPECT_NEAR(volume(r.shape), M_PI, 1e-6 * M_PI) << volume(r.shape);
+  const std::string path = "/tmp/varsurf_joined_" + std::to_string(getpid()) + ".step";
+  occ::write_step(r.shape, path);
+  const TopoDS_Shape back = occ::read_step(path);
+  std::remove(path.c_str());
+  EXPECT_NEAR(volume(back), volume(r.shape), 1e-6 * M_PI);
+  // One sheet alone: an open shell; a curve index that does not exist: refused.
+  const occ::ShellResult open = occ::join_sheets({rim}, {{dome(1.0), {0}, {pre}}}, 1e-6);
+  EXPECT_FALSE(open.closed);
+  EXPECT_THROW(occ::join_sheets({rim}, {{dome(1.0), {1}, {pre}}}, 1e-6), InvalidInput);
 }

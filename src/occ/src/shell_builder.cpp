@@ -7,14 +7,21 @@
 #include <BRepBuilderAPI_Sewing.hxx>
 #include <BRepCheck_Analyzer.hxx>
 #include <BRepLib.hxx>
+#include <BRepLib_CheckCurveOnSurface.hxx>
+#include <BRep_Builder.hxx>
 #include <BRep_Tool.hxx>
 #include <Geom2d_BSplineCurve.hxx>
 #include <Geom_BSplineSurface.hxx>
+#include <Precision.hxx>
 #include <ShapeFix_Face.hxx>
+#include <ShapeFix_Shell.hxx>
 #include <TopExp_Explorer.hxx>
+#include <TopLoc_Location.hxx>
 #include <TopoDS.hxx>
+#include <TopoDS_Edge.hxx>
 #include <TopoDS_Shell.hxx>
 #include <TopoDS_Solid.hxx>
+#include <TopoDS_Vertex.hxx>
 #include <TopoDS_Wire.hxx>
 #include <cmath>
 #include <string>
@@ -73,19 +80,30 @@ TopoDS_Face make_trimmed_face(const TrimmedSheet& sheet, double tolerance) {
   const bool reverse = signed_area(sheet.loop) < 0.0;
   return guarded("trimming the sheet", [&] {
     Handle(Geom_BSplineSurface) surface = to_geom(sheet.surface);
+    // A loop of one or two curves is split so that the wire has at least three edges: a face
+    // bounded by a single closed edge (one vertex) loses its pcurves in a STEP round trip
+    // (measured: the re-read pillow had half its volume, with the sign flipped).
+    const int pieces = sheet.loop.size() >= 3 ? 1 : (sheet.loop.size() == 1 ? 3 : 2);
     BRepBuilderAPI_MakeWire wire;
     for (size_t k = 0; k < sheet.loop.size(); ++k) {
       const BSplineCurve& c = sheet.loop[reverse ? sheet.loop.size() - 1 - k : k];
-      Handle(Geom2d_BSplineCurve) pcurve = to_geom2d_curve(c);
-      if (reverse) pcurve->Reverse();
-      BRepBuilderAPI_MakeEdge edge(pcurve, surface, pcurve->FirstParameter(),
-                                   pcurve->LastParameter());
-      if (!edge.IsDone()) throw GeometryError("trimming: an edge could not be built on the sheet");
-      TopoDS_Edge e = edge.Edge();
-      BRepLib::BuildCurves3d(e, std::min(tolerance, 1e-5));
-      wire.Add(e);
-      if (!wire.IsDone())
-        throw GeometryError("trimming: the boundary edges do not chain into a wire");
+      Handle(Geom2d_BSplineCurve) whole = to_geom2d_curve(c);
+      if (reverse) whole->Reverse();
+      const double t0 = whole->FirstParameter(), t1 = whole->LastParameter();
+      for (int piece = 0; piece < pieces; ++piece) {
+        Handle(Geom2d_BSplineCurve) pcurve = Handle(Geom2d_BSplineCurve)::DownCast(whole->Copy());
+        if (pieces > 1)
+          pcurve->Segment(t0 + (t1 - t0) * piece / pieces, t0 + (t1 - t0) * (piece + 1) / pieces);
+        BRepBuilderAPI_MakeEdge edge(pcurve, surface, pcurve->FirstParameter(),
+                                     pcurve->LastParameter());
+        if (!edge.IsDone())
+          throw GeometryError("trimming: an edge could not be built on the sheet");
+        TopoDS_Edge e = edge.Edge();
+        BRepLib::BuildCurves3d(e, std::min(tolerance, 1e-5));
+        wire.Add(e);
+        if (!wire.IsDone())
+          throw GeometryError("trimming: the boundary edges do not chain into a wire");
+      }
     }
     TopoDS_Wire w = wire.Wire();
     if (!w.Closed()) {
@@ -134,6 +152,206 @@ ShellResult sew_faces(const std::vector<TopoDS_Face>& faces, double tolerance) {
       out.shape = s;
       out.closed = true;
     }
+    for (TopExp_Explorer ex(out.shape, TopAbs_FACE); ex.More(); ex.Next()) ++out.faces;
+    const ShapeCheck check = check_shape(out.shape);
+    out.valid = check.valid;
+    out.message = check.message;
+    out.max_tolerance = check.max_tolerance;
+    return out;
+  });
+}
+
+}  // namespace varsurf::occ
+
+namespace varsurf::occ {
+
+namespace {
+
+struct CurveEdges {
+  std::vector<TopoDS_Edge> edges;  // forward along the 3D curve
+  std::vector<double> breaks;      // parameters of the pieces' ends
+};
+
+// The (u, v) point where an edge of the loop starts, walking the loop.
+gp_Pnt2d start_of(const BSplineCurve& pre, double t) {
+  const Eigen::VectorXd p = pre.evaluate(t);
+  return gp_Pnt2d(p(0), p(1));
+}
+
+}  // namespace
+
+ShellResult join_sheets(const std::vector<BSplineCurve>& curves,
+                        const std::vector<JoinedSheet>& sheets, double tolerance) {
+  if (curves.empty() || sheets.empty()) throw InvalidInput("joining: no curves or no sheets");
+  if (!(tolerance > 0.0) || !std::isfinite(tolerance))
+    throw InvalidInput("joining: the tolerance must be a positive length");
+  std::vector<int> uses(curves.size(), 0);
+  for (size_t s = 0; s < sheets.size(); ++s) {
+    const JoinedSheet& sh = sheets[s];
+    sh.surface.validate();
+    if (sh.curves.empty())
+      throw InvalidInput("joining: sheet " + std::to_string(s) + " has no join curve");
+    if (sh.curves.size() != sh.preimages.size())
+      throw InvalidInput("joining: sheet " + std::to_string(s) + " needs one pre-image per curve");
+    for (size_t k = 0; k < sh.curves.size(); ++k) {
+      const int c = sh.curves[k];
+      if (c < 0 || c >= static_cast<int>(curves.size()))
+        throw InvalidInput("joining: sheet " + std::to_string(s) +
+                           " names a curve that does not exist");
+      ++uses[static_cast<size_t>(c)];
+      sh.preimages[k].validate("join pre-image");
+      if (sh.preimages[k].dim() != 2) throw InvalidInput("joining: pre-images must be 2D");
+    }
+  }
+  for (size_t c = 0; c < curves.size(); ++c) {
+    curves[c].validate("join curve");
+    if (curves[c].dim() != 3) throw InvalidInput("joining: join curves must be 3D");
+    if (uses[c] == 0)
+      throw InvalidInput("joining: curve " + std::to_string(c) + " bounds no sheet");
+  }
+  return guarded("joining the sheets", [&] {
+    BRep_Builder builder;
+    // 1. Each shared curve as edges built once from its 3D curve; a closed curve's last vertex
+    //    is its first.
+    std::vector<CurveEdges> shared(curves.size());
+    for (size_t c = 0; c < curves.size(); ++c) {
+      Handle(Geom_BSplineCurve) g = to_geom_curve(curves[c]);
+      const double t0 = g->FirstParameter(), t1 = g->LastParameter();
+      const bool closed = g->Value(t0).Distance(g->Value(t1)) <= Precision::Confusion();
+      const int pieces = closed ? 3 : 1;
+      CurveEdges& ce = shared[c];
+      std::vector<TopoDS_Vertex> vertices;
+      for (int k = 0; k <= pieces; ++k) {
+        const double t = t0 + (t1 - t0) * k / pieces;
+        ce.breaks.push_back(t);
+        if (closed && k == pieces) {
+          vertices.push_back(vertices.front());
+        } else {
+          TopoDS_Vertex v;
+          builder.MakeVertex(v, g->Value(t), Precision::Confusion());
+          vertices.push_back(v);
+        }
+      }
+      for (int k = 0; k < pieces; ++k) {
+        BRepBuilderAPI_MakeEdge edge(
+            g, vertices[static_cast<size_t>(k)], vertices[static_cast<size_t>(k + 1)],
+            ce.breaks[static_cast<size_t>(k)], ce.breaks[static_cast<size_t>(k + 1)]);
+        if (!edge.IsDone())
+          throw GeometryError("joining: an edge of a join curve could not be built");
+        ce.edges.push_back(edge.Edge());
+      }
+    }
+    // 2. Per sheet: pcurves on its surface, the loop of its edges, the face inside it.
+    std::vector<TopoDS_Face> faces;
+    for (size_t s = 0; s < sheets.size(); ++s) {
+      const JoinedSheet& sh = sheets[s];
+      Handle(Geom_BSplineSurface) surface = to_geom(sh.surface);
+      struct Piece {
+        TopoDS_Edge edge;
+        gp_Pnt2d from, to;  // along the loop direction chosen below
+      };
+      std::vector<Piece> pieces;
+      for (size_t k = 0; k < sh.curves.size(); ++k) {
+        const CurveEdges& ce = shared[static_cast<size_t>(sh.curves[k])];
+        Handle(Geom2d_BSplineCurve) pre = to_geom2d_curve(sh.preimages[k]);
+        for (size_t e = 0; e < ce.edges.size(); ++e) {
+          Handle(Geom2d_BSplineCurve) piece = Handle(Geom2d_BSplineCurve)::DownCast(pre->Copy());
+          if (ce.edges.size() > 1) piece->Segment(ce.breaks[e], ce.breaks[e + 1]);
+          builder.UpdateEdge(ce.edges[e], piece, surface, TopLoc_Location(),
+                             Precision::Confusion());
+          pieces.push_back({ce.edges[e], start_of(sh.preimages[k], ce.breaks[e]),
+                            start_of(sh.preimages[k], ce.breaks[e + 1])});
+        }
+      }
+      // Chain the pieces end to start in (u, v), reversing edges walked backwards.
+      const SplineSpace& sp = sh.surface.space;
+      const double gap_tol =
+          1e-6 * std::max(sp.u_last() - sp.u_first(), sp.v_last() - sp.v_first());
+      std::vector<TopoDS_Edge> loop = {pieces[0].edge};
+      gp_Pnt2d at = pieces[0].to;
+      const gp_Pnt2d begin = pieces[0].from;
+      std::vector<bool> used(pieces.size(), false);
+      used[0] = true;
+      std::vector<gp_Pnt2d> polygon = {pieces[0].from};
+      for (size_t n = 1; n < pieces.size(); ++n) {
+        double best = 1e300;
+        size_t pick = 0;
+        bool flip = false;
+        for (size_t i = 0; i < pieces.size(); ++i) {
+          if (used[i]) continue;
+          if (pieces[i].from.Distance(at) < best)
+            best = pieces[i].from.Distance(at), pick = i, flip = false;
+          if (pieces[i].to.Distance(at) < best)
+            best = pieces[i].to.Distance(at), pick = i, flip = true;
+        }
+        if (best > gap_tol)
+          throw InvalidInput("joining: the join curves of sheet " + std::to_string(s) +
+                             " do not form one closed loop");
+        used[pick] = true;
+        polygon.push_back(at);
+        loop.push_back(flip ? TopoDS::Edge(pieces[pick].edge.Reversed()) : pieces[pick].edge);
+        at = flip ? pieces[pick].from : pieces[pick].to;
+      }
+      if (at.Distance(begin) > gap_tol)
+        throw InvalidInput("joining: the join curves of sheet " + std::to_string(s) +
+                           " do not close a loop");
+      // Counter-clockwise in (u, v) keeps the surface's normal for the face.
+      double area = 0.0;
+      for (size_t i = 0; i < polygon.size(); ++i) {
+        const gp_Pnt2d& a = polygon[i];
+        const gp_Pnt2d& b = polygon[(i + 1) % polygon.size()];
+        area += a.X() * b.Y() - b.X() * a.Y();
+      }
+      TopoDS_Wire wire;
+      builder.MakeWire(wire);
+      if (area >= 0.0) {
+        for (const TopoDS_Edge& e : loop) builder.Add(wire, e);
+      } else {
+        for (auto it = loop.rbegin(); it != loop.rend(); ++it) builder.Add(wire, it->Reversed());
+      }
+      wire.Closed(Standard_True);
+      TopoDS_Face face;
+      builder.MakeFace(face, surface, Precision::Confusion());
+      builder.Add(face, wire);
+      faces.push_back(face);
+    }
+    // 3. Edge tolerances from the measured 3D-curve / pcurve deviation; then the shell.
+    for (const CurveEdges& ce : shared)
+      for (const TopoDS_Edge& e : ce.edges) BRepLib::SameParameter(e, tolerance);
+    // SameParameter samples the deviation; OCCT's own curve-on-surface check (used by its
+    // Boolean operations) searches it: the edge tolerance must cover what that check finds.
+    for (const TopoDS_Face& f : faces)
+      for (TopExp_Explorer ex(f, TopAbs_EDGE); ex.More(); ex.Next()) {
+        const TopoDS_Edge& e = TopoDS::Edge(ex.Current());
+        BRepLib_CheckCurveOnSurface check(e, f);
+        check.Perform();
+        if (check.IsDone() && check.MaxDistance() > BRep_Tool::Tolerance(e))
+          builder.UpdateEdge(e, 1.01 * check.MaxDistance());
+      }
+    for (TopoDS_Face& f : faces) BRepLib::UpdateTolerances(f);
+    TopoDS_Shell shell;
+    builder.MakeShell(shell);
+    for (const TopoDS_Face& f : faces) builder.Add(shell, f);
+    ShellResult out;
+    bool closed = true;
+    for (size_t c = 0; c < curves.size(); ++c) closed = closed && uses[c] >= 2;
+    // Sheets that share a curve may walk it the same way (their (u, v) normals agree); the
+    // shell needs each shared edge walked both ways: ShapeFix_Shell reverses faces to match.
+    ShapeFix_Shell fix_shell(shell);
+    fix_shell.Perform();
+    shell = fix_shell.Shell();
+    shell.Closed(closed);
+    out.shape = shell;
+    if (closed) {
+      BRepBuilderAPI_MakeSolid solid(shell);
+      if (!solid.IsDone()) throw GeometryError("joining: the closed shell did not make a solid");
+      TopoDS_Solid so = solid.Solid();
+      BRepLib::OrientClosedSolid(so);
+      out.shape = so;
+    }
+    out.closed = closed;
+    for (size_t c = 0; c < curves.size(); ++c)
+      if (uses[c] < 2) out.free_edges += static_cast<int>(shared[c].edges.size());
     for (TopExp_Explorer ex(out.shape, TopAbs_FACE); ex.More(); ex.Next()) ++out.faces;
     const ShapeCheck check = check_shape(out.shape);
     out.valid = check.valid;

@@ -42,3 +42,24 @@ struct ShellResult {
 ShellResult sew_faces(const std::vector<TopoDS_Face>& faces, double tolerance);
 
 }  // namespace varsurf::occ
+
+namespace varsurf::occ {
+
+// A sheet joined to others along shared 3D curves: `curves` indexes the shared curves that bound
+// it, `preimages` holds each one's (u, v) pre-image on this sheet, with the 3D curve's parameter.
+struct JoinedSheet {
+  BSplineSurface surface;
+  std::vector<int> curves;
+  std::vector<BSplineCurve> preimages;
+};
+
+// Joined sheets as one shell (a solid, oriented outward, when it closes): every shared curve
+// becomes edges built once from its 3D curve, split at least in three, with a pcurve on each
+// sheet it bounds (BRepLib::SameParameter sets their tolerance from the measured deviation);
+// each sheet's edges are chained into its loop and the face built inside it. No sewing: the
+// faces share their edges. InvalidInput for loops that do not close, curves used by a single
+// sheet, bad indices; GeometryError if OCCT fails.
+ShellResult join_sheets(const std::vector<BSplineCurve>& curves,
+                        const std::vector<JoinedSheet>& sheets, double tolerance);
+
+}  // namespace varsurf::occ

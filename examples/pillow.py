@@ -1,0 +1,70 @@
+#!/usr/bin/env python3
+"""VarSurf example: a pillow. Two sheets joined along one closed, non-planar 3D curve and pushed
+apart by pressure close into a smooth solid.
+
+    /usr/bin/python3 examples/pillow.py [OUT_DIR]        (default: out/pillow)
+
+Writes pillow.FCStd and pillow.step into OUT_DIR and prints the solid's volume and status.
+"""
+
+import math
+import sys
+from pathlib import Path
+
+REPO = Path(__file__).resolve().parents[1]
+FREECAD_LIB = "/usr/lib/freecad-python3/lib"
+if FREECAD_LIB not in sys.path:
+    sys.path.append(FREECAD_LIB)
+if str(REPO / "src") not in sys.path:
+    sys.path.insert(0, str(REPO / "src"))
+
+import FreeCAD  # noqa: E402
+import Part  # noqa: E402
+
+import varsurf  # noqa: E402
+
+V = FreeCAD.Vector
+
+
+def build(doc):
+    """The rim (an ellipse 80 x 50 mm with a 4 mm wave in z), two flat bases and the Solid."""
+    rim_points = [V(40 * math.cos(t), 25 * math.sin(t), 4 * math.sin(2 * t))
+                  for t in (2 * math.pi * k / 64 for k in range(64))]
+    curve = Part.BSplineCurve()
+    curve.interpolate(rim_points, PeriodicFlag=True)
+    rim = doc.addObject("Part::Feature", "Rim")
+    rim.Shape = curve.toShape()
+    sheets = []
+    for name, pressure in (("Top", 0.1), ("Bottom", -0.1)):
+        base = doc.addObject("Part::Feature", name + "Base")
+        base.Shape = Part.makePlane(120, 90, V(-60, -45, 0))
+        base.Visibility = False
+        doc.recompute()
+        sheet = varsurf.make_sheet((base, "Face1"), [(rim, "Edge1")], name=name)
+        sheet.Stretch = 1.0  # membrane tension: what holds a pressure
+        sheet.Tolerance = 0.001  # the seam is as tight as the sheets meet the rim
+        sheet.Pressure = pressure
+        sheets.append(sheet)
+    solid = varsurf.make_solid(sheets, name="Pillow")
+    doc.recompute()
+    return solid
+
+
+def main(out_dir="out/pillow"):
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    doc = FreeCAD.newDocument("Pillow")
+    solid = build(doc)
+    print(f"status : {solid.Status}")
+    if not solid.isValid():
+        print(solid.getStatusString())
+        return 1
+    print(f"volume : {solid.Shape.Volume:.1f} mm^3, area {solid.Shape.Area:.1f} mm^2")
+    doc.saveAs(str(out / "pillow.FCStd"))
+    varsurf.export_step([solid], str(out / "pillow.step"))
+    print(f"written: {out / 'pillow.FCStd'}, {out / 'pillow.step'}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(*sys.argv[1:]))

@@ -1,0 +1,126 @@
+"""Joined sheets into a shell or solid (Welch & Witkin sec. 5): each sheet trimmed to the loop of
+the curves it shares with the others, the shared edges built once with a pcurve on every sheet.
+No document and no GUI here.
+
+A join curve is a 3D edge that several sheets contain. On each sheet its pre-image is found by
+projecting it onto the solved surface; the pre-images of a sheet's join curves are chained into
+one closed loop (reversing curves as needed) and the sheet is trimmed to the region inside.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import List, Sequence
+
+from varsurf.model import SheetError, native, shape_from_brep
+
+
+@dataclass
+class AssemblyOutcome:
+    shape: object  # Part.Solid when the faces close, else a shell or compound
+    closed: bool = False
+    valid: bool = False
+    max_tolerance: float = 0.0  # worst edge/vertex tolerance after sewing (mm)
+    faces: int = 0
+    free_edges: int = 0
+    seam_gaps: List[float] = field(default_factory=list)  # per join curve: largest sheet-to-curve distance
+
+
+def _reversed(nat, c):
+    """The same 2D curve walked backwards, over the same parameter range."""
+    a, b = c.knots[0], c.knots[-1]
+    knots = [a + b - k for k in reversed(list(c.knots))]
+    weights = list(reversed(list(c.weights))) if len(c.weights) else []
+    return nat.BSplineCurve(degree=c.degree, knots=knots, poles=[list(p) for p in reversed(c.poles)],
+                            weights=weights)
+
+
+def _ends(c):
+    return list(c.poles[0]), list(c.poles[-1])  # clamped: the ends are the end poles
+
+
+def _chain(nat, curves, label, tolerance_uv):
+    """Order and orient 2D curves into one closed loop, or SheetError."""
+    loop = [curves[0]]
+    rest = list(curves[1:])
+    while rest:
+        end = _ends(loop[-1])[1]
+        best = None
+        for i, c in enumerate(rest):
+            start, stop = _ends(c)
+            for flip, point in ((False, start), (True, stop)):
+                d = math.dist(end, point)
+                if best is None or d < best[0]:
+                    best = (d, i, flip)
+        d, i, flip = best
+        if d > tolerance_uv:
+            raise SheetError(f"{label}: its join curves do not form one closed loop (a gap of {d:.3g} in (u, v))")
+        c = rest.pop(i)
+        loop.append(_reversed(nat, c) if flip else c)
+    gap = math.dist(_ends(loop[-1])[1], _ends(loop[0])[0])
+    if gap > tolerance_uv:
+        raise SheetError(f"{label}: its join curves do not close a loop (a gap of {gap:.3g} in (u, v))")
+    # Each curve starts exactly where the previous one ends (the gaps are projection round-off).
+    snapped = []
+    for k, c in enumerate(loop):
+        poles = [list(p) for p in c.poles]
+        poles[0] = _ends(loop[k - 1])[1]
+        snapped.append(nat.BSplineCurve(degree=c.degree, knots=list(c.knots), poles=poles,
+                                        weights=list(c.weights) if len(c.weights) else []))
+    return snapped
+
+
+def build_solid(sheets: Sequence, tolerance: float) -> AssemblyOutcome:
+    """Join sheets along their shared curves into a shell, a solid when it closes.
+
+    sheets: [(label, Part.Face of the solved sheet, [join curves])] — each sheet's join curves
+        are those it shares with other sheets, as (key, Part.Edge) with one key per curve (or
+        Part.Edge objects, identified by their hash).
+    tolerance: how far (mm) a sheet may pass from a join curve; the shared edges' tolerances
+        are then set from the measured deviation.
+    """
+    nat = native()
+    if not (tolerance > 0.0 and math.isfinite(tolerance)):
+        raise SheetError(f"the tolerance must be a positive length (got {tolerance})")
+    if len(sheets) < 1:
+        raise SheetError("a solid needs at least one sheet")
+    curves, index, gaps, joined = [], {}, {}, []
+    for label, face, edges in sheets:
+        if not edges:
+            raise SheetError(f"{label} shares no curve with the other sheets: nothing bounds it")
+        surface = nat.surface_from_face_brep(face.exportBrepToString())
+        ids, pre_images = [], []
+        for item in edges:
+            key, edge = item if isinstance(item, tuple) else (item.hashCode(), item)
+            if key not in index:
+                index[key] = len(curves)
+                curves.append(nat.curve_from_edge_brep(edge.exportBrepToString()))
+            curve = curves[index[key]]
+            try:
+                pre = nat.project_curve(surface, curve)
+            except (nat.InvalidInput, nat.GeometryError) as error:
+                raise SheetError(f"{label} does not reach a join curve: {error}") from error
+            if pre.max_distance > tolerance:
+                raise SheetError(f"{label} passes {pre.max_distance:.3g} mm from a join curve "
+                                 f"(more than the tolerance {tolerance:.3g} mm)")
+            gaps[key] = max(gaps.get(key, 0.0), float(pre.max_distance))
+            ids.append(index[key])
+            pre_images.append(pre.curve)
+        span = max(surface.space.knots_u[-1] - surface.space.knots_u[0],
+                   surface.space.knots_v[-1] - surface.space.knots_v[0])
+        _chain(nat, pre_images, label, 1e-6 * span)  # a clear message for loops that do not close
+        joined.append(nat.JoinedSheet(surface=surface, curves=ids, preimages=pre_images))
+    try:
+        result = nat.join_sheets(curves, joined, tolerance)
+    except (nat.InvalidInput, nat.GeometryError) as error:
+        raise SheetError(str(error)) from error
+    return AssemblyOutcome(
+        shape=shape_from_brep(result.brep),
+        closed=bool(result.closed),
+        valid=bool(result.valid),
+        max_tolerance=float(result.max_tolerance),
+        faces=int(result.faces),
+        free_edges=int(result.free_edges),
+        seam_gaps=list(gaps.values()),
+    )

@@ -1,0 +1,106 @@
+"""The Solid feature: sheets joined along shared curves, trimmed and sewn into a solid; the
+pillow example, STEP and save/reopen round trips, edits, and bad inputs."""
+
+import math
+import sys
+from pathlib import Path
+
+import FreeCAD
+import Part
+import pytest
+
+import varsurf
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "examples"))
+import pillow  # noqa: E402
+
+V = FreeCAD.Vector
+
+
+@pytest.fixture
+def solid(doc, native):
+    s = pillow.build(doc)
+    assert s.isValid(), s.getStatusString()
+    return s
+
+
+def test_pillow_is_a_valid_closed_solid(solid):
+    shape = solid.Shape
+    assert solid.Closed and solid.Status.startswith("OK: solid")
+    assert shape.ShapeType == "Solid" and len(shape.Faces) == 2
+    assert shape.isValid() and shape.check(True) is None
+    assert shape.Volume > 1000.0  # mm^3, outward oriented
+    assert max(solid.SeamGaps) <= solid.Tolerance.Value
+    assert solid.MaxEdgeTolerance <= solid.Tolerance.Value
+    # The seam: the two faces' shared edge lies on the rim (sampled, measured by OCCT).
+    rim = solid.Document.getObject("Rim").Shape
+    for edge in shape.Edges:
+        for p in edge.discretize(50):
+            assert rim.distToShape(Part.Vertex(p))[0] <= solid.Tolerance.Value
+
+
+def test_step_and_save_round_trips(solid, tmp_path):
+    doc = solid.Document
+    shape = solid.Shape
+    path = str(tmp_path / "pillow.step")
+    varsurf.export_step([solid], path)
+    back = Part.read(path)
+    solids = back.Solids
+    assert len(solids) == 1 and solids[0].isValid()
+    assert solids[0].Volume == pytest.approx(shape.Volume, rel=1e-6)
+    assert solids[0].Area == pytest.approx(shape.Area, rel=1e-6)
+    assert len(solids[0].Faces) == len(shape.Faces)
+    fcstd = str(tmp_path / "pillow.FCStd")
+    doc.saveAs(fcstd)
+    name, volume = solid.Name, shape.Volume
+    FreeCAD.closeDocument(doc.Name)
+    again = FreeCAD.openDocument(fcstd)
+    try:
+        s = again.getObject(name)
+        assert s.Shape.Volume == pytest.approx(volume, rel=1e-12)
+        for o in again.Objects:
+            o.touch()
+        again.recompute()
+        assert s.isValid(), s.getStatusString()
+        assert s.Shape.Volume == pytest.approx(volume, rel=1e-9)
+    finally:
+        FreeCAD.closeDocument(again.Name)
+
+
+def test_editing_the_shared_curve_updates_both_sheets(solid):
+    doc = solid.Document
+    rim = doc.getObject("Rim")
+    before = solid.Shape.Volume
+    rim.Shape = rim.Shape.copy().scale(1.2)  # a bigger rim
+    doc.recompute()
+    assert solid.isValid() and solid.Closed, solid.Status
+    assert solid.Shape.isValid()
+    assert solid.Shape.Volume > 1.3 * before  # area grows by 1.44
+
+
+def test_bad_inputs_are_reported(doc, native, console_errors):
+    rim = doc.addObject("Part::Feature", "Arc")
+    rim.Shape = Part.Edge(Part.Arc(V(-30, 0, 0), V(0, 20, 2), V(30, 0, 0)))  # open: no loop
+    lone = doc.addObject("Part::Feature", "Lone")
+    lone.Shape = Part.LineSegment(V(-20, -20, 1), V(20, -20, 1)).toShape()
+    sheets = []
+    for name, curves in (("A", [(rim, "Edge1")]), ("B", [(rim, "Edge1")]), ("C", [(lone, "Edge1")])):
+        base = doc.addObject("Part::Feature", name + "Base")
+        base.Shape = Part.makePlane(120, 90, V(-60, -45, 0))
+        doc.recompute()
+        sheets.append(varsurf.make_sheet((base, "Face1"), curves, name=name))
+    doc.recompute()
+    open_loop = varsurf.make_solid(sheets[:2], name="OpenLoop")
+    doc.recompute()
+    status = open_loop.getStatusString()
+    assert not open_loop.isValid() and ("closed loop" in status or "close a loop" in status), status
+    unshared = varsurf.make_solid([sheets[0], sheets[1], sheets[2]], name="Unshared")
+    doc.recompute()
+    # A and B fail on their open loop first; C shares nothing: either is reported, nothing built.
+    assert not unshared.isValid() and unshared.Shape.isNull()
+    empty = varsurf.make_solid([sheets[2]], name="Alone")
+    doc.recompute()
+    assert not empty.isValid() and "shares no curve" in empty.getStatusString()
+    assert "VarSurf" in console_errors()
+    with pytest.raises(ValueError):
+        varsurf.make_solid([])
