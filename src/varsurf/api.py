@@ -390,6 +390,54 @@ def run_sheet_command(selection_ex, do_command=None, on_error=None):
         return None
 
 
+TRANSACTION_SOLID = "Add VarSurf solid"
+SOLID_HINT = "Select the Sheets to join (two or more that share curves)."
+
+
+def solid_selection_to_sheets(selection_ex) -> List:
+    """The Sheets of a selection (whole objects or any of their elements), or ValueError."""
+    sheets = []
+    for sel in selection_ex or []:
+        obj = sel.Object
+        if not _is_sheet(obj):
+            raise ValueError(f"{obj.Label} is not a Sheet. {SOLID_HINT}")
+        if obj not in sheets:
+            sheets.append(obj)
+    if len(sheets) < 2:
+        raise ValueError(f"{len(sheets)} Sheets selected: select two or more. {SOLID_HINT}")
+    return sheets
+
+
+def run_solid_command(selection_ex, do_command=None, on_error=None):
+    """What the VarSurf_Solid command does (also usable headless): join the selected Sheets
+    through recorded macro lines in one transaction. Returns the new Solid or None."""
+    try:
+        sheets = solid_selection_to_sheets(selection_ex)
+    except ValueError as error:
+        FreeCAD.Console.PrintError(f"VarSurf: {error}\n")
+        if on_error is not None:
+            on_error(str(error))
+        return None
+    doc = sheets[0].Document
+    run = do_command or _exec_line
+    before = set(o.Name for o in doc.Objects)
+    lines = [
+        "import varsurf",
+        f"_solid = varsurf.make_solid([{', '.join(_ref(s) for s in sheets)}])",
+        f"App.getDocument({doc.Name!r}).recompute()",
+    ]
+    doc.openTransaction(TRANSACTION_SOLID)
+    try:
+        for line in lines:
+            run(line)
+    except Exception:
+        doc.abortTransaction()
+        raise
+    doc.commitTransaction()
+    created = [o for o in doc.Objects if o.Name not in before]
+    return created[-1] if created else None
+
+
 def _is_sheet(obj) -> bool:
     proxy = getattr(obj, "Proxy", None)
     return getattr(proxy, "Type", None) == "VarSurf::Sheet"

@@ -56,6 +56,34 @@ class CommandSheet:
         )
 
 
+class CommandSolid:
+    """Join the selected Sheets along their shared curves into a shell or solid."""
+
+    def GetResources(self):
+        return {
+            "Pixmap": resources.icon("VarSurf_Solid.svg"),
+            "MenuText": QT_TRANSLATE_NOOP("VarSurf_Solid", "Join sheets into a solid"),
+            "ToolTip": QT_TRANSLATE_NOOP(
+                "VarSurf_Solid",
+                "Join Sheets along the curves they share: each is trimmed to its shared curves and\n"
+                "the faces form a shell, a solid when closed. Select two or more Sheets.",
+            ),
+        }
+
+    def IsActive(self):
+        if App.ActiveDocument is None:
+            return False
+        try:
+            api.solid_selection_to_sheets(Gui.Selection.getSelectionEx())
+        except ValueError:
+            return False
+        return True
+
+    def Activated(self):
+        api.run_solid_command(Gui.Selection.getSelectionEx(), do_command=Gui.doCommand,
+                              on_error=show_selection_error)
+
+
 class CommandConstraint:
     """Add a constraint or operator of one kind to the selected Sheet."""
 
@@ -142,9 +170,10 @@ CONSTRAINT_COMMANDS = [
      QT_TRANSLATE_NOOP("VarSurf_FrozenRegion", "Keep a region of the sheet as the base shape.\nSelect a Sheet and, optionally, closed edges (e.g. a sketch) bounding the region.")),
 ]
 
-COMMANDS = ["VarSurf_Sheet"]
+COMMANDS = ["VarSurf_Sheet", "VarSurf_Solid"]
 CONSTRAINTS = [name for name, _kind, _menu, _tip in CONSTRAINT_COMMANDS]
 
 Gui.addCommand("VarSurf_Sheet", CommandSheet())
+Gui.addCommand("VarSurf_Solid", CommandSolid())
 for _name, _kind, _menu, _tip in CONSTRAINT_COMMANDS:
     Gui.addCommand(_name, CommandConstraint(_kind, _menu, _tip))
