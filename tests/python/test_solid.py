@@ -127,3 +127,21 @@ def test_solid_command_joins_selected_sheets_in_one_transaction(doc, native):
     rim = doc.getObject("Rim")
     assert api.run_solid_command([Sel(top), Sel(rim)], on_error=messages.append) is None
     assert "is not a Sheet" in messages[1]
+
+
+def test_rounded_box_of_six_sheets_and_twelve_shared_curves(doc, native, tmp_path):
+    import rounded_box
+
+    solid = rounded_box.build(doc)
+    assert solid.isValid() and solid.Closed, solid.Status
+    shape = solid.Shape
+    assert shape.ShapeType == "Solid" and len(shape.Faces) == 6
+    assert shape.isValid() and shape.check(True) is None
+    # Each of the twelve curves bounds two faces; the edges bow out, so the box is bigger than
+    # the plain 100 mm cube but smaller than its bowed bounding box.
+    assert 1.0e6 < shape.Volume < 112.0 ** 3
+    path = str(tmp_path / "box.step")
+    varsurf.export_step([solid], path)
+    back = Part.read(path).Solids
+    assert len(back) == 1 and back[0].Volume == pytest.approx(shape.Volume, rel=1e-6)
+    assert len(back[0].Faces) == 6
