@@ -25,6 +25,9 @@ class AssemblyOutcome:
     faces: int = 0
     free_edges: int = 0
     seam_gaps: List[float] = field(default_factory=list)  # per join curve: largest sheet-to-curve distance
+    # per join curve shared by two faces: the smallest and largest angle between the faces across
+    # it (degrees; 180 is a tangent-continuous seam), sampled along the curve
+    seam_angles: List[tuple] = field(default_factory=list)
 
 
 def _reversed(nat, c):
@@ -115,8 +118,10 @@ def build_solid(sheets: Sequence, tolerance: float) -> AssemblyOutcome:
         result = nat.join_sheets(curves, joined, tolerance)
     except (nat.InvalidInput, nat.GeometryError) as error:
         raise SheetError(str(error)) from error
+    shape = shape_from_brep(result.brep)
     return AssemblyOutcome(
-        shape=shape_from_brep(result.brep),
+        shape=shape,
+        seam_angles=_seam_angles(shape),
         closed=bool(result.closed),
         valid=bool(result.valid),
         max_tolerance=float(result.max_tolerance),
@@ -124,3 +129,31 @@ def build_solid(sheets: Sequence, tolerance: float) -> AssemblyOutcome:
         free_edges=int(result.free_edges),
         seam_gaps=list(gaps.values()),
     )
+
+
+#: Points per shared edge at which the angle across the seam is measured.
+SEAM_SAMPLES = 24
+
+
+def _seam_angles(shape):
+    """(min, max) angle between the two faces across each edge they share, in degrees: 180 minus
+    the angle between their outward normals, sampled along the edge."""
+    angles = []
+    faces = shape.Faces
+    owners = {}
+    for i, f in enumerate(faces):
+        for e in f.Edges:
+            owners.setdefault(e.hashCode(), []).append(i)
+    for e in shape.Edges:
+        pair = owners.get(e.hashCode(), [])
+        if len(pair) != 2:
+            continue
+        a, b = faces[pair[0]], faces[pair[1]]
+        values = []
+        for p in e.discretize(SEAM_SAMPLES)[1:-1]:
+            na = a.normalAt(*a.Surface.parameter(p))
+            nb = b.normalAt(*b.Surface.parameter(p))
+            values.append(180.0 - math.degrees(na.getAngle(nb)))
+        if values:
+            angles.append((min(values), max(values)))
+    return angles

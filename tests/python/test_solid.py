@@ -31,6 +31,8 @@ def test_pillow_is_a_valid_closed_solid(solid):
     assert shape.isValid() and shape.check(True) is None
     assert shape.Volume > 1000.0  # mm^3, outward oriented
     assert max(solid.SeamGaps) <= solid.Tolerance.Value
+    # A pillow's rim is a thin lip: the faces meet at a small angle all along it.
+    assert solid.SeamAngles and all(0.0 <= a < 45.0 for a in solid.SeamAngles), list(solid.SeamAngles)
     assert solid.MaxEdgeTolerance <= solid.Tolerance.Value
     # The seam: the two faces' shared edge lies on the rim (sampled, measured by OCCT).
     rim = solid.Document.getObject("Rim").Shape
@@ -140,6 +142,10 @@ def test_rounded_box_of_six_sheets_and_twelve_shared_curves(doc, native, tmp_pat
     # Each of the twelve curves bounds two faces; the edges bow out, so the box is bigger than
     # the plain 100 mm cube but smaller than its bowed bounding box.
     assert 1.0e6 < shape.Volume < 112.0 ** 3
+    # The seams are sharp: a bowed box meets at about 90 degrees (bulging faces open it a little).
+    angles = list(solid.SeamAngles)
+    assert len(angles) >= 24  # 12 curves, at least one edge each, (min, max) pairs
+    assert all(60.0 < a < 130.0 for a in angles), angles
     path = str(tmp_path / "box.step")
     varsurf.export_step([solid], path)
     back = Part.read(path).Solids

@@ -23,6 +23,7 @@ _PROPERTIES = [
     ("Closed", "App::PropertyBool", "Result", "True if the sheets close into a solid", True),
     ("MaxEdgeTolerance", "App::PropertyFloat", "Result", "Worst edge/vertex tolerance after sewing (mm)", True),
     ("SeamGaps", "App::PropertyFloatList", "Result", "Per join curve: the largest distance from a sheet to it (mm)", True),
+    ("SeamAngles", "App::PropertyFloatList", "Result", "Per shared edge: the smallest and largest angle between the faces across it (degrees, pairs; 180 is tangent-continuous)", True),
     ("Status", "App::PropertyString", "Result", "OK, or what went wrong", True),
 ]
 _PROP_READONLY = 1
@@ -99,5 +100,6 @@ class SolidFeature(VersionedState):
         obj.Closed = outcome.closed
         obj.MaxEdgeTolerance = outcome.max_tolerance
         obj.SeamGaps = outcome.seam_gaps
+        obj.SeamAngles = [v for pair in outcome.seam_angles for v in pair]
         kind = "solid" if outcome.closed else f"open shell ({outcome.free_edges} free edges)"
         obj.Status = f"OK: {kind} of {outcome.faces} faces, worst edge tolerance {outcome.max_tolerance:.3g} mm"
