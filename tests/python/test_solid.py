@@ -151,3 +151,14 @@ def test_rounded_box_of_six_sheets_and_twelve_shared_curves(doc, native, tmp_pat
     back = Part.read(path).Solids
     assert len(back) == 1 and back[0].Volume == pytest.approx(shape.Volume, rel=1e-6)
     assert len(back[0].Faces) == 6
+
+
+def test_a_sheet_that_misses_a_join_curve_is_reported(solid):
+    doc = solid.Document
+    solid.Tolerance = 1e-5  # tighter than the sheets meet the rim (about 6e-4 mm)
+    doc.recompute()
+    assert not solid.isValid()
+    assert "from a join curve" in solid.getStatusString(), solid.getStatusString()
+    solid.Tolerance = 0.02
+    doc.recompute()
+    assert solid.isValid() and solid.Closed
