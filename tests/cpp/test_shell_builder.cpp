@@ -79,7 +79,8 @@ TEST(ShellBuilder, PillowOfTwoDomesIsAClosedSolidWithTheAnalyticVolume) {
   EXPECT_EQ(r.shape.ShapeType(), TopAbs_SOLID);
   EXPECT_NEAR(volume(r.shape), M_PI, 1e-6 * M_PI) << volume(r.shape);  // positive: outward
   // A STEP round trip keeps it.
-  const std::string path = "/tmp/varsurf_pillow_" + std::to_string(getpid()) + ".step";
+  const std::string path =
+      ::testing::TempDir() + "varsurf_pillow_" + std::to_string(getpid()) + ".step";
   occ::write_step(r.shape, path);
   const TopoDS_Shape back = occ::read_step(path);
   std::remove(path.c_str());
@@ -138,7 +139,8 @@ TEST(JoinSheets, PillowSharesOneRimEdgeSetAndMatchesTheAnalyticVolume) {
   EXPECT_EQ(r.faces, 2);
   EXPECT_LT(r.max_tolerance, 1e-5);
   EXPECT_NEAR(volume(r.shape), M_PI, 1e-6 * M_PI) << volume(r.shape);
-  const std::string path = "/tmp/varsurf_joined_" + std::to_string(getpid()) + ".step";
+  const std::string path =
+      ::testing::TempDir() + "varsurf_joined_" + std::to_string(getpid()) + ".step";
   occ::write_step(r.shape, path);
   const TopoDS_Shape back = occ::read_step(path);
   std::remove(path.c_str());
