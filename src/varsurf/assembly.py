@@ -74,12 +74,24 @@ def _chain(nat, curves, label, tolerance_uv):
     return snapped
 
 
+def _closes(nat, surface, edges, label, tolerance_uv) -> bool:
+    """Whether the edges' pre-images on the surface chain into one closed loop."""
+    try:
+        pre = [nat.project_curve(surface, nat.curve_from_edge_brep(e.exportBrepToString())).curve
+               for _key, e in (item if isinstance(item, tuple) else (None, item) for item in edges)]
+        _chain(nat, pre, label, tolerance_uv)
+        return True
+    except (SheetError, nat.InvalidInput, nat.GeometryError):
+        return False
+
+
 def build_solid(sheets: Sequence, tolerance: float) -> AssemblyOutcome:
     """Join sheets along their shared curves into a shell, a solid when it closes.
 
-    sheets: [(label, Part.Face of the solved sheet, [join curves])] — each sheet's join curves
-        are those it shares with other sheets, as (key, Part.Edge) with one key per curve (or
-        Part.Edge objects, identified by their hash).
+    sheets: [(label, Part.Face of the solved sheet, [join curves], [own curves])] — each
+        sheet's join curves are those it shares with other sheets, as (key, Part.Edge) with one
+        key per curve (or Part.Edge objects, identified by their hash); its own curves (optional)
+        complete its loop when the join curves alone do not close one.
     tolerance: how far (mm) a sheet may pass from a join curve; the shared edges' tolerances
         are then set from the measured deviation.
     """
@@ -89,10 +101,16 @@ def build_solid(sheets: Sequence, tolerance: float) -> AssemblyOutcome:
     if len(sheets) < 1:
         raise SheetError("a solid needs at least one sheet")
     curves, index, gaps, joined = [], {}, {}, []
-    for label, face, edges in sheets:
+    for entry in sheets:
+        label, face, edges = entry[0], entry[1], list(entry[2])
+        own = list(entry[3]) if len(entry) > 3 else []
         if not edges:
             raise SheetError(f"{label} shares no curve with the other sheets: nothing bounds it")
         surface = nat.surface_from_face_brep(face.exportBrepToString())
+        span = max(surface.space.knots_u[-1] - surface.space.knots_u[0],
+                   surface.space.knots_v[-1] - surface.space.knots_v[0])
+        if own and not _closes(nat, surface, edges, label, 1e-6 * span):
+            edges = edges + own  # the shared curves alone do not close: its own ones complete the loop
         ids, pre_images = [], []
         for item in edges:
             key, edge = item if isinstance(item, tuple) else (item.hashCode(), item)
@@ -110,8 +128,6 @@ def build_solid(sheets: Sequence, tolerance: float) -> AssemblyOutcome:
             gaps[key] = max(gaps.get(key, 0.0), float(pre.max_distance))
             ids.append(index[key])
             pre_images.append(pre.curve)
-        span = max(surface.space.knots_u[-1] - surface.space.knots_u[0],
-                   surface.space.knots_v[-1] - surface.space.knots_v[0])
         _chain(nat, pre_images, label, 1e-6 * span)  # a clear message for loops that do not close
         joined.append(nat.JoinedSheet(surface=surface, curves=ids, preimages=pre_images))
     try:

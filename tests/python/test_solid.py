@@ -162,3 +162,39 @@ def test_a_sheet_that_misses_a_join_curve_is_reported(solid):
     solid.Tolerance = 0.02
     doc.recompute()
     assert solid.isValid() and solid.Closed
+
+
+def _line(doc, name, a, b):
+    obj = doc.addObject("Part::Feature", name)
+    obj.Shape = Part.LineSegment(V(*a), V(*b)).toShape()
+    return obj
+
+
+def test_two_sheets_meeting_at_an_angle_make_an_open_shell(doc, native):
+    # Sheet A is the square x in [5, 50], y in [5, 55] at z = 0; sheet B continues it beyond the
+    # seam x = 50, tilted up by 30 degrees. They share only the seam: their own edges complete
+    # their loops and bound the open shell.
+    c, s = math.cos(math.radians(30)), math.sin(math.radians(30))
+    tilt = lambda x, y: (50 + (x - 50) * c, y, (x - 50) * s)  # noqa: E731
+    seam = _line(doc, "Seam", (50, 5, 0), (50, 55, 0))
+    own_a = [_line(doc, "A1", (50, 55, 0), (5, 55, 0)), _line(doc, "A2", (5, 55, 0), (5, 5, 0)),
+             _line(doc, "A3", (5, 5, 0), (50, 5, 0))]
+    own_b = [_line(doc, "B1", tilt(50, 55), tilt(95, 55)), _line(doc, "B2", tilt(95, 55), tilt(95, 5)),
+             _line(doc, "B3", tilt(95, 5), tilt(50, 5))]
+    base_a = doc.addObject("Part::Feature", "BaseA")
+    base_a.Shape = Part.makePlane(70, 70, V(-5, -5, 0))
+    base_b = doc.addObject("Part::Feature", "BaseB")
+    base_b.Shape = Part.Face(Part.makePolygon([V(*tilt(x, y)) for x, y in
+                                               ((45, -5), (105, -5), (105, 65), (45, 65), (45, -5))]))
+    doc.recompute()
+    a = varsurf.make_sheet((base_a, "Face1"), [(o, "Edge1") for o in [seam] + own_a], name="A")
+    b = varsurf.make_sheet((base_b, "Face1"), [(o, "Edge1") for o in [seam] + own_b], name="B")
+    solid = varsurf.make_solid([a, b], name="Hinge")
+    doc.recompute()
+    assert solid.isValid(), solid.getStatusString()
+    assert not solid.Closed and "open shell" in solid.Status
+    shape = solid.Shape
+    assert len(shape.Faces) == 2 and shape.isValid()
+    assert shape.Area == pytest.approx(2 * 45 * 50, rel=1e-4)  # two flat 45 x 50 mm faces
+    angles = list(solid.SeamAngles)
+    assert angles and all(abs(x - 150.0) < 0.05 for x in angles), angles

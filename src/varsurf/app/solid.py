@@ -3,7 +3,8 @@ when they close (Welch & Witkin sec. 5).
 
 A ``Part::FeaturePython``: ``Sheets`` lists the Sheet objects; a join curve is an edge that two or
 more of them list in their ``Curves``. Each join curve becomes edges built once from its 3D curve
-with a pcurve on every sheet it bounds; each sheet is trimmed to the loop of its join curves.
+with a pcurve on every sheet it bounds; each sheet is trimmed to the loop of its join curves, or,
+when they do not close a loop, of all its curves (its own ones then bound the open shell).
 App side only: no GUI import.
 """
 
@@ -47,7 +48,8 @@ def _curve_keys(sheet):
 
 
 def join_inputs(obj):
-    """[(label, face, [(key, join edge)])] for the Solid's Sheets, or SheetError."""
+    """[(label, face, [(key, shared edge)], [(key, own edge)])] for the Solid's Sheets, or
+    SheetError."""
     import Part
 
     sheets = list(obj.Sheets or [])
@@ -61,13 +63,12 @@ def join_inputs(obj):
             counts[key] = counts.get(key, 0) + 1
     out = []
     for s in sheets:
-        edges = []
+        shared, own = [], []
         for name, sub in sorted(_curve_keys(s)):
-            if counts[(name, sub)] < 2:
-                continue
             link = s.Document.getObject(name)
-            edges.append((f"{name}:{sub}", Part.getShape(link, sub, needSubElement=True)))
-        out.append((s.Label, s.Shape.Faces[0], edges))
+            item = (f"{name}:{sub}", Part.getShape(link, sub, needSubElement=True))
+            (shared if counts[(name, sub)] >= 2 else own).append(item)
+        out.append((s.Label, s.Shape.Faces[0], shared, own))
     return out
 
 
