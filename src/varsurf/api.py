@@ -215,7 +215,10 @@ def make_solid(sheets, tolerance=None, name: str = "Solid"):
     if tolerance is not None:
         obj.Tolerance = float(tolerance)
     if FreeCAD.GuiUp:
-        obj.ViewObject.Proxy = 0  # the default Part view
+        from varsurf.gui.view_providers import ViewProviderSolid
+
+        ViewProviderSolid(obj.ViewObject)
+        obj.ViewObject.Proxy.on_created(obj.ViewObject)
     return obj
 
 

@@ -165,6 +165,37 @@ def run(result):
     doc.saveAs(path)
     result["saved"] = os.path.isfile(path)
 
+    # 6. the Solid command on two selected Sheets (the pillow example's, built without it)
+    sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(varsurf.__file__)))), "examples"))
+    import pillow
+
+    pdoc = App.newDocument("PillowSmoke")
+    pillow.build(pdoc)
+    pdoc.removeObject("Pillow")  # the example's own Solid: make it again through the command
+    pdoc.recompute()
+    Gui.Selection.clearSelection()
+    Gui.Selection.addSelection(pdoc.Name, "Top")
+    Gui.Selection.addSelection(pdoc.Name, "Bottom")
+    result["solid_active"] = bool(Gui.Command.get("VarSurf_Solid").isActive())
+    Gui.runCommand("VarSurf_Solid")
+    pdoc.recompute()
+    solids = [o for o in pdoc.Objects if getattr(getattr(o, "Proxy", None), "Type", "") == "VarSurf::Solid"]
+    result["solids"] = len(solids)
+    if solids:
+        solid = solids[0]
+        result["solid_closed"] = bool(solid.Closed) and solid.isValid()
+        result["solid_icon"] = solid.ViewObject.Proxy.getIcon()
+        result["solid_children"] = [o.Name for o in solid.ViewObject.Proxy.claimChildren()]
+        result["sheets_hidden"] = not pdoc.getObject("Top").ViewObject.Visibility
+    Gui.Selection.clearSelection()
+    view = Gui.ActiveDocument.ActiveView
+    view.viewIsometric()
+    Gui.SendMsgToActiveView("ViewFit")
+    Gui.updateGui()
+    solid_image = os.path.join(OUT, "solid.png")
+    view.saveImage(solid_image, 800, 600, "White")
+    result["solid_image_stats"] = image_stats(solid_image)
+
 
 def main():
     result = {"ok": False}

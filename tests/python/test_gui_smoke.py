@@ -88,3 +88,11 @@ def test_constraint_commands_work_in_the_gui(smoke):
     assert smoke["constraint_residuals"][0] < 1e-6  # degrees
     assert smoke["constraint_in_tree"]
     assert smoke["constraint_icon"].endswith("VarSurf_Constraint.svg")
+    # The Solid command joins two selected Sheets; the Solid shows them as its children.
+    assert smoke["solid_active"]
+    assert smoke["solids"] == 1
+    assert smoke["solid_closed"]
+    assert smoke["solid_icon"].endswith("VarSurf_Solid.svg")
+    assert smoke["solid_children"] == ["Top", "Bottom"]
+    assert smoke["sheets_hidden"]
+    assert smoke["solid_image_stats"]["variance"] > 50.0, smoke["solid_image_stats"]

@@ -117,6 +117,45 @@ class ViewProviderConstraint(VersionedState):
         pass
 
 
+class ViewProviderSolid(VersionedState):
+    """Tree icon of a Solid, with its Sheets as children; hides them, as Part features hide the
+    shapes they consume."""
+
+    TYPE = "VarSurf::ViewProviderSolid"
+
+    def __init__(self, vobj):
+        vobj.Proxy = self
+        self.attach(vobj)
+
+    def attach(self, vobj):
+        self.ViewObject = vobj
+        self.Object = vobj.Object
+
+    def getIcon(self):
+        return resources.icon("VarSurf_Solid.svg")
+
+    def claimChildren(self):
+        obj = getattr(self, "Object", None)
+        return list(getattr(obj, "Sheets", None) or []) if obj is not None else []
+
+    def on_created(self, vobj):
+        for sheet in getattr(vobj.Object, "Sheets", None) or []:
+            if sheet.ViewObject is not None:
+                sheet.ViewObject.Visibility = False
+
+    def onDelete(self, vobj, subelements):
+        for sheet in getattr(vobj.Object, "Sheets", None) or []:
+            if sheet.ViewObject is not None:
+                sheet.ViewObject.Visibility = True
+        return True
+
+    def updateData(self, obj, prop):
+        pass
+
+    def onChanged(self, vobj, prop):
+        pass
+
+
 def ensure_view_provider(obj):
     """Give a Sheet created without GUI (or restored without a proxy) its view provider."""
     if App.GuiUp and obj.ViewObject is not None and obj.ViewObject.Proxy is None:
