@@ -10,12 +10,7 @@ import itertools
 import sys
 from pathlib import Path
 
-REPO = Path(__file__).resolve().parents[1]
-FREECAD_LIB = "/usr/lib/freecad-python3/lib"
-if FREECAD_LIB not in sys.path:
-    sys.path.append(FREECAD_LIB)
-if str(REPO / "src") not in sys.path:
-    sys.path.insert(0, str(REPO / "src"))
+import freecad_env  # noqa: E402,F401  (FreeCAD and VarSurf on the path)
 
 import FreeCAD  # noqa: E402
 import Part  # noqa: E402

@@ -353,6 +353,24 @@ def _exec_line(line: str, namespace={}):  # noqa: B006 - one namespace, like the
     exec(line, namespace)
 
 
+def run_in_transaction(doc, name: str, lines, do_command=None, keep=lambda obj: True):
+    """Run macro lines (through do_command, e.g. FreeCADGui.doCommand so they are recorded, or
+    exec()) as one undoable transaction; a failing line aborts it. Returns the last object the
+    lines created that ``keep`` accepts, or None."""
+    run = do_command or _exec_line
+    before = set(o.Name for o in doc.Objects)
+    doc.openTransaction(name)
+    try:
+        for line in lines:
+            run(line)
+    except Exception:
+        doc.abortTransaction()
+        raise
+    doc.commitTransaction()
+    created = [o for o in doc.Objects if o.Name not in before and keep(o)]
+    return created[-1] if created else None
+
+
 def create_sheet_from_selection(selection_ex, do_command=None):
     """Validate the selection and create a sheet through macro lines, in one undo transaction.
 
@@ -361,19 +379,8 @@ def create_sheet_from_selection(selection_ex, do_command=None):
     creating nothing. Returns the new Sheet object.
     """
     base, curves = selection_to_sheet_args(selection_ex)
-    doc = base[0].Document
-    run = do_command or _exec_line
-    before = set(o.Name for o in doc.Objects)
-    doc.openTransaction(TRANSACTION_CREATE)
-    try:
-        for line in sheet_command_lines(base, curves):
-            run(line)
-    except Exception:
-        doc.abortTransaction()
-        raise
-    doc.commitTransaction()
-    created = [o for o in doc.Objects if o.Name not in before and _is_sheet(o)]
-    return created[-1] if created else None
+    return run_in_transaction(base[0].Document, TRANSACTION_CREATE, sheet_command_lines(base, curves),
+                              do_command, keep=_is_sheet)
 
 
 def run_sheet_command(selection_ex, do_command=None, on_error=None):
@@ -422,23 +429,12 @@ def run_solid_command(selection_ex, do_command=None, on_error=None):
             on_error(str(error))
         return None
     doc = sheets[0].Document
-    run = do_command or _exec_line
-    before = set(o.Name for o in doc.Objects)
     lines = [
         "import varsurf",
         f"_solid = varsurf.make_solid([{', '.join(_ref(s) for s in sheets)}])",
         f"App.getDocument({doc.Name!r}).recompute()",
     ]
-    doc.openTransaction(TRANSACTION_SOLID)
-    try:
-        for line in lines:
-            run(line)
-    except Exception:
-        doc.abortTransaction()
-        raise
-    doc.commitTransaction()
-    created = [o for o in doc.Objects if o.Name not in before]
-    return created[-1] if created else None
+    return run_in_transaction(doc, TRANSACTION_SOLID, lines, do_command)
 
 
 def _is_sheet(obj) -> bool:
@@ -614,16 +610,5 @@ def run_constraint_command(kind: str, selection_ex, do_command=None, on_error=No
         if on_error is not None:
             on_error(str(error))
         return None
-    doc = sheet.Document
-    run = do_command or _exec_line
-    before = set(o.Name for o in doc.Objects)
-    doc.openTransaction(TRANSACTION_CONSTRAINT)
-    try:
-        for line in constraint_command_lines(kind, sheet, args):
-            run(line)
-    except Exception:
-        doc.abortTransaction()
-        raise
-    doc.commitTransaction()
-    created = [o for o in doc.Objects if o.Name not in before]
-    return created[-1] if created else None
+    return run_in_transaction(sheet.Document, TRANSACTION_CONSTRAINT,
+                              constraint_command_lines(kind, sheet, args), do_command)

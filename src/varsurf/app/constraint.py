@@ -11,7 +11,7 @@ from __future__ import annotations
 import FreeCAD
 
 from varsurf import constraints
-from varsurf.persistence import VersionedState
+from varsurf.app.feature import FeatureProxy
 
 TYPE = "VarSurf::Constraint"
 
@@ -132,20 +132,17 @@ def spec_of(obj) -> constraints.ConstraintSpec:
     return spec
 
 
-class ConstraintFeature(VersionedState):
+class ConstraintFeature(FeatureProxy):
     """Proxy of a VarSurf Constraint (App::FeaturePython)."""
 
     Type = TYPE
     TYPE = TYPE
 
-    def __init__(self, obj):
-        obj.Proxy = self
-        self.Type = TYPE
+    def add_properties(self, obj):
         _add_missing_properties(obj)
 
     def onDocumentRestored(self, obj):
-        self.Type = TYPE
-        _add_missing_properties(obj)
+        super().onDocumentRestored(obj)
         # Files from before a kind was added list fewer kinds: offer them all, keep the choice.
         if list(obj.getEnumerationsOfProperty("Kind")) != list(constraints.KINDS):
             kind = str(obj.Kind)

@@ -11,7 +11,7 @@ from __future__ import annotations
 import FreeCAD
 
 from varsurf import model
-from varsurf.persistence import VersionedState
+from varsurf.app.feature import FeatureProxy
 from varsurf.app.constraint import spec_of
 
 TYPE = "VarSurf::Sheet"
@@ -171,22 +171,18 @@ def _clear_results(obj, status):
     obj.Status = status
 
 
-class SheetFeature(VersionedState):
+class SheetFeature(FeatureProxy):
     """Proxy of a VarSurf Sheet (Part::FeaturePython)."""
 
     Type = TYPE
     TYPE = TYPE
 
-    def __init__(self, obj):
-        obj.Proxy = self
-        self.Type = TYPE
+    def add_properties(self, obj):
         _add_missing_properties(obj)
         _restore_constraints(obj)
 
     def onDocumentRestored(self, obj):
-        self.Type = TYPE
-        _add_missing_properties(obj)
-        _restore_constraints(obj)
+        super().onDocumentRestored(obj)
         # Files from before a mode was added list fewer modes: offer them all, keep the choice.
         if list(obj.getEnumerationsOfProperty("SolveMode")) != list(model.SOLVE_MODES):
             mode = str(obj.SolveMode)

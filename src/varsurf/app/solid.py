@@ -13,7 +13,7 @@ from __future__ import annotations
 import FreeCAD
 
 from varsurf import assembly, model
-from varsurf.persistence import VersionedState
+from varsurf.app.feature import FeatureProxy
 
 TYPE = "VarSurf::Solid"
 
@@ -72,19 +72,13 @@ def join_inputs(obj):
     return out
 
 
-class SolidFeature(VersionedState):
+class SolidFeature(FeatureProxy):
     """Proxy of a VarSurf Solid (Part::FeaturePython)."""
 
     Type = TYPE
     TYPE = TYPE
 
-    def __init__(self, obj):
-        obj.Proxy = self
-        self.Type = TYPE
-        _add_missing_properties(obj)
-
-    def onDocumentRestored(self, obj):
-        self.Type = TYPE
+    def add_properties(self, obj):
         _add_missing_properties(obj)
 
     def execute(self, obj):

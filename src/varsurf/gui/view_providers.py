@@ -27,10 +27,10 @@ def _input_objects(obj):
     return unique
 
 
-class ViewProviderSheet(VersionedState):
-    """Tree icon, children (base, curves, constraints), double click to edit."""
+class _ViewProvider(VersionedState):
+    """What every VarSurf view provider does: remember its objects, show ICON in the tree."""
 
-    TYPE = TYPE
+    ICON = "VarSurf.svg"
 
     def __init__(self, vobj):
         vobj.Proxy = self
@@ -41,7 +41,20 @@ class ViewProviderSheet(VersionedState):
         self.Object = vobj.Object
 
     def getIcon(self):
-        return resources.icon("VarSurf_Sheet.svg")
+        return resources.icon(self.ICON)
+
+    def updateData(self, obj, prop):
+        pass
+
+    def onChanged(self, vobj, prop):
+        pass
+
+
+class ViewProviderSheet(_ViewProvider):
+    """Tree icon, children (base, curves, constraints), double click to edit."""
+
+    TYPE = TYPE
+    ICON = "VarSurf_Sheet.svg"
 
     def claimChildren(self):
         obj = getattr(self, "Object", None)
@@ -58,12 +71,6 @@ class ViewProviderSheet(VersionedState):
         if base and base[0] is not None and base[0].ViewObject is not None:
             base[0].ViewObject.Visibility = True
         return True
-
-    def updateData(self, obj, prop):
-        pass
-
-    def onChanged(self, vobj, prop):
-        pass
 
     def doubleClicked(self, vobj):
         Gui.ActiveDocument.setEdit(vobj.Object.Name, 0)
@@ -95,44 +102,19 @@ class ViewProviderSheet(VersionedState):
         return True
 
 
-class ViewProviderConstraint(VersionedState):
+class ViewProviderConstraint(_ViewProvider):
     """Tree icon of a Constraint; it has no geometry of its own to draw."""
 
     TYPE = "VarSurf::ViewProviderConstraint"
-
-    def __init__(self, vobj):
-        vobj.Proxy = self
-
-    def attach(self, vobj):
-        self.ViewObject = vobj
-        self.Object = vobj.Object
-
-    def getIcon(self):
-        return resources.icon("VarSurf_Constraint.svg")
-
-    def updateData(self, obj, prop):
-        pass
-
-    def onChanged(self, vobj, prop):
-        pass
+    ICON = "VarSurf_Constraint.svg"
 
 
-class ViewProviderSolid(VersionedState):
+class ViewProviderSolid(_ViewProvider):
     """Tree icon of a Solid, with its Sheets as children; hides them, as Part features hide the
     shapes they consume."""
 
     TYPE = "VarSurf::ViewProviderSolid"
-
-    def __init__(self, vobj):
-        vobj.Proxy = self
-        self.attach(vobj)
-
-    def attach(self, vobj):
-        self.ViewObject = vobj
-        self.Object = vobj.Object
-
-    def getIcon(self):
-        return resources.icon("VarSurf_Solid.svg")
+    ICON = "VarSurf_Solid.svg"
 
     def claimChildren(self):
         obj = getattr(self, "Object", None)
@@ -148,12 +130,6 @@ class ViewProviderSolid(VersionedState):
             if sheet.ViewObject is not None:
                 sheet.ViewObject.Visibility = True
         return True
-
-    def updateData(self, obj, prop):
-        pass
-
-    def onChanged(self, vobj, prop):
-        pass
 
 
 def ensure_view_provider(obj):
