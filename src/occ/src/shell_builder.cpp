@@ -35,6 +35,16 @@ namespace varsurf::occ {
 
 namespace {
 
+// The result's face count and validity (BRepCheck), filled in.
+ShellResult finished(ShellResult out) {
+  for (TopExp_Explorer ex(out.shape, TopAbs_FACE); ex.More(); ex.Next()) ++out.faces;
+  const ShapeCheck check = check_shape(out.shape);
+  out.valid = check.valid;
+  out.message = check.message;
+  out.max_tolerance = check.max_tolerance;
+  return out;
+}
+
 // Signed area of the loop in (u, v), by the shoelace formula on samples of each curve.
 double signed_area(const std::vector<BSplineCurve>& loop) {
   double area = 0.0;
@@ -152,12 +162,7 @@ ShellResult sew_faces(const std::vector<TopoDS_Face>& faces, double tolerance) {
       out.shape = s;
       out.closed = true;
     }
-    for (TopExp_Explorer ex(out.shape, TopAbs_FACE); ex.More(); ex.Next()) ++out.faces;
-    const ShapeCheck check = check_shape(out.shape);
-    out.valid = check.valid;
-    out.message = check.message;
-    out.max_tolerance = check.max_tolerance;
-    return out;
+    return finished(out);
   });
 }
 
@@ -352,12 +357,7 @@ ShellResult join_sheets(const std::vector<BSplineCurve>& curves,
     out.closed = closed;
     for (size_t c = 0; c < curves.size(); ++c)
       if (uses[c] < 2) out.free_edges += static_cast<int>(shared[c].edges.size());
-    for (TopExp_Explorer ex(out.shape, TopAbs_FACE); ex.More(); ex.Next()) ++out.faces;
-    const ShapeCheck check = check_shape(out.shape);
-    out.valid = check.valid;
-    out.message = check.message;
-    out.max_tolerance = check.max_tolerance;
-    return out;
+    return finished(out);
   });
 }
 
