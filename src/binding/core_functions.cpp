@@ -6,6 +6,7 @@
 
 #include "binding.hpp"
 #include "varsurf/core/constraints.hpp"
+#include "varsurf/core/curve_loop.hpp"
 #include "varsurf/core/errors.hpp"
 #include "varsurf/core/knot_vector.hpp"
 #include "varsurf/core/sheet_solver.hpp"
@@ -35,6 +36,16 @@ void bind_core_functions(py::module_& m) {
            "SolveResult with constraints added, removed or re-placed: keeps the energy's assembly "
            "and unchanged curves' samples, rebuilds the constraint side; later updates start from "
            "it.");
+
+  py::class_<LoopStep>(m, "LoopStep")
+      .def_readonly("curve", &LoopStep::curve)
+      .def_readonly("reversed", &LoopStep::reversed);
+  py::class_<CurveLoop>(m, "CurveLoop", "2D curves chained into one closed loop.")
+      .def_readonly("steps", &CurveLoop::steps)
+      .def_readonly("signed_area", &CurveLoop::signed_area);
+  m.def("chain_loop", &chain_loop, "curves"_a, "gap"_a,
+        "Order 2D curves end to start into one closed loop (ends within `gap` join); "
+        "InvalidInput if they do not close one.");
 
   m.def(
       "boundary_pole_indices",

@@ -3,8 +3,8 @@ the curves it shares with the others, the shared edges built once with a pcurve 
 No document and no GUI here.
 
 A join curve is a 3D edge that several sheets contain. On each sheet its pre-image is found by
-projecting it onto the solved surface; the pre-images of a sheet's join curves are chained into
-one closed loop (reversing curves as needed) and the sheet is trimmed to the region inside.
+projecting it onto the solved surface; the native layer chains the pre-images of a sheet's join
+curves into one closed loop and trims the sheet to the region inside.
 """
 
 from __future__ import annotations
@@ -30,58 +30,20 @@ class AssemblyOutcome:
     seam_angles: List[tuple] = field(default_factory=list)
 
 
-def _reversed(nat, c):
-    """The same 2D curve walked backwards, over the same parameter range."""
-    a, b = c.knots[0], c.knots[-1]
-    knots = [a + b - k for k in reversed(list(c.knots))]
-    weights = list(reversed(list(c.weights))) if len(c.weights) else []
-    return nat.BSplineCurve(degree=c.degree, knots=knots, poles=[list(p) for p in reversed(c.poles)],
-                            weights=weights)
+def _loop_gap(surface) -> float:
+    """How close pre-image ends must be to join: 1e-6 of the larger side of the domain."""
+    return 1e-6 * max(surface.space.knots_u[-1] - surface.space.knots_u[0],
+                      surface.space.knots_v[-1] - surface.space.knots_v[0])
 
 
-def _ends(c):
-    return list(c.poles[0]), list(c.poles[-1])  # clamped: the ends are the end poles
-
-
-def _chain(nat, curves, label, tolerance_uv):
-    """Order and orient 2D curves into one closed loop, or SheetError."""
-    loop = [curves[0]]
-    rest = list(curves[1:])
-    while rest:
-        end = _ends(loop[-1])[1]
-        best = None
-        for i, c in enumerate(rest):
-            start, stop = _ends(c)
-            for flip, point in ((False, start), (True, stop)):
-                d = math.dist(end, point)
-                if best is None or d < best[0]:
-                    best = (d, i, flip)
-        d, i, flip = best
-        if d > tolerance_uv:
-            raise SheetError(f"{label}: its join curves do not form one closed loop (a gap of {d:.3g} in (u, v))")
-        c = rest.pop(i)
-        loop.append(_reversed(nat, c) if flip else c)
-    gap = math.dist(_ends(loop[-1])[1], _ends(loop[0])[0])
-    if gap > tolerance_uv:
-        raise SheetError(f"{label}: its join curves do not close a loop (a gap of {gap:.3g} in (u, v))")
-    # Each curve starts exactly where the previous one ends (the gaps are projection round-off).
-    snapped = []
-    for k, c in enumerate(loop):
-        poles = [list(p) for p in c.poles]
-        poles[0] = _ends(loop[k - 1])[1]
-        snapped.append(nat.BSplineCurve(degree=c.degree, knots=list(c.knots), poles=poles,
-                                        weights=list(c.weights) if len(c.weights) else []))
-    return snapped
-
-
-def _closes(nat, surface, edges, label, tolerance_uv) -> bool:
+def _closes(nat, surface, edges) -> bool:
     """Whether the edges' pre-images on the surface chain into one closed loop."""
     try:
         pre = [nat.project_curve(surface, nat.curve_from_edge_brep(e.exportBrepToString())).curve
                for _key, e in (item if isinstance(item, tuple) else (None, item) for item in edges)]
-        _chain(nat, pre, label, tolerance_uv)
+        nat.chain_loop(pre, _loop_gap(surface))
         return True
-    except (SheetError, nat.InvalidInput, nat.GeometryError):
+    except (nat.InvalidInput, nat.GeometryError):
         return False
 
 
@@ -107,9 +69,7 @@ def build_solid(sheets: Sequence, tolerance: float) -> AssemblyOutcome:
         if not edges:
             raise SheetError(f"{label} shares no curve with the other sheets: nothing bounds it")
         surface = nat.surface_from_face_brep(face.exportBrepToString())
-        span = max(surface.space.knots_u[-1] - surface.space.knots_u[0],
-                   surface.space.knots_v[-1] - surface.space.knots_v[0])
-        if own and not _closes(nat, surface, edges, label, 1e-6 * span):
+        if own and not _closes(nat, surface, edges):
             edges = edges + own  # the shared curves alone do not close: its own ones complete the loop
         ids, pre_images = [], []
         for item in edges:
@@ -128,7 +88,10 @@ def build_solid(sheets: Sequence, tolerance: float) -> AssemblyOutcome:
             gaps[key] = max(gaps.get(key, 0.0), float(pre.max_distance))
             ids.append(index[key])
             pre_images.append(pre.curve)
-        _chain(nat, pre_images, label, 1e-6 * span)  # a clear message for loops that do not close
+        try:  # checked here too, so that the message names the sheet
+            nat.chain_loop(pre_images, _loop_gap(surface))
+        except nat.InvalidInput as error:
+            raise SheetError(f"{label}: its join curves do not close: {error}") from error
         joined.append(nat.JoinedSheet(surface=surface, curves=ids, preimages=pre_images))
     try:
         result = nat.join_sheets(curves, joined, tolerance)

@@ -23,9 +23,11 @@
 #include <TopoDS_Solid.hxx>
 #include <TopoDS_Vertex.hxx>
 #include <TopoDS_Wire.hxx>
+#include <algorithm>
 #include <cmath>
 #include <string>
 
+#include "varsurf/core/curve_loop.hpp"
 #include "varsurf/core/errors.hpp"
 #include "varsurf/occ/geom_convert.hpp"
 #include "varsurf/occ/occ_error.hpp"
@@ -35,6 +37,15 @@ namespace varsurf::occ {
 
 namespace {
 
+// A closed shell as a solid whose faces point outward.
+TopoDS_Solid outward_solid(const TopoDS_Shell& shell) {
+  BRepBuilderAPI_MakeSolid solid(shell);
+  if (!solid.IsDone()) throw GeometryError("the closed shell did not make a solid");
+  TopoDS_Solid out = solid.Solid();
+  BRepLib::OrientClosedSolid(out);
+  return out;
+}
+
 // The result's face count and validity (BRepCheck), filled in.
 ShellResult finished(ShellResult out) {
   for (TopExp_Explorer ex(out.shape, TopAbs_FACE); ex.More(); ex.Next()) ++out.faces;
@@ -43,21 +54,6 @@ ShellResult finished(ShellResult out) {
   out.message = check.message;
   out.max_tolerance = check.max_tolerance;
   return out;
-}
-
-// Signed area of the loop in (u, v), by the shoelace formula on samples of each curve.
-double signed_area(const std::vector<BSplineCurve>& loop) {
-  double area = 0.0;
-  for (const BSplineCurve& c : loop) {
-    const int n = 64;
-    Eigen::VectorXd prev = c.evaluate(c.first());
-    for (int k = 1; k <= n; ++k) {
-      const Eigen::VectorXd p = c.evaluate(c.first() + (c.last() - c.first()) * k / n);
-      area += 0.5 * (prev(0) * p(1) - p(0) * prev(1));
-      prev = p;
-    }
-  }
-  return area;
 }
 
 }  // namespace
@@ -70,15 +66,9 @@ TopoDS_Face make_trimmed_face(const TrimmedSheet& sheet, double tolerance) {
   const SplineSpace& sp = sheet.surface.space;
   const double du = sp.u_last() - sp.u_first(), dv = sp.v_last() - sp.v_first();
   const double ptol = 1e-7 * std::max(du, dv);
+  const CurveLoop order = chain_loop(sheet.loop, ptol);
   for (size_t i = 0; i < sheet.loop.size(); ++i) {
     const BSplineCurve& c = sheet.loop[i];
-    c.validate("boundary pre-image");
-    if (c.dim() != 2) throw InvalidInput("trimming: boundary pre-images must be 2D (u, v) curves");
-    const BSplineCurve& next = sheet.loop[(i + 1) % sheet.loop.size()];
-    if ((c.evaluate(c.last()) - next.evaluate(next.first())).norm() > ptol)
-      throw InvalidInput("trimming: the boundary loop does not close (curve " + std::to_string(i) +
-                         " does not end where curve " +
-                         std::to_string((i + 1) % sheet.loop.size()) + " starts)");
     for (int k = 0; k <= 32; ++k) {
       const Eigen::VectorXd p = c.evaluate(c.first() + (c.last() - c.first()) * k / 32);
       if (p(0) < sp.u_first() - ptol || p(0) > sp.u_last() + ptol || p(1) < sp.v_first() - ptol ||
@@ -87,7 +77,12 @@ TopoDS_Face make_trimmed_face(const TrimmedSheet& sheet, double tolerance) {
                            " leaves the sheet's parameter domain");
     }
   }
-  const bool reverse = signed_area(sheet.loop) < 0.0;
+  // Counter-clockwise in (u, v) keeps the surface's normal for the face.
+  std::vector<LoopStep> steps = order.steps;
+  if (order.signed_area < 0.0) {
+    std::reverse(steps.begin(), steps.end());
+    for (LoopStep& step : steps) step.reversed = !step.reversed;
+  }
   return guarded("trimming the sheet", [&] {
     Handle(Geom_BSplineSurface) surface = to_geom(sheet.surface);
     // A loop of one or two curves is split so that the wire has at least three edges: a face
@@ -95,10 +90,10 @@ TopoDS_Face make_trimmed_face(const TrimmedSheet& sheet, double tolerance) {
     // (measured: the re-read pillow had half its volume, with the sign flipped).
     const int pieces = sheet.loop.size() >= 3 ? 1 : (sheet.loop.size() == 1 ? 3 : 2);
     BRepBuilderAPI_MakeWire wire;
-    for (size_t k = 0; k < sheet.loop.size(); ++k) {
-      const BSplineCurve& c = sheet.loop[reverse ? sheet.loop.size() - 1 - k : k];
-      Handle(Geom2d_BSplineCurve) whole = to_geom2d_curve(c);
-      if (reverse) whole->Reverse();
+    for (const LoopStep& step : steps) {
+      Handle(Geom2d_BSplineCurve) whole =
+          to_geom2d_curve(sheet.loop[static_cast<size_t>(step.curve)]);
+      if (step.reversed) whole->Reverse();
       const double t0 = whole->FirstParameter(), t1 = whole->LastParameter();
       for (int piece = 0; piece < pieces; ++piece) {
         Handle(Geom2d_BSplineCurve) pcurve = Handle(Geom2d_BSplineCurve)::DownCast(whole->Copy());
@@ -155,20 +150,12 @@ ShellResult sew_faces(const std::vector<TopoDS_Face>& faces, double tolerance) {
     }
     out.shape = sewn;
     if (shells == 1 && out.free_edges == 0 && BRep_Tool::IsClosed(shell)) {
-      BRepBuilderAPI_MakeSolid solid(shell);
-      if (!solid.IsDone()) throw GeometryError("sewing: the closed shell did not make a solid");
-      TopoDS_Solid s = solid.Solid();
-      BRepLib::OrientClosedSolid(s);
-      out.shape = s;
+      out.shape = outward_solid(shell);
       out.closed = true;
     }
     return finished(out);
   });
 }
-
-}  // namespace varsurf::occ
-
-namespace varsurf::occ {
 
 namespace {
 
@@ -176,12 +163,6 @@ struct CurveEdges {
   std::vector<TopoDS_Edge> edges;  // forward along the 3D curve
   std::vector<double> breaks;      // parameters of the pieces' ends
 };
-
-// The (u, v) point where an edge of the loop starts, walking the loop.
-gp_Pnt2d start_of(const BSplineCurve& pre, double t) {
-  const Eigen::VectorXd p = pre.evaluate(t);
-  return gp_Pnt2d(p(0), p(1));
-}
 
 }  // namespace
 
@@ -251,11 +232,8 @@ ShellResult join_sheets(const std::vector<BSplineCurve>& curves,
     for (size_t s = 0; s < sheets.size(); ++s) {
       const JoinedSheet& sh = sheets[s];
       Handle(Geom_BSplineSurface) surface = to_geom(sh.surface);
-      struct Piece {
-        TopoDS_Edge edge;
-        gp_Pnt2d from, to;  // along the loop direction chosen below
-      };
-      std::vector<Piece> pieces;
+      // The sheet's pieces of each shared curve, with their pcurves on its surface.
+      std::vector<std::vector<TopoDS_Edge>> edges_of(sh.curves.size());
       for (size_t k = 0; k < sh.curves.size(); ++k) {
         const CurveEdges& ce = shared[static_cast<size_t>(sh.curves[k])];
         Handle(Geom2d_BSplineCurve) pre = to_geom2d_curve(sh.preimages[k]);
@@ -264,55 +242,34 @@ ShellResult join_sheets(const std::vector<BSplineCurve>& curves,
           if (ce.edges.size() > 1) piece->Segment(ce.breaks[e], ce.breaks[e + 1]);
           builder.UpdateEdge(ce.edges[e], piece, surface, TopLoc_Location(),
                              Precision::Confusion());
-          pieces.push_back({ce.edges[e], start_of(sh.preimages[k], ce.breaks[e]),
-                            start_of(sh.preimages[k], ce.breaks[e + 1])});
+          edges_of[k].push_back(ce.edges[e]);
         }
       }
-      // Chain the pieces end to start in (u, v), reversing edges walked backwards.
+      // The pre-images chained into the loop, walked counter-clockwise in (u, v) so the face
+      // keeps the surface's normal.
       const SplineSpace& sp = sh.surface.space;
-      const double gap_tol =
-          1e-6 * std::max(sp.u_last() - sp.u_first(), sp.v_last() - sp.v_first());
-      std::vector<TopoDS_Edge> loop = {pieces[0].edge};
-      gp_Pnt2d at = pieces[0].to;
-      const gp_Pnt2d begin = pieces[0].from;
-      std::vector<bool> used(pieces.size(), false);
-      used[0] = true;
-      std::vector<gp_Pnt2d> polygon = {pieces[0].from};
-      for (size_t n = 1; n < pieces.size(); ++n) {
-        double best = 1e300;
-        size_t pick = 0;
-        bool flip = false;
-        for (size_t i = 0; i < pieces.size(); ++i) {
-          if (used[i]) continue;
-          if (pieces[i].from.Distance(at) < best)
-            best = pieces[i].from.Distance(at), pick = i, flip = false;
-          if (pieces[i].to.Distance(at) < best)
-            best = pieces[i].to.Distance(at), pick = i, flip = true;
-        }
-        if (best > gap_tol)
-          throw InvalidInput("joining: the join curves of sheet " + std::to_string(s) +
-                             " do not form one closed loop");
-        used[pick] = true;
-        polygon.push_back(at);
-        loop.push_back(flip ? TopoDS::Edge(pieces[pick].edge.Reversed()) : pieces[pick].edge);
-        at = flip ? pieces[pick].from : pieces[pick].to;
+      CurveLoop order;
+      try {
+        order = chain_loop(sh.preimages,
+                           1e-6 * std::max(sp.u_last() - sp.u_first(), sp.v_last() - sp.v_first()));
+      } catch (const InvalidInput& e) {
+        throw InvalidInput("joining: sheet " + std::to_string(s) + ": " + e.what());
       }
-      if (at.Distance(begin) > gap_tol)
-        throw InvalidInput("joining: the join curves of sheet " + std::to_string(s) +
-                           " do not close a loop");
-      // Counter-clockwise in (u, v) keeps the surface's normal for the face.
-      double area = 0.0;
-      for (size_t i = 0; i < polygon.size(); ++i) {
-        const gp_Pnt2d& a = polygon[i];
-        const gp_Pnt2d& b = polygon[(i + 1) % polygon.size()];
-        area += a.X() * b.Y() - b.X() * a.Y();
+      std::vector<LoopStep> steps = order.steps;
+      if (order.signed_area < 0.0) {
+        std::reverse(steps.begin(), steps.end());
+        for (LoopStep& step : steps) step.reversed = !step.reversed;
       }
       TopoDS_Wire wire;
       builder.MakeWire(wire);
-      if (area >= 0.0) {
-        for (const TopoDS_Edge& e : loop) builder.Add(wire, e);
-      } else {
-        for (auto it = loop.rbegin(); it != loop.rend(); ++it) builder.Add(wire, it->Reversed());
+      for (const LoopStep& step : steps) {
+        const std::vector<TopoDS_Edge>& pieces = edges_of[static_cast<size_t>(step.curve)];
+        if (!step.reversed) {
+          for (const TopoDS_Edge& e : pieces) builder.Add(wire, e);
+        } else {
+          for (auto it = pieces.rbegin(); it != pieces.rend(); ++it)
+            builder.Add(wire, it->Reversed());
+        }
       }
       wire.Closed(Standard_True);
       TopoDS_Face face;
@@ -346,14 +303,7 @@ ShellResult join_sheets(const std::vector<BSplineCurve>& curves,
     fix_shell.Perform();
     shell = fix_shell.Shell();
     shell.Closed(closed);
-    out.shape = shell;
-    if (closed) {
-      BRepBuilderAPI_MakeSolid solid(shell);
-      if (!solid.IsDone()) throw GeometryError("joining: the closed shell did not make a solid");
-      TopoDS_Solid so = solid.Solid();
-      BRepLib::OrientClosedSolid(so);
-      out.shape = so;
-    }
+    out.shape = closed ? TopoDS_Shape(outward_solid(shell)) : TopoDS_Shape(shell);
     out.closed = closed;
     for (size_t c = 0; c < curves.size(); ++c)
       if (uses[c] < 2) out.free_edges += static_cast<int>(shared[c].edges.size());
