@@ -327,26 +327,26 @@ namespace {
 
 // The same constraint matrices up to rounding (a rigidly moved curve keeps its arc-length
 // weights only to rounding).
-bool same_samples(const std::vector<ConstraintSamples>& a,
-                  const std::vector<ConstraintSamples>& b) {
+// Blocks [rows_known_from, rows_known_to) were built from b's own rows (moved curves): only their
+// weights can differ, so only those are compared (the drag update's hot path).
+bool same_samples(const std::vector<ConstraintSamples>& a, const std::vector<ConstraintSamples>& b,
+                  size_t rows_known_from, size_t rows_known_to) {
   if (a.size() != b.size()) return false;
   const auto close = [](double x, double y) {
     return std::abs(x - y) <= 1e-12 * std::max(std::abs(x), std::abs(y));
   };
   for (size_t i = 0; i < a.size(); ++i) {
-    if (a[i].index != b[i].index || a[i].exact != b[i].exact) return false;
+    if (a[i].weight.size() != b[i].weight.size() || a[i].exact != b[i].exact) return false;
     for (size_t r = 0; r < a[i].weight.size(); ++r)
       if (!close(a[i].weight[r], b[i].weight[r])) return false;
+    if (i >= rows_known_from && i < rows_known_to) continue;
+    if (a[i].index != b[i].index) return false;
     for (size_t r = 0; r < a[i].coeff.size(); ++r)
       for (Eigen::Index k = 0; k < a[i].coeff[r].size(); ++k)
         if (!close(a[i].coeff[r](k), b[i].coeff[r](k))) return false;
   }
   return true;
 }
-
-}  // namespace
-
-namespace {
 
 bool same_space(const SplineSpace& a, const SplineSpace& b) {
   return a.degree_u == b.degree_u && a.degree_v == b.degree_v && a.knots_u == b.knots_u &&
@@ -421,7 +421,9 @@ SolveResult PreparedSheet::update(const SheetProblem& moved) {
   };
   const std::vector<ConstraintSamples> blocks =
       sample_constraints(moved, out.report.coupled, moved_curve);
-  if (!same_samples(blocks, st.assembled.quad.blocks))
+  // sample_constraints puts the points first, then the curves.
+  if (!same_samples(blocks, st.assembled.quad.blocks, moved.points.size(),
+                    moved.points.size() + moved.curves.size()))
     throw InvalidInput(
         "update: constraints were added, removed or re-placed (not only moved): use change()");
   const Eigen::MatrixXd b = st.solver->reduced_rhs(blocks);
