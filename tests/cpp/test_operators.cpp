@@ -13,9 +13,7 @@ using namespace varsurf;
 
 namespace {
 
-Eigen::MatrixX3d flat_poles(const SplineSpace& sp) {
-  return test::fit_poles(sp, [](double u, double v) { return Eigen::Vector3d(u, v, 0.0); });
-}
+using test::flat_poles;
 
 Eigen::MatrixX3d wavy_poles(const SplineSpace& sp) {
   return test::fit_poles(sp, [](double u, double v) {

@@ -43,9 +43,7 @@ SheetProblem problem_with_fixed_boundary(const SplineSpace& sp,
   return pb;
 }
 
-Eigen::MatrixX3d flat_poles(const SplineSpace& sp) {
-  return test::fit_poles(sp, [](double u, double v) { return Eigen::Vector3d(u, v, 0.0); });
-}
+using test::flat_poles;
 
 // A wavy space curve over the diagonal of the unit square, z within +-0.25: no coarse sheet holds
 // it exactly.

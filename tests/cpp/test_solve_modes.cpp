@@ -14,9 +14,7 @@ using namespace varsurf;
 
 namespace {
 
-Eigen::MatrixX3d flat_poles(const SplineSpace& sp) {
-  return test::fit_poles(sp, [](double u, double v) { return Eigen::Vector3d(u, v, 0.0); });
-}
+using test::flat_poles;
 
 PointConstraint pin(double u, double v, const Eigen::Vector3d& target) {
   PointConstraint p;
@@ -86,6 +84,15 @@ SheetProblem well_posed_problem(int spans) {
   return pb;
 }
 
+// A normal prescribed at (0.6, 0.3): a constraint that couples x, y and z.
+NormalConstraint tilted_normal() {
+  NormalConstraint nc;
+  nc.u = 0.6;
+  nc.v = 0.3;
+  nc.normal = Eigen::Vector3d(0.2, 0.1, 1.0);
+  return nc;
+}
+
 SolveOptions with_mode(SolveMode mode) {
   SolveOptions o;
   o.mode = mode;
@@ -97,13 +104,7 @@ SolveOptions with_mode(SolveMode mode) {
 TEST(SolveModes, EnergyModesAgreeOnAWellPosedProblem) {
   for (bool coupled : {false, true}) {
     SheetProblem pb = well_posed_problem(8);
-    if (coupled) {
-      NormalConstraint nc;
-      nc.u = 0.6;
-      nc.v = 0.3;
-      nc.normal = Eigen::Vector3d(0.2, 0.1, 1.0);
-      pb.normals.push_back(nc);
-    }
+    if (coupled) pb.normals.push_back(tilted_normal());
     const SolveResult exact = solve_sheet(pb, with_mode(SolveMode::exact));
     EXPECT_EQ(exact.report.mode, SolveMode::exact);
     EXPECT_EQ(exact.report.coupled, coupled);
@@ -124,13 +125,7 @@ TEST(SolveModes, PenaltyByQrEqualsPenaltyByCholesky) {
   // the exact solve.
   for (bool coupled : {false, true}) {
     SheetProblem pb = well_posed_problem(8);
-    if (coupled) {
-      NormalConstraint nc;
-      nc.u = 0.6;
-      nc.v = 0.3;
-      nc.normal = Eigen::Vector3d(0.2, 0.1, 1.0);
-      pb.normals.push_back(nc);
-    }
+    if (coupled) pb.normals.push_back(tilted_normal());
     SolveOptions qr = with_mode(SolveMode::penalty);
     qr.penalty_qr = true;
     const SolveResult by_qr = solve_sheet(pb, qr);
@@ -414,11 +409,7 @@ TEST(PreparedSheet, AddedAndRemovedConstraintsEqualAFreshSolve) {
               1e-10)
         << to_string(mode);
     // A coupled constraint added to a separable sheet: prepared again, same answer.
-    NormalConstraint nc;
-    nc.u = 0.6;
-    nc.v = 0.3;
-    nc.normal = Eigen::Vector3d(0.1, 0.0, 1.0);
-    changed.normals.push_back(nc);
+    changed.normals.push_back(tilted_normal());
     EXPECT_LT((prepared.change(changed).poles - solve_sheet(changed, options).poles)
                   .cwiseAbs()
                   .maxCoeff(),

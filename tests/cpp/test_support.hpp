@@ -74,6 +74,11 @@ inline BSplineCurve fit_piecewise_curve(const std::vector<double>& breaks, int d
   return c;
 }
 
+// The unit square as poles of the space: the flat sheet (u, v, 0).
+inline Eigen::MatrixX3d flat_poles(const SplineSpace& space) {
+  return fit_poles(space, [](double u, double v) { return Eigen::Vector3d(u, v, 0.0); });
+}
+
 inline BSplineCurve line_curve(const Eigen::VectorXd& a, const Eigen::VectorXd& b, double t0 = 0.0,
                                double t1 = 1.0) {
   BSplineCurve c;
