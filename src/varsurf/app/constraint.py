@@ -11,7 +11,7 @@ from __future__ import annotations
 import FreeCAD
 
 from varsurf import constraints
-from varsurf.app.feature import FeatureProxy
+from varsurf.app.feature import FeatureProxy, add_missing_properties
 
 TYPE = "VarSurf::Constraint"
 
@@ -37,23 +37,20 @@ _PROPERTIES = [
 ]
 
 
+_DEFAULTS = {
+    "Kind": list(constraints.KINDS),
+    "Enabled": True,
+    "U": 0.5,
+    "V": 0.5,
+    "Vector": FreeCAD.Vector(0, 0, 1),
+    "RegionU1": 1.0,
+    "RegionV1": 1.0,
+    "Weight": 1.0,
+}
+
+
 def _add_missing_properties(obj):
-    for name, kind, group, tip in _PROPERTIES:
-        if name in obj.PropertiesList:
-            continue
-        obj.addProperty(kind, name, group, tip)
-        if name == "Kind":
-            obj.Kind = list(constraints.KINDS)
-        elif name == "Enabled":
-            obj.Enabled = True
-        elif name in ("U", "V"):
-            setattr(obj, name, 0.5)
-        elif name == "Vector":
-            obj.Vector = FreeCAD.Vector(0, 0, 1)
-        elif name == "RegionU1" or name == "RegionV1":
-            setattr(obj, name, 1.0)
-        elif name == "Weight":
-            obj.Weight = 1.0
+    add_missing_properties(obj, _PROPERTIES, _DEFAULTS)
 
 
 def _location_point(obj):

@@ -11,15 +11,12 @@ from __future__ import annotations
 import FreeCAD
 
 from varsurf import model
-from varsurf.app.feature import FeatureProxy
+from varsurf.app.feature import FeatureProxy, add_missing_properties
 from varsurf.app.constraint import spec_of
 
 TYPE = "VarSurf::Sheet"
 REST_SHAPES = ("Base", "None", "Installed")
 
-# Property status bits (App::PropertyType): read-only in the editor, output (does not touch).
-_PROP_READONLY = 1
-_PROP_OUTPUT = 8
 
 _FLOAT_MAX = 1.0e12
 
@@ -65,33 +62,27 @@ class SheetComputeError(RuntimeError):
     """Raised from execute() so that FreeCAD marks the Sheet in error; names object and curve."""
 
 
+def _set_rest_shapes(obj):
+    obj.RestShape = list(REST_SHAPES)
+    obj.RestShape = "Base"
+
+
+_DEFAULTS = {
+    "Stretch": (model.DEFAULT_STRETCH, 0.0, _FLOAT_MAX, 0.1),
+    "Bend": (model.DEFAULT_BEND, 0.0, _FLOAT_MAX, 0.1),
+    "FixBoundary": True,
+    "RestShape": _set_rest_shapes,
+    "Tolerance": model.DEFAULT_TOLERANCE,
+    "SolveMode": list(model.SOLVE_MODES),
+    "Degree": (model.SHEET_MIN_DEGREE, 2, model.MAX_DEGREE, 1),
+    "MinSpans": (model.DEFAULT_MIN_SPANS, 1, 512, 1),
+    "MaxSpans": (model.DEFAULT_MAX_SPANS, 1, 512, 1),
+    "Status": "Not computed",
+}
+
+
 def _add_missing_properties(obj):
-    for name, kind, group, tip, output in _PROPERTIES:
-        if name in obj.PropertiesList:
-            continue
-        attr = (_PROP_READONLY | _PROP_OUTPUT) if output else 0
-        obj.addProperty(kind, name, group, tip, attr)
-        if name == "Stretch":
-            obj.Stretch = (model.DEFAULT_STRETCH, 0.0, _FLOAT_MAX, 0.1)
-        elif name == "Bend":
-            obj.Bend = (model.DEFAULT_BEND, 0.0, _FLOAT_MAX, 0.1)
-        elif name == "FixBoundary":
-            obj.FixBoundary = True
-        elif name == "RestShape":
-            obj.RestShape = list(REST_SHAPES)
-            obj.RestShape = "Base"
-        elif name == "Tolerance":
-            obj.Tolerance = model.DEFAULT_TOLERANCE
-        elif name == "SolveMode":
-            obj.SolveMode = list(model.SOLVE_MODES)
-        elif name == "Degree":
-            obj.Degree = (model.SHEET_MIN_DEGREE, 2, model.MAX_DEGREE, 1)
-        elif name == "MinSpans":
-            obj.MinSpans = (model.DEFAULT_MIN_SPANS, 1, 512, 1)
-        elif name == "MaxSpans":
-            obj.MaxSpans = (model.DEFAULT_MAX_SPANS, 1, 512, 1)
-        elif name == "Status":
-            obj.Status = "Not computed"
+    add_missing_properties(obj, _PROPERTIES, _DEFAULTS)
 
 
 def _restore_constraints(obj):

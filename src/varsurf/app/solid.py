@@ -13,7 +13,7 @@ from __future__ import annotations
 import FreeCAD
 
 from varsurf import assembly, model
-from varsurf.app.feature import FeatureProxy
+from varsurf.app.feature import FeatureProxy, add_missing_properties
 
 TYPE = "VarSurf::Solid"
 
@@ -27,20 +27,11 @@ _PROPERTIES = [
     ("SeamAngles", "App::PropertyFloatList", "Result", "Per shared edge: the smallest and largest angle between the faces across it (degrees, pairs; 180 is tangent-continuous)", True),
     ("Status", "App::PropertyString", "Result", "OK, or what went wrong", True),
 ]
-_PROP_READONLY = 1
-_PROP_OUTPUT = 8
 DEFAULT_TOLERANCE = 2 * model.DEFAULT_TOLERANCE
 
 
 def _add_missing_properties(obj):
-    for name, kind, group, tip, output in _PROPERTIES:
-        if name in obj.PropertiesList:
-            continue
-        obj.addProperty(kind, name, group, tip)
-        if output:
-            obj.setPropertyStatus(name, ["ReadOnly", "Output"])
-        if name == "Tolerance":
-            obj.Tolerance = DEFAULT_TOLERANCE
+    add_missing_properties(obj, _PROPERTIES, {"Tolerance": DEFAULT_TOLERANCE})
 
 
 def _curve_keys(sheet):
