@@ -9,7 +9,6 @@ Writes pillow.FCStd and pillow.step into OUT_DIR and prints the solid's volume a
 
 import math
 import sys
-from pathlib import Path
 
 import freecad_env  # noqa: E402,F401  (FreeCAD and VarSurf on the path)
 
@@ -46,18 +45,15 @@ def build(doc):
 
 
 def main(out_dir="out/pillow"):
-    out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
     doc = FreeCAD.newDocument("Pillow")
     solid = build(doc)
     print(f"status : {solid.Status}")
-    if not solid.isValid():
+    if not solid.isValid() or solid.Shape.isNull():
         print(solid.getStatusString())
         return 1
     print(f"volume : {solid.Shape.Volume:.1f} mm^3, area {solid.Shape.Area:.1f} mm^2")
-    doc.saveAs(str(out / "pillow.FCStd"))
-    varsurf.export_step([solid], str(out / "pillow.step"))
-    print(f"written: {out / 'pillow.FCStd'}, {out / 'pillow.step'}")
+    fcstd, step = freecad_env.write_outputs(doc, solid, out_dir, "pillow")
+    print(f"written: {fcstd}, {step}")
     return 0
 
 

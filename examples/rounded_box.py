@@ -8,7 +8,6 @@ the Solid joins the six sheets along the twelve shared curves into a closed soli
 
 import itertools
 import sys
-from pathlib import Path
 
 import freecad_env  # noqa: E402,F401  (FreeCAD and VarSurf on the path)
 
@@ -71,8 +70,6 @@ def build(doc):
 
 
 def main(out_dir="out/rounded_box"):
-    out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
     doc = FreeCAD.newDocument("RoundedBox")
     solid = build(doc)
     print(f"status : {solid.Status}")
@@ -80,9 +77,8 @@ def main(out_dir="out/rounded_box"):
         print(solid.getStatusString())
         return 1
     print(f"volume : {solid.Shape.Volume:.0f} mm^3 (the plain cube: {8 * HALF ** 3:.0f})")
-    doc.saveAs(str(out / "rounded_box.FCStd"))
-    varsurf.export_step([solid], str(out / "rounded_box.step"))
-    print(f"written: {out / 'rounded_box.FCStd'}, {out / 'rounded_box.step'}")
+    fcstd, step = freecad_env.write_outputs(doc, solid, out_dir, "rounded_box")
+    print(f"written: {fcstd}, {step}")
     return 0
 
 

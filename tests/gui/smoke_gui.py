@@ -43,6 +43,18 @@ def image_stats(path):
     return {"width": w, "height": h, "variance": variance, "non_white": non_white / len(values)}
 
 
+def snapshot(name):
+    """An isometric, fitted 800 x 600 picture of the active view, nothing selected; its path."""
+    Gui.Selection.clearSelection()
+    view = Gui.ActiveDocument.ActiveView
+    view.viewIsometric()
+    Gui.SendMsgToActiveView("ViewFit")
+    Gui.updateGui()
+    path = os.path.join(OUT, name)
+    view.saveImage(path, 800, 600, "White")
+    return path
+
+
 def report_view_text():
     widget = Gui.getMainWindow().findChild(QtGui.QTextEdit, "Report view")
     return widget.toPlainText() if widget is not None else ""
@@ -148,13 +160,7 @@ def run(result):
     result["constraint_icon"] = constraint.ViewObject.Proxy.getIcon() if constraint is not None else ""
 
     # 5. picture
-    Gui.Selection.clearSelection()
-    view = Gui.ActiveDocument.ActiveView
-    view.viewIsometric()
-    Gui.SendMsgToActiveView("ViewFit")
-    Gui.updateGui()
-    image = os.path.join(OUT, "smoke.png")
-    view.saveImage(image, 800, 600, "White")
+    image = snapshot("smoke.png")
     result["image"] = image
     result["image_stats"] = image_stats(image)
     result["report_view_errors"] = [
@@ -187,14 +193,7 @@ def run(result):
         result["solid_icon"] = solid.ViewObject.Proxy.getIcon()
         result["solid_children"] = [o.Name for o in solid.ViewObject.Proxy.claimChildren()]
         result["sheets_hidden"] = not pdoc.getObject("Top").ViewObject.Visibility
-    Gui.Selection.clearSelection()
-    view = Gui.ActiveDocument.ActiveView
-    view.viewIsometric()
-    Gui.SendMsgToActiveView("ViewFit")
-    Gui.updateGui()
-    solid_image = os.path.join(OUT, "solid.png")
-    view.saveImage(solid_image, 800, 600, "White")
-    result["solid_image_stats"] = image_stats(solid_image)
+    result["solid_image_stats"] = image_stats(snapshot("solid.png"))
 
 
 def main():
