@@ -6,6 +6,7 @@
 #include <string>
 
 #include "constrained_solve.hpp"
+#include "sheet_assembly.hpp"
 #include "stopwatch.hpp"
 #include "varsurf/core/errors.hpp"
 
@@ -48,7 +49,8 @@ void sample_all(const std::vector<C>& list, const char* what, F&& sample,
   }
 }
 
-// Q (x) I_3 in the coupled ordering: column 3 k + c is coordinate c of pole k.
+}  // namespace
+
 Sparse kron_identity3(const Sparse& q) {
   std::vector<Eigen::Triplet<double>> t;
   t.reserve(static_cast<size_t>(3 * q.nonZeros()));
@@ -67,10 +69,14 @@ Eigen::MatrixXd flatten(const Eigen::MatrixX3d& m) {  // rows 3 k + c
   return out;
 }
 
+namespace {
+
 Eigen::MatrixXd solve_quadratic(const Quadratic& pb, const SolveOptions& opt, SolveReport& rep) {
   const ConstrainedSolve solver(pb, opt, rep);
   return solver.solve(pb.f, solver.reduced_rhs(), rep);
 }
+
+}  // namespace
 
 Eigen::MatrixX3d unflatten(const Eigen::MatrixXd& x) {
   Eigen::MatrixX3d poles(x.rows() / 3, 3);
@@ -78,6 +84,8 @@ Eigen::MatrixX3d unflatten(const Eigen::MatrixXd& x) {
     for (int c = 0; c < 3; ++c) poles(k, c) = x(3 * k + c, 0);
   return poles;
 }
+
+namespace {
 
 // Repellers, shape attractors and pressure: re-linearize at the current poles, solve, move at most
 // step_limit. Every iterate is a convex combination of feasible solutions, so the constraints keep
@@ -263,6 +271,19 @@ Eigen::MatrixX3d to_poles(const Eigen::MatrixXd& x, bool coupled) {
 }
 
 }  // namespace
+
+Quadratic coupled_sheet_quadratic(const SheetProblem& pb, const SolveOptions& opt) {
+  validate_problem(pb, opt);
+  SolveOptions coupled = opt;
+  coupled.force_coupled = true;
+  SolveReport rep;
+  Assembled as = assemble(pb, coupled, rep);
+  if (as.nonlinear)
+    throw InvalidInput(
+        "pressure, repellers and shape attractors are iterated per sheet: they cannot be part of "
+        "a joint solve (solve that sheet on its own)");
+  return std::move(as.quad);
+}
 
 SolveResult solve_sheet(const SheetProblem& pb, const SolveOptions& opt) {
   const auto start = Clock::now();

@@ -1,0 +1,490 @@
+#include "varsurf/core/model_solver.hpp"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "constrained_solve.hpp"
+#include "curve_pieces.hpp"
+#include "sheet_assembly.hpp"
+#include "stopwatch.hpp"
+#include "varsurf/core/constraints.hpp"
+#include "varsurf/core/curve_energy.hpp"
+#include "varsurf/core/errors.hpp"
+#include "varsurf/core/knot_vector.hpp"
+#include "varsurf/core/ribbon_constraint.hpp"
+
+namespace varsurf {
+
+namespace {
+
+using Sparse = Eigen::SparseMatrix<double>;
+constexpr double pi = 3.14159265358979323846;
+
+std::string label(const char* what, size_t i) {
+  return std::string(what) + " " + std::to_string(i);
+}
+
+bool same_range(const BSplineCurve& a, const BSplineCurve& b) {
+  const double tol = 1e-9 * std::max(1.0, std::abs(b.last() - b.first()));
+  return std::abs(a.first() - b.first()) <= tol && std::abs(a.last() - b.last()) <= tol;
+}
+
+int find_join(const ModelProblem& pb, int sheet, int curve) {
+  for (size_t j = 0; j < pb.joins.size(); ++j)
+    if (pb.joins[j].sheet == sheet && pb.joins[j].curve == curve) return static_cast<int>(j);
+  return -1;
+}
+
+void validate(const ModelProblem& pb) {
+  const int sheets = static_cast<int>(pb.sheets.size()),
+            curves = static_cast<int>(pb.curves.size());
+  for (size_t i = 0; i < pb.curves.size(); ++i) {
+    const SpaceCurve& c = pb.curves[i];
+    const std::string what = label("space curve", i);
+    c.start.validate(what.c_str());
+    if (c.start.dim() != 3) throw InvalidInput(what + " must be 3D");
+    if (!c.variational && !c.handles.empty())
+      throw InvalidInput(what + " is fixed: handles need a variational curve");
+    for (size_t h = 0; h < c.handles.size(); ++h) {
+      const CurveHandle& hd = c.handles[h];
+      if (!std::isfinite(hd.t) || hd.t < c.start.first() || hd.t > c.start.last() ||
+          !hd.target.allFinite() || !(hd.weight > 0.0) || !std::isfinite(hd.weight))
+        throw InvalidInput(what + ", " + label("handle", h) +
+                           ": needs t in the curve's range, a finite target and a positive weight");
+    }
+  }
+  for (size_t j = 0; j < pb.joins.size(); ++j) {
+    const Join& jn = pb.joins[j];
+    const std::string what = label("join", j);
+    if (jn.sheet < 0 || jn.sheet >= sheets || jn.curve < 0 || jn.curve >= curves)
+      throw InvalidInput(what + ": sheet or curve index out of range");
+    jn.preimage.validate((what + " pre-image").c_str());
+    if (jn.preimage.dim() != 2) throw InvalidInput(what + ": the pre-image must be 2D (u, v)");
+    if (!same_range(jn.preimage, pb.curves[static_cast<size_t>(jn.curve)].start))
+      throw InvalidInput(what + ": the pre-image and its curve must share their parameter range");
+    if (jn.side < -1 || jn.side > 1) throw InvalidInput(what + ": side must be -1, 0 or +1");
+    if (!(jn.weight > 0.0) || !std::isfinite(jn.weight))
+      throw InvalidInput(what + ": weight must be positive and finite");
+    if (find_join(pb, jn.sheet, jn.curve) != static_cast<int>(j))
+      throw InvalidInput(what + ": the sheet already joins that curve");
+  }
+  for (size_t h = 0; h < pb.hinges.size(); ++h) {
+    const Hinge& hg = pb.hinges[h];
+    const std::string what = label("hinge", h);
+    if (hg.curve < 0 || hg.curve >= curves || hg.sheet_a < 0 || hg.sheet_a >= sheets ||
+        hg.sheet_b < 0 || hg.sheet_b >= sheets || hg.sheet_a == hg.sheet_b)
+      throw InvalidInput(what + ": needs a curve and two different sheets");
+    for (int s : {hg.sheet_a, hg.sheet_b}) {
+      const int j = find_join(pb, s, hg.curve);
+      if (j < 0)
+        throw InvalidInput(what + ": sheet " + std::to_string(s) +
+                           " is not joined to the hinge's curve (a hinge needs a shared curve)");
+      if (pb.joins[static_cast<size_t>(j)].side == 0)
+        throw InvalidInput(what + ": the join of sheet " + std::to_string(s) +
+                           " does not say on which side of the curve the sheet lies");
+    }
+    if (!(hg.angle > 0.0 && hg.angle <= pi + 1e-12))
+      throw InvalidInput(what + ": the angle must be in (0, 180] degrees");
+    if (!(hg.weight > 0.0) || !std::isfinite(hg.weight))
+      throw InvalidInput(what + ": weight must be positive and finite");
+  }
+  if (pb.hinge_iterations < 1 || pb.hinge_nodes < 2 || !(pb.hinge_tolerance > 0.0))
+    throw InvalidInput("hinge iterations, nodes and tolerance must be positive");
+}
+
+// Column layout of the joint unknowns: every sheet's coordinates, then every variational curve's.
+struct Layout {
+  std::vector<int> sheet, curve;  // offsets (-1 for a fixed curve)
+  int total = 0;
+};
+
+Layout layout(const ModelProblem& pb) {
+  Layout l;
+  for (const SheetProblem& s : pb.sheets) {
+    l.sheet.push_back(l.total);
+    l.total += 3 * s.space.size();
+  }
+  for (const SpaceCurve& c : pb.curves) {
+    l.curve.push_back(c.variational ? l.total : -1);
+    if (c.variational) l.total += 3 * c.start.pole_count();
+  }
+  return l;
+}
+
+void shift_columns(ConstraintSamples& s, int offset) {
+  for (std::vector<int>& cols : s.index)
+    for (int& c : cols) c += offset;
+}
+
+void append_block(std::vector<Eigen::Triplet<double>>& t, const Sparse& q, int offset) {
+  for (int col = 0; col < q.outerSize(); ++col)
+    for (Sparse::InnerIterator it(q, col); it; ++it)
+      t.emplace_back(offset + static_cast<int>(it.row()), offset + col, it.value());
+}
+
+// Curve basis functions at t: first pole index and values.
+int curve_basis(const BSplineCurve& c, double t, Eigen::VectorXd& values) {
+  const int span = find_span(c.knots, c.degree, t);
+  Eigen::MatrixXd d(1, c.degree + 1);
+  basis_derivatives(c.knots, c.degree, span, t, 0, d);
+  values = d.row(0).transpose();
+  return span - c.degree;
+}
+
+// Handle rows C(t) = target, three per handle (coupled ordering).
+ConstraintSamples handle_samples(const SpaceCurve& c, int offset) {
+  ConstraintSamples out;
+  out.exact = true;
+  std::vector<double> rhs;
+  for (const CurveHandle& h : c.handles) {
+    Eigen::VectorXd n;
+    const int first = curve_basis(c.start, h.t, n);
+    const double sw = std::sqrt(h.weight);
+    for (int e = 0; e < 3; ++e) {
+      std::vector<int> cols;
+      for (Eigen::Index j = 0; j < n.size(); ++j)
+        cols.push_back(offset + 3 * (first + static_cast<int>(j)) + e);
+      out.index.push_back(std::move(cols));
+      out.coeff.push_back(sw * n);
+      out.weight.push_back(h.weight / 3.0);
+      rhs.push_back(sw * h.target(e));
+    }
+  }
+  out.rhs = Eigen::Map<Eigen::VectorXd>(rhs.data(), static_cast<Eigen::Index>(rhs.size()));
+  return out;
+}
+
+// w_s(c_s(t)) - C(t) = 0 at Gauss points of the pieces, weighted by the start curve's arc length.
+ConstraintSamples variational_join_samples(const SplineSpace& space, const Join& jn,
+                                           const SpaceCurve& curve, int sheet_offset,
+                                           int curve_offset) {
+  const CurveConstraint as_curve{jn.preimage, curve.start, jn.weight, true};
+  const CurveSampling sampling = curve_sampling(space, as_curve);
+  std::vector<double> ds(sampling.t.size());
+  double length = 0.0;
+  for (size_t k = 0; k < ds.size(); ++k) {
+    ds[k] = sampling.rule_weight[k] * curve.start.derivatives(sampling.t[k], 1).row(1).norm();
+    length += ds[k];
+  }
+  if (!(length > 0.0) || !std::isfinite(length)) throw InvalidInput("the curve has zero length");
+  ConstraintSamples out;
+  out.exact = true;
+  for (size_t k = 0; k < ds.size(); ++k) {
+    if (ds[k] <= 0.0) continue;
+    const double t = sampling.t[k], w = jn.weight * ds[k] / length / 3.0, sw = std::sqrt(w);
+    const Eigen::Vector2d uv = clamp_to_domain(space, jn.preimage.evaluate(t), t);
+    const BasisSample b = space.basis(uv(0), uv(1), 0);
+    Eigen::VectorXd n;
+    const int first = curve_basis(curve.start, t, n);
+    const Eigen::Index nb = static_cast<Eigen::Index>(b.index.size());
+    for (int e = 0; e < 3; ++e) {
+      std::vector<int> cols;
+      Eigen::VectorXd coeff(nb + n.size());
+      for (Eigen::Index i = 0; i < nb; ++i) {
+        cols.push_back(sheet_offset + 3 * b.index[static_cast<size_t>(i)] + e);
+        coeff(i) = sw * b.values(0, i);
+      }
+      for (Eigen::Index j = 0; j < n.size(); ++j) {
+        cols.push_back(curve_offset + 3 * (first + static_cast<int>(j)) + e);
+        coeff(nb + j) = -sw * n(j);
+      }
+      out.index.push_back(std::move(cols));
+      out.coeff.push_back(std::move(coeff));
+      out.weight.push_back(w);
+    }
+  }
+  out.rhs = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(out.index.size()), 1);
+  return out;
+}
+
+// The joint problem without hinges.
+struct Joint {
+  Layout lay;
+  Quadratic quad;
+};
+
+Joint assemble_joint(const ModelProblem& pb, const SolveOptions& opt) {
+  Joint j;
+  j.lay = layout(pb);
+  if (j.lay.total > opt.max_unknowns)
+    throw InvalidInput("the model has " + std::to_string(j.lay.total) +
+                       " unknown coordinates, more than the limit of " +
+                       std::to_string(opt.max_unknowns));
+  const Eigen::Index n = j.lay.total;
+  Quadratic& q = j.quad;
+  q.f = Eigen::MatrixXd::Zero(n, 1);
+  q.x0 = Eigen::MatrixXd::Zero(n, 1);
+  q.fixed.assign(static_cast<size_t>(n), false);
+  std::vector<Eigen::Triplet<double>> triplets;
+  for (size_t s = 0; s < pb.sheets.size(); ++s) {
+    SheetProblem sheet = pb.sheets[s];
+    for (const Join& jn : pb.joins)  // a fixed curve is data: a curve constraint of the sheet
+      if (jn.sheet == static_cast<int>(s) && !pb.curves[static_cast<size_t>(jn.curve)].variational)
+        sheet.curves.push_back(
+            {jn.preimage, pb.curves[static_cast<size_t>(jn.curve)].start, jn.weight, jn.exact});
+    Quadratic qs;
+    try {
+      qs = coupled_sheet_quadratic(sheet, opt);
+    } catch (const InvalidInput& e) {
+      throw InvalidInput(label("sheet", s) + ": " + e.what());
+    }
+    const int off = j.lay.sheet[s];
+    append_block(triplets, qs.q, off);
+    q.f.middleRows(off, qs.f.rows()) = qs.f;
+    q.x0.middleRows(off, qs.x0.rows()) = qs.x0;
+    std::copy(qs.fixed.begin(), qs.fixed.end(), q.fixed.begin() + off);
+    for (ConstraintSamples& b : qs.blocks) {
+      shift_columns(b, off);
+      q.blocks.push_back(std::move(b));
+    }
+  }
+  for (size_t c = 0; c < pb.curves.size(); ++c) {
+    const SpaceCurve& curve = pb.curves[c];
+    if (!curve.variational) continue;
+    const int off = j.lay.curve[c];
+    Sparse h;
+    try {
+      h = kron_identity3(assemble_curve_energy(curve.start, curve.stretch, curve.bend));
+    } catch (const InvalidInput& e) {
+      throw InvalidInput(label("space curve", c) + ": " + e.what());
+    }
+    append_block(triplets, h, off);
+    const Eigen::MatrixXd start = flatten(curve.start.poles);
+    q.f.middleRows(off, start.rows()) = h * start;  // energy of the displacement from the start
+    q.x0.middleRows(off, start.rows()) = start;
+    if (!curve.handles.empty()) q.blocks.push_back(handle_samples(curve, off));
+  }
+  for (size_t k = 0; k < pb.joins.size(); ++k) {
+    const Join& jn = pb.joins[k];
+    const SpaceCurve& curve = pb.curves[static_cast<size_t>(jn.curve)];
+    if (!curve.variational) continue;
+    try {
+      q.blocks.push_back(variational_join_samples(
+          pb.sheets[static_cast<size_t>(jn.sheet)].space, jn, curve,
+          j.lay.sheet[static_cast<size_t>(jn.sheet)], j.lay.curve[static_cast<size_t>(jn.curve)]));
+    } catch (const InvalidInput& e) {
+      throw InvalidInput(label("join", k) + ": " + e.what());
+    }
+  }
+  q.q.resize(n, n);
+  q.q.setFromTriplets(triplets.begin(), triplets.end());
+  return j;
+}
+
+// The solved state, read back per sheet and curve.
+struct State {
+  const ModelProblem* pb;
+  const Layout* lay;
+  Eigen::MatrixXd x;
+  Eigen::MatrixX3d sheet_poles(size_t s) const {
+    return unflatten(x.middleRows(lay->sheet[s], 3 * pb->sheets[s].space.size()));
+  }
+  BSplineCurve curve(size_t c) const {
+    BSplineCurve out = pb->curves[c].start;
+    if (pb->curves[c].variational)
+      out.poles = unflatten(x.middleRows(lay->curve[c], 3 * out.pole_count()));
+    return out;
+  }
+};
+
+Eigen::Vector3d rotate(const Eigen::Vector3d& v, const Eigen::Vector3d& axis, double angle) {
+  return v * std::cos(angle) + axis.cross(v) * std::sin(angle);  // v is perpendicular to axis
+}
+
+// The direction in which a sheet leaves the seam at t: in its tangent plane, perpendicular to the
+// curve's tangent, toward its trimmed region.
+Eigen::Vector3d leaving_direction(const SplineSpace& space, const Eigen::MatrixX3d& poles,
+                                  const Join& jn, double t, const Eigen::Vector3d& tangent) {
+  const Eigen::MatrixXd c = jn.preimage.derivatives(t, 1);
+  const Eigen::Vector2d uv = clamp_to_domain(space, c.row(0).transpose(), t);
+  const Eigen::MatrixXd d = evaluate_surface(space, poles, uv(0), uv(1), 1);
+  const Eigen::Vector3d su = d.row(1).transpose(), sv = d.row(2).transpose();
+  Eigen::Vector3d r = jn.side * (-c(1, 1) * su + c(1, 0) * sv);
+  r -= r.dot(tangent) * tangent;
+  const double len = r.norm();
+  if (!(len > 1e-14 * (su.norm() + sv.norm())))
+    throw InvalidInput("the sheet is degenerate along the seam at t = " + std::to_string(t));
+  return r / len;
+}
+
+// Signed angle from r_a to r_b about the tangent, in (-pi, pi].
+double signed_angle(const Eigen::Vector3d& ra, const Eigen::Vector3d& rb,
+                    const Eigen::Vector3d& tangent) {
+  return std::atan2(tangent.dot(ra.cross(rb)), ra.dot(rb));
+}
+
+struct SeamFrame {
+  Eigen::Vector3d tangent, ra, rb;
+};
+
+SeamFrame seam_frame(const ModelProblem& pb, const State& st, const Hinge& hg, double t) {
+  const BSplineCurve curve = st.curve(static_cast<size_t>(hg.curve));
+  const Eigen::Vector3d d = curve.derivatives(t, 1).row(1).transpose();
+  if (!(d.norm() > 0.0)) throw InvalidInput("the hinge's curve has a zero tangent");
+  SeamFrame f;
+  f.tangent = d.normalized();
+  const auto dir = [&](int s) {
+    const Join& jn = pb.joins[static_cast<size_t>(find_join(pb, s, hg.curve))];
+    return leaving_direction(pb.sheets[static_cast<size_t>(s)].space,
+                             st.sheet_poles(static_cast<size_t>(s)), jn, t, f.tangent);
+  };
+  f.ra = dir(hg.sheet_a);
+  f.rb = dir(hg.sheet_b);
+  return f;
+}
+
+// Target normals of both sheets at the hinge's nodes: their leaving directions turned
+// symmetrically about their bisector to make the hinge's angle (on the side they fold to now).
+struct Aim {
+  std::vector<double> t;
+  std::vector<Eigen::Vector3d> na, nb;
+};
+
+Aim aim_hinge(const ModelProblem& pb, const State& st, const Hinge& hg) {
+  const BSplineCurve& start = pb.curves[static_cast<size_t>(hg.curve)].start;
+  const double t0 = start.first(), t1 = start.last();
+  Aim a;
+  for (int i = 0; i < pb.hinge_nodes; ++i) {
+    const double t = t0 + (t1 - t0) * i / (pb.hinge_nodes - 1);
+    const SeamFrame f = seam_frame(pb, st, hg, t);
+    const double phi = signed_angle(f.ra, f.rb, f.tangent), sigma = phi >= 0.0 ? 1.0 : -1.0;
+    const Eigen::Vector3d mid = rotate(f.ra, f.tangent, 0.5 * phi);
+    a.t.push_back(t);
+    a.na.push_back(f.tangent.cross(rotate(mid, f.tangent, -0.5 * sigma * hg.angle)));
+    a.nb.push_back(f.tangent.cross(rotate(mid, f.tangent, 0.5 * sigma * hg.angle)));
+  }
+  return a;
+}
+
+double line_angle(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  return std::atan2(a.cross(b).norm(), std::abs(a.dot(b)));
+}
+
+double largest_turn(const std::vector<Aim>& a, const std::vector<Aim>& b) {
+  if (a.size() != b.size()) return std::numeric_limits<double>::infinity();
+  double worst = 0.0;
+  for (size_t h = 0; h < a.size(); ++h)
+    for (size_t i = 0; i < a[h].t.size(); ++i)
+      worst =
+          std::max({worst, line_angle(a[h].na[i], b[h].na[i]), line_angle(a[h].nb[i], b[h].nb[i])});
+  return worst;
+}
+
+// A normal field through the aims: piecewise linear in t.
+BSplineCurve normal_field(const std::vector<double>& t, const std::vector<Eigen::Vector3d>& n) {
+  BSplineCurve f;
+  f.degree = 1;
+  f.knots.push_back(t.front());
+  for (double x : t) f.knots.push_back(x);
+  f.knots.push_back(t.back());
+  f.poles.resize(static_cast<Eigen::Index>(n.size()), 3);
+  for (size_t i = 0; i < n.size(); ++i) f.poles.row(static_cast<Eigen::Index>(i)) = n[i];
+  return f;
+}
+
+std::vector<ConstraintSamples> hinge_samples(const ModelProblem& pb, const Layout& lay,
+                                             const std::vector<Aim>& aims) {
+  std::vector<ConstraintSamples> out;
+  for (size_t h = 0; h < pb.hinges.size(); ++h) {
+    const Hinge& hg = pb.hinges[h];
+    for (int side = 0; side < 2; ++side) {
+      const int s = side == 0 ? hg.sheet_a : hg.sheet_b;
+      const Join& jn = pb.joins[static_cast<size_t>(find_join(pb, s, hg.curve))];
+      const RibbonConstraint ribbon{
+          jn.preimage, normal_field(aims[h].t, side == 0 ? aims[h].na : aims[h].nb), hg.weight};
+      ConstraintSamples block = sample_ribbon(pb.sheets[static_cast<size_t>(s)].space, ribbon);
+      block.exact = true;  // rows say w_u . N = 0: the discrepancy principle would drop them
+      shift_columns(block, lay.sheet[static_cast<size_t>(s)]);
+      out.push_back(std::move(block));
+    }
+  }
+  return out;
+}
+
+constexpr int report_samples = 200;
+
+void measure(const ModelProblem& pb, const State& st, ModelReport& rep) {
+  for (const Join& jn : pb.joins) {
+    const size_t s = static_cast<size_t>(jn.sheet);
+    const SplineSpace& space = pb.sheets[s].space;
+    const Eigen::MatrixX3d poles = st.sheet_poles(s);
+    const BSplineCurve curve = st.curve(static_cast<size_t>(jn.curve));
+    double gap = 0.0;
+    for (int i = 0; i < report_samples; ++i) {
+      const double t = curve.first() + (curve.last() - curve.first()) * i / (report_samples - 1);
+      const Eigen::Vector2d uv = clamp_to_domain(space, jn.preimage.evaluate(t), t);
+      const Eigen::Vector3d p = evaluate_surface(space, poles, uv(0), uv(1), 0).row(0).transpose();
+      gap = std::max(gap, (p - curve.evaluate(t)).norm());
+    }
+    rep.join_gaps.push_back(gap);
+  }
+  for (const Hinge& hg : pb.hinges) {
+    HingeReport hr;
+    hr.min_angle = std::numeric_limits<double>::infinity();
+    const BSplineCurve& start = pb.curves[static_cast<size_t>(hg.curve)].start;
+    for (int i = 0; i < report_samples; ++i) {
+      const double t = start.first() + (start.last() - start.first()) * i / (report_samples - 1);
+      const SeamFrame f = seam_frame(pb, st, hg, t);
+      const double angle = std::abs(signed_angle(f.ra, f.rb, f.tangent));
+      hr.min_angle = std::min(hr.min_angle, angle);
+      hr.max_angle = std::max(hr.max_angle, angle);
+      hr.max_error = std::max(hr.max_error, std::abs(angle - hg.angle));
+    }
+    rep.hinges.push_back(hr);
+  }
+}
+
+Eigen::MatrixXd solve_joint(const Quadratic& q, const SolveOptions& opt, SolveReport& rep) {
+  const ConstrainedSolve solver(q, opt, rep);
+  return solver.solve(q.f, solver.reduced_rhs(), rep);
+}
+
+}  // namespace
+
+ModelResult solve_model(const ModelProblem& pb, const SolveOptions& opt) {
+  const auto start = Clock::now();
+  validate(pb);
+  Joint joint = assemble_joint(pb, opt);
+  ModelResult result;
+  ModelReport& rep = result.report;
+  State st{&pb, &joint.lay, {}};
+  st.x = solve_joint(joint.quad, opt, rep.solve);
+  if (!pb.hinges.empty()) {
+    const size_t base_blocks = joint.quad.blocks.size();
+    std::vector<Aim> previous;
+    rep.converged = false;
+    for (int it = 1; it <= pb.hinge_iterations + 1; ++it) {
+      std::vector<Aim> aims;
+      for (size_t h = 0; h < pb.hinges.size(); ++h) {
+        try {
+          aims.push_back(aim_hinge(pb, st, pb.hinges[h]));
+        } catch (const InvalidInput& e) {
+          throw InvalidInput(label("hinge", h) + ": " + e.what());
+        }
+      }
+      rep.last_turn = largest_turn(aims, previous);
+      if (rep.last_turn <= pb.hinge_tolerance) {
+        rep.converged = true;
+        break;
+      }
+      if (it > pb.hinge_iterations) break;
+      joint.quad.blocks.resize(base_blocks);
+      for (ConstraintSamples& b : hinge_samples(pb, joint.lay, aims))
+        joint.quad.blocks.push_back(std::move(b));
+      rep.solve = SolveReport();
+      st.x = solve_joint(joint.quad, opt, rep.solve);
+      previous = std::move(aims);
+      rep.hinge_iterations = it;
+    }
+  }
+  for (size_t s = 0; s < pb.sheets.size(); ++s) result.sheet_poles.push_back(st.sheet_poles(s));
+  for (size_t c = 0; c < pb.curves.size(); ++c) result.curve_poles.push_back(st.curve(c).poles);
+  measure(pb, st, rep);
+  rep.total_seconds = seconds_since(start);
+  return result;
+}
+
+}  // namespace varsurf

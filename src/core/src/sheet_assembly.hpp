@@ -1,0 +1,24 @@
+// A sheet's quadratic problem for solvers that combine several sheets (the model solver).
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+
+#include "constrained_solve.hpp"
+#include "varsurf/core/sheet_solver.hpp"
+
+namespace varsurf {
+
+// Q (x) I_3 in the coupled ordering: column 3 k + c is coordinate c of pole k.
+Eigen::SparseMatrix<double> kron_identity3(const Eigen::SparseMatrix<double>& q);
+
+// n x 3 poles as one 3n column (rows 3 k + c), and back.
+Eigen::MatrixXd flatten(const Eigen::MatrixX3d& m);
+Eigen::MatrixX3d unflatten(const Eigen::MatrixXd& x);
+
+// The sheet's energy, operators and constraints in the coupled ordering (3 k + c), fixed poles
+// marked. InvalidInput for an invalid problem or for the iterated terms (pressure, repellers,
+// shape attractors).
+Quadratic coupled_sheet_quadratic(const SheetProblem& problem, const SolveOptions& options);
+
+}  // namespace varsurf
