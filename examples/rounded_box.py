@@ -33,7 +33,9 @@ def _edge_curve(a, b):
     return c.toShape()
 
 
-def build(doc):
+def build(doc, variational=None):
+    """The box; ``variational`` = (corner, corner) makes that edge a SpaceCurve the sheets share
+    (moving_curve.py moves it)."""
     corners = {k: V(*(HALF * s for s in k)) for k in itertools.product((-1, 1), repeat=3)}
     edges = {}
     for k, v in corners.items():
@@ -44,7 +46,12 @@ def build(doc):
                 other = tuple(other)
                 obj = doc.addObject("Part::Feature", "Edge")
                 obj.Shape = _edge_curve(v, corners[other])
-                edges[frozenset((k, other))] = obj
+                edges[frozenset((k, other))] = (obj, "Edge1")
+    if variational is not None:
+        key = frozenset(variational)
+        doc.recompute()
+        edges[key] = (varsurf.make_space_curve(edges[key]), "Edge1")
+        doc.recompute()
     sheets = []
     for axis in range(3):
         for side in (-1, 1):
@@ -59,7 +66,7 @@ def build(doc):
             base.Shape = plane
             base.Visibility = False
             doc.recompute()
-            sheet = varsurf.make_sheet((base, "Face1"), [(edges[key], "Edge1") for key in on_face],
+            sheet = varsurf.make_sheet((base, "Face1"), [edges[key] for key in on_face],
                                        name="Side")
             sheet.Tolerance = 0.001
             sheet.FixBoundary = False

@@ -10,5 +10,6 @@ void bind_core_types(pybind11::module_& m);      // data types of the core
 void bind_operators(pybind11::module_& m);       // further constraints, external energies
 void bind_core_functions(pybind11::module_& m);  // solver and knot helpers
 void bind_occ_bridge(pybind11::module_& m);      // BREP/STEP bridge to FreeCAD
+void bind_model(pybind11::module_& m);           // several sheets and curves as one system
 
 }  // namespace varsurf::binding

@@ -237,6 +237,7 @@ void bind_core_types(py::module_& m) {
            "space"_a = SplineSpace(), "initial_poles"_a = Eigen::MatrixX3d(0, 3),
            "energy"_a = ThinPlateWeights(), "points"_a = std::vector<PointConstraint>{},
            "curves"_a = std::vector<CurveConstraint>{}, "fixed_poles"_a = std::vector<int>{})
+      .def("__copy__", [](const SheetProblem& p) { return p; })
       .def_readwrite("space", &SheetProblem::space)
       .def_readwrite("initial_poles", &SheetProblem::initial_poles)
       .def_readwrite("energy", &SheetProblem::energy)
@@ -290,6 +291,7 @@ void bind_core_types(py::module_& m) {
            "regularization"_a = SolveOptions().regularization,
            "refinement_steps"_a = SolveOptions().refinement_steps,
            "max_unknowns"_a = SolveOptions().max_unknowns)
+      .def("__copy__", [](const SolveOptions& o) { return o; })
       .def_readwrite("rank_tolerance", &SolveOptions::rank_tolerance,
                      "Singular values below rank_tolerance * largest count as zero.")
       .def_readwrite("fit_tolerance", &SolveOptions::fit_tolerance,

@@ -11,4 +11,5 @@ PYBIND11_MODULE(_native, m) {
   varsurf::binding::bind_core_types(m);
   varsurf::binding::bind_core_functions(m);
   varsurf::binding::bind_occ_bridge(m);
+  varsurf::binding::bind_model(m);
 }

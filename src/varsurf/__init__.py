@@ -4,6 +4,10 @@ App-side public API (importable headless, without any GUI module):
 
     make_sheet(base, curves, stretch=0.0, bend=1.0, fix_boundary=True)  -> Sheet object
     make_constraint(sheet, kind, location=None, uv=None, vector=None, ...) -> Constraint object
+    make_solid(sheets, tolerance=None)                                  -> Solid object
+    make_space_curve((obj, "EdgeN"), handle_parameters, handles)        -> SpaceCurve object
+    move_handle(space_curve, index, position)
+    make_hinge(solid, sheet_a, sheet_b, (obj, "EdgeN"), angle=180)      -> Hinge object
     install_rest_shape(sheet), melt(sheet)                              -> sheet
     export_step(objects, path)                                           -> path
     selection_to_sheet_args(selection_ex)                                -> (base, curves)
@@ -37,6 +41,10 @@ def __getattr__(name):
         from varsurf import api
 
         return getattr(api, name)
+    if name in ("make_space_curve", "make_hinge", "move_handle", "run_space_curve_command", "run_hinge_command"):
+        from varsurf import joints_api
+
+        return getattr(joints_api, name)
     raise AttributeError(f"module 'varsurf' has no attribute {name!r}")
 
 
@@ -64,4 +72,8 @@ __all__ = [
     "sheet_command_lines",
     "is_sheet",
     "run_sheet_command",
+    "make_solid",
+    "make_space_curve",
+    "move_handle",
+    "make_hinge",
 ]

@@ -95,6 +95,10 @@ class SheetOutcome:
     lcurve_residuals: List[float] = field(default_factory=list)  # TSVD/MTSVD: rho_k
     lcurve_norms: List[float] = field(default_factory=list)  # eta_k
     lcurve_corner: int = 0  # the chosen truncation k
+    # The native SheetProblem of the final solve (curves in curve_names order) and its options:
+    # what a joint solve of several sheets (varsurf.joint) starts from.
+    problem: object = None
+    options: object = None
 
     @property
     def max_deviation(self) -> float:
@@ -487,4 +491,6 @@ def solve_sheet_on_face(
         lcurve_residuals=[float(x) for x in report.lcurve.residual],
         lcurve_norms=[float(x) for x in report.lcurve.solution_norm],
         lcurve_corner=int(report.lcurve.corner),
+        problem=problem,
+        options=options,
     )

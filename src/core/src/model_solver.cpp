@@ -137,7 +137,10 @@ int curve_basis(const BSplineCurve& c, double t, Eigen::VectorXd& values) {
 // Handle rows C(t) = target, three per handle (coupled ordering).
 ConstraintSamples handle_samples(const SpaceCurve& c, int offset) {
   ConstraintSamples out;
-  out.exact = true;
+  // Not exact: an exact block makes its whole cluster exact, and then every curve of the
+  // sheets joined to this one would be fitted in every direction (the discrepancy principle keeps
+  // a moved handle, whose distance from the start is large).
+  out.exact = false;
   std::vector<double> rhs;
   for (const CurveHandle& h : c.handles) {
     Eigen::VectorXd n;
@@ -171,7 +174,7 @@ ConstraintSamples variational_join_samples(const SplineSpace& space, const Join&
   }
   if (!(length > 0.0) || !std::isfinite(length)) throw InvalidInput("the curve has zero length");
   ConstraintSamples out;
-  out.exact = true;
+  out.exact = jn.exact;
   for (size_t k = 0; k < ds.size(); ++k) {
     if (ds[k] <= 0.0) continue;
     const double t = sampling.t[k], w = jn.weight * ds[k] / length / 3.0, sw = std::sqrt(w);
@@ -255,7 +258,23 @@ Joint assemble_joint(const ModelProblem& pb, const SolveOptions& opt) {
     const Eigen::MatrixXd start = flatten(curve.start.poles);
     q.f.middleRows(off, start.rows()) = h * start;  // energy of the displacement from the start
     q.x0.middleRows(off, start.rows()) = start;
-    if (!curve.handles.empty()) q.blocks.push_back(handle_samples(curve, off));
+    // A handle at an end of the (clamped) curve is its end pole: held exactly, so the curve keeps
+    // meeting the curves at its ends; the others are rows.
+    SpaceCurve inner = curve;
+    inner.handles.clear();
+    const int last = curve.start.pole_count() - 1;
+    for (const CurveHandle& h : curve.handles) {
+      const int end = h.t == curve.start.first() ? 0 : h.t == curve.start.last() ? last : -1;
+      if (end < 0) {
+        inner.handles.push_back(h);
+        continue;
+      }
+      for (int e = 0; e < 3; ++e) {
+        q.fixed[static_cast<size_t>(off + 3 * end + e)] = true;
+        q.x0(off + 3 * end + e, 0) = h.target(e);
+      }
+    }
+    if (!inner.handles.empty()) q.blocks.push_back(handle_samples(inner, off));
   }
   for (size_t k = 0; k < pb.joins.size(); ++k) {
     const Join& jn = pb.joins[k];
@@ -336,8 +355,10 @@ SeamFrame seam_frame(const ModelProblem& pb, const State& st, const Hinge& hg, d
   return f;
 }
 
-// Target normals of both sheets at the hinge's nodes: their leaving directions turned
-// symmetrically about their bisector to make the hinge's angle (on the side they fold to now).
+// Target normals of both sheets at the hinge's nodes. u, the unit bisector of r_a and -r_b
+// (stable at a smooth seam, where r_a = -r_b), splits the fold evenly: r_a is u turned by delta,
+// r_b is -u turned by -delta, and the angle between them is pi - 2 |delta|. The aims turn both
+// by the same amount to the hinge's angle, keeping the side they fold to.
 struct Aim {
   std::vector<double> t;
   std::vector<Eigen::Vector3d> na, nb;
@@ -350,11 +371,15 @@ Aim aim_hinge(const ModelProblem& pb, const State& st, const Hinge& hg) {
   for (int i = 0; i < pb.hinge_nodes; ++i) {
     const double t = t0 + (t1 - t0) * i / (pb.hinge_nodes - 1);
     const SeamFrame f = seam_frame(pb, st, hg, t);
-    const double phi = signed_angle(f.ra, f.rb, f.tangent), sigma = phi >= 0.0 ? 1.0 : -1.0;
-    const Eigen::Vector3d mid = rotate(f.ra, f.tangent, 0.5 * phi);
+    const Eigen::Vector3d split = f.ra - f.rb;
+    if (!(split.norm() > 1e-9))
+      throw InvalidInput("the two sheets fold onto each other at t = " + std::to_string(t));
+    const Eigen::Vector3d u = split.normalized();
+    const double delta = signed_angle(u, f.ra, f.tangent), side = delta >= 0.0 ? 1.0 : -1.0;
+    const double target = side * 0.5 * (pi - hg.angle);
     a.t.push_back(t);
-    a.na.push_back(f.tangent.cross(rotate(mid, f.tangent, -0.5 * sigma * hg.angle)));
-    a.nb.push_back(f.tangent.cross(rotate(mid, f.tangent, 0.5 * sigma * hg.angle)));
+    a.na.push_back(f.tangent.cross(rotate(u, f.tangent, target)));
+    a.nb.push_back(f.tangent.cross(rotate(-u, f.tangent, -target)));
   }
   return a;
 }
@@ -396,7 +421,6 @@ std::vector<ConstraintSamples> hinge_samples(const ModelProblem& pb, const Layou
       const RibbonConstraint ribbon{
           jn.preimage, normal_field(aims[h].t, side == 0 ? aims[h].na : aims[h].nb), hg.weight};
       ConstraintSamples block = sample_ribbon(pb.sheets[static_cast<size_t>(s)].space, ribbon);
-      block.exact = true;  // rows say w_u . N = 0: the discrepancy principle would drop them
       shift_columns(block, lay.sheet[static_cast<size_t>(s)]);
       out.push_back(std::move(block));
     }
@@ -466,7 +490,7 @@ ModelResult solve_model(const ModelProblem& pb, const SolveOptions& opt) {
         }
       }
       rep.last_turn = largest_turn(aims, previous);
-      if (rep.last_turn <= pb.hinge_tolerance) {
+      if (rep.last_turn <= pb.hinge_tolerance) {  // the aims stand: the sheets meet them
         rep.converged = true;
         break;
       }

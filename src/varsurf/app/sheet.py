@@ -162,6 +162,46 @@ def _clear_results(obj, status):
     obj.Status = status
 
 
+def compute(obj):
+    """The SheetOutcome of a Sheet's inputs (model.SheetError naming what is wrong)."""
+    face, edges, names = resolve_inputs(obj)
+    options = dict(
+        stretch=float(obj.Stretch),
+        bend=float(obj.Bend),
+        fix_boundary=bool(obj.FixBoundary),
+        tolerance=float(obj.Tolerance),
+        min_spans=int(obj.MinSpans),
+        degree=int(getattr(obj, "Degree", model.SHEET_MIN_DEGREE)),
+        solve_mode=str(obj.SolveMode),
+        max_spans=int(obj.MaxSpans),
+        names=names,
+    )
+    options["constraints"] = [spec_of(c) for c in (getattr(obj, "Constraints", None) or []) if c.Enabled]
+    options["rest"] = _rest_of(obj, face)
+    options["pressure"] = float(getattr(obj, "Pressure", 0.0))
+    exact = list(getattr(obj, "ExactCurves", []) or [])
+    unknown = [n for n in exact if n not in names]
+    if unknown:
+        raise model.SheetError(f"ExactCurves names curves the sheet does not have: {', '.join(unknown)}")
+    options["exact_curves"] = exact
+    options["stretch_tensor"] = list(getattr(obj, "StretchTensor", []) or [])
+    options["bend_tensor"] = list(getattr(obj, "BendTensor", []) or [])
+    if face is None:
+        return model.solve_sheet_from_curves(edges, **options)
+    return model.solve_sheet_on_face(face, edges, **options)
+
+
+def curve_keys(obj):
+    """"ObjectName:EdgeN" per curve of a Sheet, in the order of its solve's curves."""
+    return [f"{link.Name}:{sub}" for link, subs in obj.Curves for sub in subs if sub]
+
+
+def outcome_of(obj):
+    """The SheetOutcome of a Sheet's last recompute (solved again if this session has none)."""
+    outcome = getattr(getattr(obj, "Proxy", None), "outcome", None)
+    return outcome if outcome is not None else compute(obj)
+
+
 class SheetFeature(FeatureProxy):
     """Proxy of a VarSurf Sheet (Part::FeaturePython)."""
 
@@ -184,41 +224,16 @@ class SheetFeature(FeatureProxy):
         pass
 
     def execute(self, obj):
+        self.outcome = None
         try:
-            face, edges, names = resolve_inputs(obj)
-            options = dict(
-                stretch=float(obj.Stretch),
-                bend=float(obj.Bend),
-                fix_boundary=bool(obj.FixBoundary),
-                tolerance=float(obj.Tolerance),
-                min_spans=int(obj.MinSpans),
-                degree=int(getattr(obj, "Degree", model.SHEET_MIN_DEGREE)),
-                solve_mode=str(obj.SolveMode),
-                max_spans=int(obj.MaxSpans),
-                names=names,
-            )
-            options["constraints"] = [
-                spec_of(c) for c in (getattr(obj, "Constraints", None) or []) if c.Enabled
-            ]
-            options["rest"] = _rest_of(obj, face)
-            options["pressure"] = float(getattr(obj, "Pressure", 0.0))
-            exact = list(getattr(obj, "ExactCurves", []) or [])
-            unknown = [n for n in exact if n not in names]
-            if unknown:
-                raise model.SheetError(f"ExactCurves names curves the sheet does not have: {', '.join(unknown)}")
-            options["exact_curves"] = exact
-            options["stretch_tensor"] = list(getattr(obj, "StretchTensor", []) or [])
-            options["bend_tensor"] = list(getattr(obj, "BendTensor", []) or [])
-            if face is None:
-                outcome = model.solve_sheet_from_curves(edges, **options)
-            else:
-                outcome = model.solve_sheet_on_face(face, edges, **options)
+            outcome = compute(obj)
         except Exception as error:  # report, then fail the recompute of this object
             message = f"{obj.Label}: {error}"
             _clear_results(obj, f"Error: {error}")
             FreeCAD.Console.PrintError(f"VarSurf: {message}\n")
             raise SheetComputeError(message) from error
 
+        self.outcome = outcome  # for joint solves (not saved: a reopened file solves again)
         obj.Shape = outcome.shape
         obj.MaxDeviations = [float(d) for d in outcome.max_deviations]
         obj.SolveModeUsed = outcome.solve_mode

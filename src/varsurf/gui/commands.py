@@ -7,7 +7,7 @@ import os
 import FreeCAD as App
 import FreeCADGui as Gui
 
-from varsurf import api
+from varsurf import api, joints_api
 from varsurf.gui import resources
 
 try:
@@ -56,32 +56,67 @@ class CommandSheet:
         )
 
 
-class CommandSolid:
-    """Join the selected Sheets along their shared curves into a shell or solid."""
+class CommandFromSelection:
+    """A command that acts on the current selection: enabled when ``check`` accepts it, runs
+    ``run`` (recorded macro lines, one undoable transaction) when activated."""
+
+    def __init__(self, icon: str, menu_text: str, tool_tip: str, check, run):
+        self.icon, self.menu_text, self.tool_tip = icon, menu_text, tool_tip
+        self.check, self.run = check, run
 
     def GetResources(self):
-        return {
-            "Pixmap": resources.icon("VarSurf_Solid.svg"),
-            "MenuText": QT_TRANSLATE_NOOP("VarSurf_Solid", "Join sheets into a solid"),
-            "ToolTip": QT_TRANSLATE_NOOP(
-                "VarSurf_Solid",
-                "Join Sheets along the curves they share: each is trimmed to its shared curves and\n"
-                "the faces form a shell, a solid when closed. Select two or more Sheets.",
-            ),
-        }
+        return {"Pixmap": resources.icon(self.icon), "MenuText": self.menu_text, "ToolTip": self.tool_tip}
 
     def IsActive(self):
         if App.ActiveDocument is None:
             return False
         try:
-            api.solid_selection_to_sheets(Gui.Selection.getSelectionEx())
+            self.check(Gui.Selection.getSelectionEx())
         except ValueError:
             return False
         return True
 
     def Activated(self):
-        api.run_solid_command(Gui.Selection.getSelectionEx(), do_command=Gui.doCommand,
-                              on_error=show_selection_error)
+        self.run(Gui.Selection.getSelectionEx(), do_command=Gui.doCommand, on_error=show_selection_error)
+
+
+def _solid_command():
+    """Join the selected Sheets along their shared curves into a shell or solid."""
+    return CommandFromSelection(
+        "VarSurf_Solid.svg",
+        QT_TRANSLATE_NOOP("VarSurf_Solid", "Join sheets into a solid"),
+        QT_TRANSLATE_NOOP(
+            "VarSurf_Solid",
+            "Join Sheets along the curves they share: each is trimmed to its shared curves and\n"
+            "the faces form a shell, a solid when closed. Select two or more Sheets.",
+        ),
+        api.solid_selection_to_sheets, api.run_solid_command)
+
+
+def _space_curve_command():
+    """A variational curve from the selected edge."""
+    return CommandFromSelection(
+        "VarSurf_SpaceCurve.svg",
+        QT_TRANSLATE_NOOP("VarSurf_SpaceCurve", "Variational space curve"),
+        QT_TRANSLATE_NOOP(
+            "VarSurf_SpaceCurve",
+            "A curve reshaped by handles (both ends and the middle): sheets that pass through it\n"
+            "follow it, and in a Solid it is solved with them. Select one edge.",
+        ),
+        joints_api.space_curve_selection_to_base, joints_api.run_space_curve_command)
+
+
+def _hinge_command():
+    """A hinge between two sheets of a Solid."""
+    return CommandFromSelection(
+        "VarSurf_Hinge.svg",
+        QT_TRANSLATE_NOOP("VarSurf_Hinge", "Hinge"),
+        QT_TRANSLATE_NOOP(
+            "VarSurf_Hinge",
+            "Hold the angle between two Sheets across the curve they share (180 degrees: smooth).\n"
+            "Select two Sheets of a Solid and their shared edge, or the Solid's edge between them.",
+        ),
+        joints_api.hinge_selection_to_args, joints_api.run_hinge_command)
 
 
 class CommandConstraint:
@@ -170,10 +205,12 @@ CONSTRAINT_COMMANDS = [
      QT_TRANSLATE_NOOP("VarSurf_FrozenRegion", "Keep a region of the sheet as the base shape.\nSelect a Sheet and, optionally, closed edges (e.g. a sketch) bounding the region.")),
 ]
 
-COMMANDS = ["VarSurf_Sheet", "VarSurf_Solid"]
+COMMANDS = ["VarSurf_Sheet", "VarSurf_Solid", "VarSurf_SpaceCurve", "VarSurf_Hinge"]
 CONSTRAINTS = [name for name, _kind, _menu, _tip in CONSTRAINT_COMMANDS]
 
 Gui.addCommand("VarSurf_Sheet", CommandSheet())
-Gui.addCommand("VarSurf_Solid", CommandSolid())
+Gui.addCommand("VarSurf_Solid", _solid_command())
+Gui.addCommand("VarSurf_SpaceCurve", _space_curve_command())
+Gui.addCommand("VarSurf_Hinge", _hinge_command())
 for _name, _kind, _menu, _tip in CONSTRAINT_COMMANDS:
     Gui.addCommand(_name, CommandConstraint(_kind, _menu, _tip))

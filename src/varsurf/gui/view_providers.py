@@ -118,7 +118,9 @@ class ViewProviderSolid(_ViewProvider):
 
     def claimChildren(self):
         obj = getattr(self, "Object", None)
-        return list(getattr(obj, "Sheets", None) or []) if obj is not None else []
+        if obj is None:
+            return []
+        return list(getattr(obj, "Sheets", None) or []) + list(getattr(obj, "Hinges", None) or [])
 
     def on_created(self, vobj):
         for sheet in getattr(vobj.Object, "Sheets", None) or []:
@@ -130,6 +132,26 @@ class ViewProviderSolid(_ViewProvider):
             if sheet.ViewObject is not None:
                 sheet.ViewObject.Visibility = True
         return True
+
+
+class ViewProviderSpaceCurve(_ViewProvider):
+    """Tree icon of a variational SpaceCurve, drawn thick so it reads as a handle-driven curve;
+    hides its base edge's object only if that is a plain helper (not a sketch others use)."""
+
+    TYPE = "VarSurf::ViewProviderSpaceCurve"
+    ICON = "VarSurf_SpaceCurve.svg"
+
+    def on_created(self, vobj):
+        if hasattr(vobj, "LineWidth"):
+            vobj.LineWidth = 4.0
+            vobj.LineColor = (0.85, 0.35, 0.0)
+
+
+class ViewProviderHinge(_ViewProvider):
+    """Tree icon of a Hinge (data of its Solid: nothing of its own to draw)."""
+
+    TYPE = "VarSurf::ViewProviderHinge"
+    ICON = "VarSurf_Hinge.svg"
 
 
 def ensure_view_provider(obj):

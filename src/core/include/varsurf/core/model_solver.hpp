@@ -10,7 +10,9 @@
 // not linear in the poles: each sheet's tangent plane along the seam is held by a ribbon
 // constraint (W&W 4.2.2) whose normals are re-aimed after every solve -- the two sheets' in-sheet
 // directions across the seam are turned symmetrically about their bisector until they make the
-// angle -- and the system is solved again until the aim stops changing.
+// angle -- and the system is solved again until the aim stops changing. The ribbons are fitted
+// like curves (to SolveOptions::fit_tolerance), so a seam that the sheets' spaces cannot turn
+// exactly is met as closely as fairness allows; the report gives the angles reached.
 #pragma once
 
 #include <Eigen/Core>
@@ -44,7 +46,10 @@ struct Join {
   // right; needed by hinges to tell which way each sheet leaves the seam.
   int side = 0;
   double weight = 1.0;
-  bool exact = false;  // fixed curves: fit every direction the space holds (as CurveConstraint)
+  // Fit every direction the space holds (as CurveConstraint::exact); otherwise the join is fitted
+  // until it is within SolveOptions::fit_tolerance (rows of a variational curve count their
+  // distance from the start shapes) and the rest is left to fairness.
+  bool exact = false;
 };
 
 struct Hinge {
@@ -61,7 +66,7 @@ struct ModelProblem {
   std::vector<Join> joins;
   std::vector<Hinge> hinges;
   int hinge_iterations = 40;
-  double hinge_tolerance = 1e-9;  // radians: stop when no aim turns by more
+  double hinge_tolerance = 1e-6;  // radians: stop when no aim turns by more
   int hinge_nodes = 65;           // nodes of each re-aimed normal field (piecewise linear)
 };
 
@@ -74,7 +79,7 @@ struct HingeReport {
 struct ModelReport {
   SolveReport solve;  // of the last solve
   int hinge_iterations = 0;
-  bool converged = true;
+  bool converged = true;  // false: the aims still turned after hinge_iterations (result kept)
   double last_turn = 0.0;         // radians: the largest change of aim in the last iteration
   std::vector<double> join_gaps;  // per join: largest |w_s(c_s(t)) - C(t)| (model units)
   std::vector<HingeReport> hinges;

@@ -1,0 +1,71 @@
+"""The Hinge feature: the angle between two Sheets across a curve they share (Welch & Witkin
+4.2.2 and sec. 5). 180 degrees makes the seam tangent-continuous (G1).
+
+An ``App::FeaturePython`` listed in a Solid's ``Hinges``: the Solid solves its sheets together
+and holds each hinge's angle all along the curve; it reports the angles reached. App side only.
+"""
+
+from __future__ import annotations
+
+from varsurf import model
+from varsurf.app.feature import FeatureProxy, add_missing_properties
+
+TYPE = "VarSurf::Hinge"
+DEFAULT_ANGLE = 180.0
+
+# name, type, group, tooltip, output?
+_PROPERTIES = [
+    ("Sheets", "App::PropertyLinkList", "Hinge", "The two Sheets meeting at the hinge", False),
+    ("Curve", "App::PropertyLinkSub", "Hinge", "The curve both Sheets pass through (an edge both list in their Curves)", False),
+    ("Angle", "App::PropertyAngle", "Hinge", "Angle between the sheets across the curve, in (0, 180] degrees; 180 is a smooth (tangent-continuous) seam", False),
+    ("Enabled", "App::PropertyBool", "Hinge", "Off: the Solid ignores this hinge", False),
+]
+
+
+def _add_missing_properties(obj):
+    add_missing_properties(obj, _PROPERTIES, {"Angle": DEFAULT_ANGLE, "Enabled": True})
+
+
+def is_hinge(obj) -> bool:
+    return getattr(getattr(obj, "Proxy", None), "Type", None) == TYPE
+
+
+def curve_key(obj) -> str:
+    if obj.Curve is None:
+        raise model.SheetError(f"{obj.Label}: Curve is empty: select the shared edge")
+    link, subs = obj.Curve
+    subs = [s for s in subs if s]
+    if len(subs) != 1 or not subs[0].startswith("Edge"):
+        raise model.SheetError(f"{obj.Label}: Curve must reference exactly one edge")
+    return f"{link.Name}:{subs[0]}"
+
+
+def spec_of(obj):
+    """The joint solve's HingeSpec of a Hinge (SheetError if its links are wrong)."""
+    from varsurf.joint import HingeSpec
+
+    sheets = list(obj.Sheets or [])
+    if len(sheets) != 2:
+        raise model.SheetError(f"{obj.Label}: a hinge needs exactly two Sheets (has {len(sheets)})")
+    angle = float(obj.Angle.Value if hasattr(obj.Angle, "Value") else obj.Angle)
+    return HingeSpec(name=obj.Label, key=curve_key(obj), sheet_a=sheets[0].Label,
+                     sheet_b=sheets[1].Label, angle=angle)
+
+
+class HingeFeature(FeatureProxy):
+    """Proxy of a VarSurf Hinge (App::FeaturePython): data only, solved by its Solid."""
+
+    Type = TYPE
+    TYPE = TYPE
+
+    def add_properties(self, obj):
+        _add_missing_properties(obj)
+
+    def execute(self, obj):
+        import FreeCAD
+
+        try:
+            spec_of(obj)  # a broken link is reported on the hinge itself
+        except model.SheetError as error:
+            FreeCAD.Console.PrintError(f"VarSurf: {error}\n")
+            raise

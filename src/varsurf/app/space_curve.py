@@ -1,0 +1,90 @@
+"""The SpaceCurve feature: a variational space curve (Welch & Witkin sec. 5, Figure 2).
+
+A ``Part::FeaturePython`` whose ``Shape`` is one edge: the ``Base`` edge reshaped by its handles,
+the points at ``HandleParameters`` (0..1 along the base) moved to ``Handles``, with the least
+bending of the displacement. Sheets list this edge among their Curves like any other; in a Solid
+its poles become unknowns of the joint solve, so moving a handle moves the curve and every sheet
+joined along it. App side only.
+"""
+
+from __future__ import annotations
+
+import FreeCAD
+
+from varsurf import model, space_curve
+from varsurf.app.feature import FeatureProxy, add_missing_properties
+
+TYPE = "VarSurf::SpaceCurve"
+
+# name, type, group, tooltip, output?
+_PROPERTIES = [
+    ("Base", "App::PropertyLinkSub", "SpaceCurve", "The edge the curve starts from: its rest shape", False),
+    ("HandleParameters", "App::PropertyFloatList", "SpaceCurve", "Where the handles sit on the curve, 0..1 along the base edge", False),
+    ("Handles", "App::PropertyVectorList", "SpaceCurve", "Where each handle's curve point must go (one per HandleParameters)", False),
+    ("Spans", "App::PropertyIntegerConstraint", "SpaceCurve", "Spans of the curve's B-spline: the freedom it has to bend", False),
+    ("Stretch", "App::PropertyFloat", "SpaceCurve", "Weight of the displacement's first derivative (>= 0)", False),
+    ("Bend", "App::PropertyFloat", "SpaceCurve", "Weight of the displacement's second derivative (>= 0)", False),
+    ("Status", "App::PropertyString", "Result", "OK, or what went wrong", True),
+]
+
+
+def _add_missing_properties(obj):
+    add_missing_properties(obj, _PROPERTIES, {
+        "Spans": (space_curve.DEFAULT_SPANS, 1, 512, 1),
+        "Stretch": space_curve.DEFAULT_STRETCH,
+        "Bend": space_curve.DEFAULT_BEND,
+    })
+
+
+def base_edge(obj):
+    if obj.Base is None:
+        raise model.SheetError("Base is empty: select the edge the curve starts from")
+    link, subs = obj.Base
+    subs = [s for s in subs if s]
+    if len(subs) != 1 or not subs[0].startswith("Edge"):
+        raise model.SheetError(f"Base must reference exactly one edge of {link.Label}")
+    import Part
+
+    edge = Part.getShape(link, subs[0], needSubElement=True)
+    if edge.isNull():
+        raise model.SheetError(f"{link.Label}:{subs[0]} does not exist (anymore)")
+    return edge
+
+
+def variational_curve(obj):
+    """(VariationalCurve for joint solves, rest Part curve) of a SpaceCurve's inputs."""
+    rest = space_curve.rest_curve(base_edge(obj), int(obj.Spans))
+    nat = model.native()
+    handles = space_curve.handles_at(rest, list(obj.HandleParameters), list(obj.Handles))
+    for label, value in (("Stretch", obj.Stretch), ("Bend", obj.Bend)):
+        if not value >= 0.0 or value == float("inf"):
+            raise model.SheetError(f"{label} must be finite and >= 0 (got {value})")
+    return space_curve.VariationalCurve(
+        start=space_curve.to_native(nat, rest), handles=handles,
+        stretch=float(obj.Stretch), bend=float(obj.Bend)), rest
+
+
+def is_space_curve(obj) -> bool:
+    return getattr(getattr(obj, "Proxy", None), "Type", None) == TYPE
+
+
+class SpaceCurveFeature(FeatureProxy):
+    """Proxy of a VarSurf SpaceCurve (Part::FeaturePython)."""
+
+    Type = TYPE
+    TYPE = TYPE
+
+    def add_properties(self, obj):
+        _add_missing_properties(obj)
+        obj.setEditorMode("Status", 1)
+
+    def execute(self, obj):
+        try:
+            curve, _rest = variational_curve(obj)
+            solved = space_curve.solve_alone(curve)
+        except Exception as error:
+            obj.Status = f"Error: {error}"
+            FreeCAD.Console.PrintError(f"VarSurf: {obj.Label}: {error}\n")
+            raise
+        obj.Shape = space_curve.part_curve(solved).toShape()
+        obj.Status = f"OK: {len(curve.handles)} handles, {len(solved.poles)} poles"

@@ -1,0 +1,185 @@
+"""Sheets, their shared curves and hinges solved as one system (Welch & Witkin sec. 5), without
+a document.
+
+Each sheet brings the problem of its own solve (``SheetOutcome.problem``: space, energy, its own
+constraints, each curve's pre-image on it). Curves shared by several sheets, variational curves
+and hinge curves become joins of the joint system; a variational curve's poles are unknowns of it;
+a hinge holds the angle between two sheets across a join (see _native.solve_model).
+"""
+
+from __future__ import annotations
+
+import copy
+import math
+from dataclasses import dataclass, field
+from typing import Dict, List, Sequence
+
+from varsurf.model import SheetError, _build, _single_face, native, shape_from_brep
+from varsurf.space_curve import VariationalCurve, part_curve
+
+
+@dataclass
+class JointSheet:
+    label: str
+    outcome: object  # model.SheetOutcome of the sheet's own solve
+    keys: List[str]  # one key per curve, in outcome.curve_names order (equal keys: the same curve)
+
+
+@dataclass
+class HingeSpec:
+    name: str
+    key: str  # the curve
+    sheet_a: str  # labels
+    sheet_b: str
+    angle: float  # degrees, (0, 180]; 180: tangent-continuous
+
+
+@dataclass
+class JointOutcome:
+    faces: List[object]  # Part.Face per sheet, in input order
+    curve_edges: Dict[str, object]  # key -> Part.Edge of each variational curve as solved
+    join_gaps: List[float]  # per join: largest sheet-to-curve distance (mm)
+    hinge_angles: List[tuple]  # per hinge: (min, max, max error) in degrees
+    hinge_iterations: int = 0
+    converged: bool = True
+    seconds: float = 0.0
+    summary: str = ""
+
+
+def _loop_sides(nat, preimages: Dict[str, object], gap: float) -> Dict[str, int]:
+    """+1 / -1 per key: the side of its pre-image the sheet's loop encloses; {} if no loop."""
+    keys = list(preimages)
+    try:
+        loop = nat.chain_loop([preimages[k] for k in keys], gap)
+    except nat.InvalidInput:
+        return {}
+    ccw = 1 if loop.signed_area > 0 else -1
+    return {keys[step.curve]: (-ccw if step.reversed else ccw) for step in loop.steps}
+
+
+def solve_joint(sheets: Sequence[JointSheet], variational: Dict[str, VariationalCurve],
+                hinges: Sequence[HingeSpec]) -> JointOutcome:
+    nat = native()
+    if not sheets:
+        raise SheetError("no sheets to solve")
+    labels = [s.label for s in sheets]
+    counts: Dict[str, int] = {}
+    for s in sheets:
+        if s.outcome is None or s.outcome.problem is None:
+            raise SheetError(f"{s.label} has no solve to join: recompute it first")
+        if len(s.keys) != len(s.outcome.curve_names):
+            raise SheetError(f"{s.label}: {len(s.keys)} curve keys for {len(s.outcome.curve_names)} curves")
+        for k in set(s.keys):
+            counts[k] = counts.get(k, 0) + 1
+    for key in variational:
+        if key not in counts:
+            raise SheetError(f"the variational curve {key} is not a curve of any of the sheets")
+    joined = {k for k, n in counts.items() if n >= 2} | set(variational) | {h.key for h in hinges}
+
+    curves, index = [], {}
+    joins = []
+    problems = []
+    for i, s in enumerate(sheets):
+        problem = copy.copy(s.outcome.problem)
+        own, mine = [], {}
+        for key, constraint in zip(s.keys, s.outcome.problem.curves):
+            if key not in joined:
+                own.append(constraint)
+                continue
+            mine[key] = constraint
+            if key not in index:
+                index[key] = len(curves)
+                curves.append(variational[key].native(nat) if key in variational
+                              else _fixed_curve(nat, constraint.target))
+        problem.curves = own
+        problems.append(problem)
+        space = problem.space
+        gap = 1e-6 * max(space.knots_u[-1] - space.knots_u[0], space.knots_v[-1] - space.knots_v[0])
+        sides = _loop_sides(nat, {k: c.preimage for k, c in mine.items()}, gap)
+        if not sides:  # the shared curves alone do not close: the sheet's own ones complete it
+            every = dict(zip(s.keys, s.outcome.problem.curves))
+            sides = _loop_sides(nat, {k: c.preimage for k, c in every.items()}, gap)
+        for key, constraint in mine.items():
+            join = nat.Join()
+            join.sheet, join.curve = i, index[key]
+            join.preimage = constraint.preimage
+            join.exact = bool(constraint.exact)
+            join.side = sides.get(key, 0)
+            joins.append(join)
+
+    native_hinges = []
+    for h in hinges:
+        if not (0.0 < h.angle <= 180.0) or not math.isfinite(h.angle):
+            raise SheetError(f"{h.name}: the angle must be in (0, 180] degrees (got {h.angle})")
+        ends = []
+        for label in (h.sheet_a, h.sheet_b):
+            if label not in labels:
+                raise SheetError(f"{h.name}: {label} is not one of the Solid's sheets")
+            ends.append(labels.index(label))
+        if ends[0] == ends[1]:
+            raise SheetError(f"{h.name}: a hinge needs two different sheets")
+        for end in ends:
+            if h.key not in sheets[end].keys:
+                raise SheetError(f"{h.name}: {h.key} is not a curve of {labels[end]}: a hinge needs "
+                                 "a curve both sheets share")
+            join = next(j for j in joins if j.sheet == end and j.curve == index[h.key])
+            if join.side == 0:
+                raise SheetError(f"{h.name}: {labels[end]}'s curves do not close a loop, so it has no "
+                                 "side of the hinge's curve")
+        hinge = nat.Hinge()
+        hinge.curve, hinge.sheet_a, hinge.sheet_b = index[h.key], ends[0], ends[1]
+        hinge.angle = math.radians(h.angle)
+        native_hinges.append(hinge)
+
+    model_problem = nat.ModelProblem()
+    model_problem.sheets = problems
+    model_problem.curves = curves
+    model_problem.joins = joins
+    model_problem.hinges = native_hinges
+    # The first sheet's mode and rank tolerance; the joins as tight as the tightest sheet's curves.
+    options = copy.copy(sheets[0].outcome.options)
+    options.fit_tolerance = min(float(s.outcome.options.fit_tolerance) for s in sheets)
+    try:
+        result = nat.solve_model(model_problem, options)
+    except nat.InvalidInput as error:
+        raise SheetError(_named(str(error), labels, list(index), hinges)) from error
+
+    faces = []
+    for problem, poles in zip(problems, result.sheet_poles):
+        surface = _build(nat.BSplineSurface, space=problem.space, poles=poles)
+        faces.append(_single_face(shape_from_brep(nat.face_brep(surface))))
+    edges = {}
+    for key, i in index.items():
+        if key not in variational:
+            continue  # a fixed curve stays the user's edge (exactly, arcs included)
+        solved = _build(nat.BSplineCurve, degree=curves[i].start.degree, knots=list(curves[i].start.knots),
+                        poles=result.curve_poles[i])
+        edges[key] = part_curve(solved).toShape()
+    rep = result.report
+    angles = [(math.degrees(r.min_angle), math.degrees(r.max_angle), math.degrees(r.max_error))
+              for r in rep.hinges]
+    summary = (f"joint solve of {len(sheets)} sheets, {len(curves)} join curves "
+               f"({len(variational)} variational), {len(hinges)} hinges in {rep.hinge_iterations} "
+               f"iterations, {rep.total_seconds:.2f} s")
+    return JointOutcome(faces=faces, curve_edges=edges, join_gaps=list(rep.join_gaps),
+                        hinge_angles=angles, hinge_iterations=int(rep.hinge_iterations),
+                        converged=bool(rep.converged), seconds=float(rep.total_seconds), summary=summary)
+
+
+def _fixed_curve(nat, target):
+    curve = nat.SpaceCurve()
+    curve.start = target
+    curve.variational = False
+    return curve
+
+
+def _named(message: str, labels, keys, hinges) -> str:
+    """The core names sheets, curves and hinges by index: say which ones."""
+    import re
+
+    def by_index(names):
+        return lambda m: names[int(m.group(1))] if int(m.group(1)) < len(names) else m.group(0)
+
+    message = re.sub(r"\bsheet (\d+)", by_index(labels), message)
+    message = re.sub(r"\bspace curve (\d+)", by_index(keys), message)
+    return re.sub(r"\bhinge (\d+)", by_index([h.name for h in hinges]), message)

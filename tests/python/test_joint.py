@@ -1,0 +1,163 @@
+"""Sheets solved together in a Solid: hinges (the hinge-pair example) and a variational space
+curve moved by its handle (the moving-curve example, Welch & Witkin Figure 2); STEP and save
+round trips, edits, commands and bad inputs."""
+
+import sys
+from pathlib import Path
+
+import FreeCAD
+import Part
+import pytest
+
+import varsurf
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "examples"))
+import hinge_pair  # noqa: E402
+import moving_curve  # noqa: E402
+
+V = FreeCAD.Vector
+HINGE_TOLERANCE = 0.05  # degrees, along the whole seam
+
+
+def _hinge_ok(solid, angle):
+    assert solid.isValid(), solid.getStatusString()
+    lo, hi = solid.HingeAngles
+    assert abs(lo - angle) <= HINGE_TOLERANCE and abs(hi - angle) <= HINGE_TOLERANCE, (lo, hi)
+    assert solid.HingeErrors[0] <= HINGE_TOLERANCE
+    shape = solid.Shape
+    assert shape.isValid() and shape.check(True) is None
+    assert len(shape.Faces) == 2 and not solid.Closed  # an open shell, reported as such
+    assert max(solid.SeamGaps) <= solid.Tolerance.Value
+    assert "joint solve" in solid.JointSolve
+
+
+@pytest.mark.parametrize("angle", [120.0, 180.0])
+def test_hinge_pair_holds_its_angle_along_the_seam(doc, native, angle):
+    solid = hinge_pair.build(doc, angle)
+    _hinge_ok(solid, angle)
+    # Measured independently on the B-rep: 180 minus the angle between the faces' normals.
+    if angle == 180.0:
+        assert solid.SeamAngles and min(solid.SeamAngles) >= 180.0 - HINGE_TOLERANCE - 0.01
+
+
+def test_editing_the_hinge_angle_and_a_round_trip(doc, native, tmp_path):
+    solid = hinge_pair.build(doc, 120.0)
+    hinge = solid.Hinges[0]
+    hinge.Angle = 150.0
+    # The side curves must leave the seam at the new angle too (the corners hold the sheets).
+    for name, sign in (("Left", -1), ("Right", 1)):
+        edges = doc.getObject(name + "Edges")
+        far = edges.Shape.Edges[1].copy()
+        edges.Shape = Part.Compound([hinge_pair._side(0.0, sign, 150.0), far,
+                                     hinge_pair._side(hinge_pair.LENGTH, sign, 150.0)])
+    doc.recompute()
+    _hinge_ok(solid, 150.0)
+    area = solid.Shape.Area
+    path = str(tmp_path / "hinge.step")
+    varsurf.export_step([solid], path)
+    back = Part.read(path)
+    assert len(back.Faces) == 2 and back.isValid()
+    assert back.Area == pytest.approx(area, rel=1e-6)
+    fcstd = str(tmp_path / "hinge.FCStd")
+    doc.saveAs(fcstd)
+    name = solid.Name
+    FreeCAD.closeDocument(doc.Name)
+    again = FreeCAD.openDocument(fcstd)
+    try:
+        s = again.getObject(name)
+        assert s.Shape.Area == pytest.approx(area, rel=1e-12)
+        for o in again.Objects:
+            o.touch()
+        again.recompute()
+        assert s.isValid(), s.getStatusString()
+        assert s.Shape.Area == pytest.approx(area, rel=1e-9)
+        assert s.HingeErrors[0] <= HINGE_TOLERANCE
+    finally:
+        FreeCAD.closeDocument(again.Name)
+
+
+def test_moving_a_handle_moves_the_curve_and_both_joined_sheets(doc, native, tmp_path):
+    solid, curve = moving_curve.build(doc)
+    assert solid.isValid() and solid.Closed, solid.Status
+    before = solid.Shape.copy()
+    moving_curve.lift(doc, curve, 8.0)
+    assert solid.isValid() and solid.Closed, solid.Status
+    shape = solid.Shape
+    assert shape.isValid() and shape.check(True) is None and shape.Volume > 0
+    assert "1 variational" in solid.JointSolve
+    assert max(solid.SeamGaps) <= solid.Tolerance.Value
+    # The curve went through its moved handle, and the solid's seam follows it.
+    top = curve.Handles[1]
+    assert curve.Shape.distToShape(Part.Vertex(top))[0] < 1e-6
+    assert shape.distToShape(Part.Vertex(top))[0] <= 0.01
+    # Exactly the two faces joined along it changed; the others stayed (their curves did not move).
+    moved = [i for i, (a, b) in enumerate(zip(before.Faces, shape.Faces)) if abs(a.Area - b.Area) > 1e-3 * a.Area]
+    assert len(moved) == 2, moved
+    for i in moved:
+        assert shape.Faces[i].distToShape(Part.Vertex(top))[0] <= 0.01
+    assert shape.Volume > before.Volume
+    path = str(tmp_path / "moved.step")
+    varsurf.export_step([solid], path)
+    back = Part.read(path).Solids
+    assert len(back) == 1 and back[0].isValid()
+    assert back[0].Volume == pytest.approx(shape.Volume, rel=1e-6)
+    assert len(back[0].Faces) == 6
+
+
+def test_commands_make_space_curves_and_hinges(doc, native):
+    from scenes import Sel
+    from varsurf import api, joints_api
+
+    solid = hinge_pair.build(doc, 120.0)
+    doc.UndoMode = 1
+    lines = []
+
+    def run(line):
+        lines.append(line)
+        api._exec_line(line)
+
+    seam = doc.getObject("Seam")
+    c = joints_api.run_space_curve_command([Sel(seam, "Edge1")], do_command=run)
+    assert c is not None and c.isValid() and any("make_space_curve" in l for l in lines)
+    left, right = solid.Sheets
+    h = joints_api.run_hinge_command([Sel(left), Sel(right), Sel(seam, "Edge1")], do_command=run)
+    assert h is not None and h in solid.Hinges and any("make_hinge" in l for l in lines)
+    # From the Solid's edge between its two faces: the same sheets and curve.
+    mid = seam.Shape.Edges[0].valueAt(0.5 * (seam.Shape.Edges[0].FirstParameter + seam.Shape.Edges[0].LastParameter))
+    edge = min(range(len(solid.Shape.Edges)),
+               key=lambda i: solid.Shape.Edges[i].distToShape(Part.Vertex(mid))[0])
+    args = joints_api.hinge_selection_to_args([Sel(solid, f"Edge{edge + 1}")])
+    assert args[0] is solid and {args[1], args[2]} == {left, right} and args[3] == (seam, "Edge1")
+    n = len(doc.Objects)
+    doc.undo()
+    assert len(doc.Objects) == n - 1
+    errors = []
+    assert joints_api.run_hinge_command([Sel(left)], on_error=errors.append) is None
+    assert joints_api.run_space_curve_command([Sel(left)], on_error=errors.append) is None
+    assert len(errors) == 2 and "Select" in errors[0]
+
+
+def test_bad_hinges_and_curves_are_reported(doc, native, console_errors):
+    solid = hinge_pair.build(doc, 120.0)
+    left, right = solid.Sheets
+    own = doc.getObject("LeftEdges")  # a curve of the left sheet only
+    varsurf.make_hinge(solid, left, right, (own, "Edge2"), angle=120.0, name="NotShared")
+    doc.recompute()
+    assert not solid.isValid() and "not a curve of Right" in solid.getStatusString()
+    doc.removeObject("NotShared")
+    solid.Hinges = []
+    seam = doc.getObject("Seam")
+    bad = varsurf.make_hinge(solid, left, right, (seam, "Edge1"), angle=0.0, name="NoAngle")
+    doc.recompute()
+    assert not solid.isValid() and "angle" in solid.getStatusString()
+    bad.Angle = 120.0
+    doc.recompute()
+    assert solid.isValid(), solid.getStatusString()
+    with pytest.raises(ValueError):
+        varsurf.make_hinge(solid, left, left.Document.getObject("Seam"), (seam, "Edge1"))
+    ring = doc.addObject("Part::Feature", "Ring")
+    ring.Shape = Part.makeCircle(10.0)
+    closed = varsurf.make_space_curve((ring, "Edge1"))
+    doc.recompute()
+    assert not closed.isValid() and "closed" in closed.Status
+    assert "VarSurf" in console_errors()
