@@ -39,14 +39,20 @@ def _shape_of(obj):
     return shape
 
 
-def _normalize_base(base):
-    if not isinstance(base, (tuple, list)) or len(base) != 2:
-        raise ValueError('base must be (object, "FaceN")')
-    obj, subs = base
+def single_element(ref, kind: str, what: str):
+    """(object, "KindN") of a reference naming exactly one element of ``kind`` ("Face", "Edge");
+    ValueError naming ``what`` otherwise."""
+    if not isinstance(ref, (tuple, list)) or len(ref) != 2:
+        raise ValueError(f'{what} must be (object, "{kind}N")')
+    obj, subs = ref
     names = _as_names(subs)
-    if len(names) != 1 or not names[0].startswith("Face"):
-        raise ValueError(f'base must name exactly one face of {obj.Label}, e.g. (obj, "Face1")')
+    if len(names) != 1 or not names[0].startswith(kind):
+        raise ValueError(f'{what} must name exactly one {kind.lower()} of {obj.Label}, e.g. (obj, "{kind}1")')
     return obj, names[0]
+
+
+def _normalize_base(base):
+    return single_element(base, "Face", "base")
 
 
 def _normalize_curves(curves) -> List[Tuple[object, Tuple[str, ...]]]:

@@ -14,7 +14,7 @@ from typing import Optional, Sequence
 
 import FreeCAD
 
-from varsurf.api import _as_names, _is_sheet, _ref, run_in_transaction
+from varsurf.api import _is_sheet, _ref, run_in_transaction, single_element
 
 TRANSACTION_SPACE_CURVE = "Add VarSurf space curve"
 TRANSACTION_HINGE = "Add VarSurf hinge"
@@ -26,13 +26,7 @@ DEFAULT_HANDLE_PARAMETERS = (0.0, 0.5, 1.0)
 
 
 def _edge_ref(ref):
-    if not isinstance(ref, (tuple, list)) or len(ref) != 2:
-        raise ValueError('an edge must be given as (object, "EdgeN")')
-    obj, subs = ref
-    names = _as_names(subs)
-    if len(names) != 1 or not names[0].startswith("Edge"):
-        raise ValueError(f'name exactly one edge of {obj.Label}, e.g. (obj, "Edge1")')
-    return obj, names[0]
+    return single_element(ref, "Edge", "an edge")
 
 
 def make_space_curve(base, handle_parameters: Optional[Sequence[float]] = None,

@@ -1,5 +1,6 @@
 """Small documents for the tests: a gently curved bicubic base face and sketches above it."""
 
+import contextlib
 import math
 
 import FreeCAD
@@ -140,3 +141,23 @@ def add_shape(doc, name, shape):
     obj = doc.addObject("Part::Feature", name)
     obj.Shape = shape
     return obj
+
+
+@contextlib.contextmanager
+def reopened(doc, path):
+    """Save ``doc`` to ``path``, close it and open the file again; yields the reopened document
+    and closes it afterwards."""
+    doc.saveAs(str(path))
+    FreeCAD.closeDocument(doc.Name)
+    again = FreeCAD.openDocument(str(path))
+    try:
+        yield again
+    finally:
+        FreeCAD.closeDocument(again.Name)
+
+
+def recompute_all(doc):
+    """Recompute every object, as after an edit upstream of everything."""
+    for o in doc.Objects:
+        o.touch()
+    doc.recompute()

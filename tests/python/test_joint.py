@@ -58,22 +58,16 @@ def test_editing_the_hinge_angle_and_a_round_trip(doc, native, tmp_path):
     back = Part.read(path)
     assert len(back.Faces) == 2 and back.isValid()
     assert back.Area == pytest.approx(area, rel=1e-6)
-    fcstd = str(tmp_path / "hinge.FCStd")
-    doc.saveAs(fcstd)
+    from scenes import recompute_all, reopened
+
     name = solid.Name
-    FreeCAD.closeDocument(doc.Name)
-    again = FreeCAD.openDocument(fcstd)
-    try:
+    with reopened(doc, tmp_path / "hinge.FCStd") as again:
         s = again.getObject(name)
         assert s.Shape.Area == pytest.approx(area, rel=1e-12)
-        for o in again.Objects:
-            o.touch()
-        again.recompute()
+        recompute_all(again)
         assert s.isValid(), s.getStatusString()
         assert s.Shape.Area == pytest.approx(area, rel=1e-9)
         assert s.HingeErrors[0] <= HINGE_TOLERANCE
-    finally:
-        FreeCAD.closeDocument(again.Name)
 
 
 def test_moving_a_handle_moves_the_curve_and_both_joined_sheets(doc, native, tmp_path):

@@ -52,21 +52,15 @@ def test_step_and_save_round_trips(solid, tmp_path):
     assert solids[0].Volume == pytest.approx(shape.Volume, rel=1e-6)
     assert solids[0].Area == pytest.approx(shape.Area, rel=1e-6)
     assert len(solids[0].Faces) == len(shape.Faces)
-    fcstd = str(tmp_path / "pillow.FCStd")
-    doc.saveAs(fcstd)
+    from scenes import recompute_all, reopened
+
     name, volume = solid.Name, shape.Volume
-    FreeCAD.closeDocument(doc.Name)
-    again = FreeCAD.openDocument(fcstd)
-    try:
+    with reopened(doc, tmp_path / "pillow.FCStd") as again:
         s = again.getObject(name)
         assert s.Shape.Volume == pytest.approx(volume, rel=1e-12)
-        for o in again.Objects:
-            o.touch()
-        again.recompute()
+        recompute_all(again)
         assert s.isValid(), s.getStatusString()
         assert s.Shape.Volume == pytest.approx(volume, rel=1e-9)
-    finally:
-        FreeCAD.closeDocument(again.Name)
 
 
 def test_editing_the_shared_curve_updates_both_sheets(solid):
