@@ -24,6 +24,9 @@ LENGTH = 100.0  # along the seam (y)
 WIDTH = 60.0  # from the seam to each far edge
 RISE = 20.0  # height of the far edges
 WAVE = 8.0  # the seam rises by this much in its middle, level at its ends
+#: Spans per direction: turning a sheet's tangent plane along a trimmed seam takes a band about a
+#: span wide; with 16 the band is too coarse and the sheet ripples beside the seam (looked at).
+SPANS = 32
 
 
 def _seam():
@@ -62,6 +65,7 @@ def build(doc, angle=120.0):
         sheet = varsurf.make_sheet(None, [(seam, "Edge1"), (edges, ("Edge1", "Edge2", "Edge3"))],
                                    name=name, fix_boundary=False)
         sheet.Tolerance = 0.001
+        sheet.MinSpans = SPANS
         sheets.append(sheet)
     solid = varsurf.make_solid(sheets, name="HingePair")
     varsurf.make_hinge(solid, sheets[0], sheets[1], (seam, "Edge1"), angle=angle)

@@ -7,12 +7,13 @@
 // handles, so moving a handle moves the curve and every sheet joined to it.
 //
 // A hinge sets the angle between two sheets across a join (pi: tangent-continuous). The angle is
-// not linear in the poles: each sheet's tangent plane along the seam is held by a ribbon
-// constraint (W&W 4.2.2) whose normals are re-aimed after every solve -- the two sheets' in-sheet
-// directions across the seam are turned symmetrically about their bisector until they make the
-// angle -- and the system is solved again until the aim stops changing. The ribbons are fitted
-// like curves (to SolveOptions::fit_tolerance), so a seam that the sheets' spaces cannot turn
-// exactly is met as closely as fairness allows; the report gives the angles reached.
+// not linear in the poles: each sheet's tangent plane along the seam is held by ribbon rows (W&W
+// 4.2.2: its derivative across the pre-image is perpendicular to an aimed normal) whose normals
+// are re-aimed after every solve -- the two sheets' in-sheet directions across the seam are turned
+// evenly about their bisector until they make the angle -- and the system is solved again until
+// the aim stops changing. The rows are fitted like curves (to SolveOptions::fit_tolerance), so a
+// seam the sheets' spaces cannot turn exactly is met as closely as fairness allows; the report
+// gives the angles reached.
 #pragma once
 
 #include <Eigen/Core>
