@@ -14,6 +14,7 @@ import varsurf
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "examples"))
 import hinge_pair  # noqa: E402
 import moving_curve  # noqa: E402
+import smooth_box  # noqa: E402
 
 V = FreeCAD.Vector
 HINGE_TOLERANCE = 0.05  # degrees, along the whole seam
@@ -70,6 +71,26 @@ def test_editing_the_hinge_angle_and_a_round_trip(doc, native, tmp_path):
         assert s.isValid(), s.getStatusString()
         assert s.Shape.Area == pytest.approx(area, rel=1e-9)
         assert s.HingeErrors[0] <= HINGE_TOLERANCE
+
+
+def test_smooth_box_is_a_closed_solid_with_a_smooth_band(doc, native, tmp_path):
+    solid = smooth_box.build(doc)
+    assert solid.isValid() and solid.Closed, solid.getStatusString()
+    shape = solid.Shape
+    assert shape.isValid() and shape.check(True) is None and len(shape.Faces) == 6
+    # Four 180-degree hinges; measured: 0.055 degrees at worst, where the seams meet the rims.
+    assert len(solid.HingeErrors) == 4 and max(solid.HingeErrors) <= 0.1, list(solid.HingeErrors)
+    # Independently, on the B-rep: four seams smooth, eight rim seams sharp.
+    pairs = list(zip(solid.SeamAngles[::2], solid.SeamAngles[1::2]))
+    smooth = [p for p in pairs if p[0] > 170.0]
+    assert len(smooth) == 4 and all(lo >= 180.0 - HINGE_TOLERANCE for lo, _hi in smooth), pairs
+    assert len([p for p in pairs if p[1] < 120.0]) == 8, pairs
+    assert max(solid.SeamGaps) <= solid.Tolerance.Value
+    path = str(tmp_path / "box.step")
+    varsurf.export_step([solid], path)
+    back = Part.read(path).Solids
+    assert len(back) == 1 and back[0].isValid() and len(back[0].Faces) == 6
+    assert back[0].Volume == pytest.approx(shape.Volume, rel=1e-6)
 
 
 def test_moving_a_handle_moves_the_curve_and_both_joined_sheets(doc, native, tmp_path):
