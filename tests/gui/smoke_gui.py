@@ -195,6 +195,34 @@ def run(result):
         result["sheets_hidden"] = not pdoc.getObject("Top").ViewObject.Visibility
     result["solid_image_stats"] = image_stats(snapshot("solid.png"))
 
+    # 7. the Hinge and SpaceCurve commands on the hinge-pair example (built without its hinge)
+    import hinge_pair
+
+    hdoc = App.newDocument("HingeSmoke")
+    hsolid = hinge_pair.build(hdoc, 180.0)
+    for h in list(hsolid.Hinges):
+        hsolid.Hinges = []
+        hdoc.removeObject(h.Name)
+    hdoc.recompute()
+    Gui.Selection.clearSelection()
+    Gui.Selection.addSelection(hdoc.Name, "Left")
+    Gui.Selection.addSelection(hdoc.Name, "Right")
+    Gui.Selection.addSelection(hdoc.Name, "Seam", "Edge1")
+    result["hinge_active"] = bool(Gui.Command.get("VarSurf_Hinge").isActive())
+    Gui.runCommand("VarSurf_Hinge")
+    hdoc.recompute()
+    result["hinges"] = [h.Name for h in hsolid.Hinges]
+    result["hinge_errors"] = list(hsolid.HingeErrors)
+    result["hinge_icon"] = hsolid.Hinges[0].ViewObject.Proxy.getIcon() if hsolid.Hinges else ""
+    Gui.Selection.clearSelection()
+    Gui.Selection.addSelection(hdoc.Name, "Seam", "Edge1")
+    result["space_curve_active"] = bool(Gui.Command.get("VarSurf_SpaceCurve").isActive())
+    Gui.runCommand("VarSurf_SpaceCurve")
+    curves = [o for o in hdoc.Objects if o.Name.startswith("SpaceCurve")]
+    result["space_curve_ok"] = len(curves) == 1 and curves[0].isValid()
+    result["space_curve_icon"] = curves[0].ViewObject.Proxy.getIcon() if curves else ""
+    result["hinge_image_stats"] = image_stats(snapshot("hinge.png"))
+
 
 def main():
     result = {"ok": False}
