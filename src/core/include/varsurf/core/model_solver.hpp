@@ -80,8 +80,8 @@ struct HingeReport {
 struct ModelReport {
   SolveReport solve;  // of the last solve
   int hinge_iterations = 0;
-  bool converged = true;  // false: the aims still turned after hinge_iterations (result kept)
-  double last_turn = 0.0;         // radians: the largest change of aim in the last iteration
+  bool converged = true;   // false: the aims still turned after hinge_iterations (result kept)
+  double last_turn = 0.0;  // radians: the largest change of aim in the last iteration
   std::vector<double> join_gaps;  // per join: largest |w_s(c_s(t)) - C(t)| (model units)
   std::vector<HingeReport> hinges;
   double total_seconds = 0.0;
