@@ -75,6 +75,33 @@ TEST(Ribbon, FoldAlongADiagonalConvergesUnderRefinement) {
   EXPECT_LT(previous * 180.0 / M_PI, 0.5);  // degrees, at 32 spans
 }
 
+TEST(Ribbon, AcrossOnlyMeetsTheSameFoldWhereTheSheetHoldsTheCurve) {
+  // The fold above at 16 spans, with the ribbon's rows across the line only: the sheet holds the
+  // line, so the row along it says nothing new; the fold is met as well and the sheet is the same.
+  const Eigen::Vector2d a(0.25, 0.3), b(0.75, 0.7);
+  const Eigen::Vector3d along = Eigen::Vector3d(b.x() - a.x(), b.y() - a.y(), 0.0).normalized();
+  SheetProblem pb = tilted_problem(16, 0.0);
+  CurveConstraint hold;
+  hold.preimage = test::line_curve(a, b);
+  hold.target =
+      test::line_curve(Eigen::Vector3d(a.x(), a.y(), 0.0), Eigen::Vector3d(b.x(), b.y(), 0.0));
+  hold.exact = true;
+  pb.curves.push_back(hold);
+  RibbonConstraint r;
+  r.preimage = hold.preimage;
+  r.normals =
+      constant_field(Eigen::AngleAxisd(20.0 * M_PI / 180.0, along) * Eigen::Vector3d::UnitZ());
+  pb.ribbons.push_back(r);
+  const SolveResult both = solve_sheet(pb);
+  pb.ribbons[0].across_only = true;
+  const SolveResult across = solve_sheet(pb);
+  EXPECT_EQ(sample_ribbon(pb.space, pb.ribbons[0]).rows() * 2,
+            sample_ribbon(pb.space, r).rows());
+  EXPECT_LT(ribbon_angle_error(pb.space, across.poles, r, 400), 1e-9);
+  EXPECT_LT(incidence_error(pb.space, across.poles, hold), 1e-9);
+  EXPECT_LT((across.poles - both.poles).cwiseAbs().maxCoeff(), 1e-8);
+}
+
 TEST(Ribbon, RejectsBadInput) {
   const SplineSpace sp = SplineSpace::uniform(3, 3, 4, 4);
   RibbonConstraint r;

@@ -13,8 +13,8 @@
 #include "varsurf/core/constraints.hpp"
 #include "varsurf/core/curve_energy.hpp"
 #include "varsurf/core/errors.hpp"
-#include "varsurf/core/gauss_legendre.hpp"
 #include "varsurf/core/knot_vector.hpp"
+#include "varsurf/core/ribbon_constraint.hpp"
 
 namespace varsurf {
 
@@ -410,61 +410,22 @@ BSplineCurve normal_field(const std::vector<double>& t, const std::vector<Eigen:
   return f;
 }
 
-// One row per Gauss sample: the sheet's derivative across its pre-image, (-v' w_u + u' w_v), is
-// perpendicular to the aimed normal. (A ribbon's second row, along the pre-image, repeats what
-// incidence already says, only to the curve's tolerance: the two then disagree a little, and the
-// sheet ripples beside the seam to split the difference.) Rows are scaled to be angles.
-ConstraintSamples cross_rows(const SplineSpace& space, const Join& jn, const BSplineCurve& normals,
-                             const Eigen::MatrixX3d& poles, double weight, int offset) {
-  const double t0 = jn.preimage.first(), t1 = jn.preimage.last();
-  const std::vector<double> pieces = curve_pieces(space, jn.preimage, &normals);
-  const GaussRule& g = gauss_legendre(gauss_points_along(space, jn.preimage));
-  ConstraintSamples out;
-  std::vector<double> rhs;
-  for (size_t i = 0; i + 1 < pieces.size(); ++i) {
-    const double a = pieces[i], h = 0.5 * (pieces[i + 1] - pieces[i]);
-    for (size_t q = 0; q < g.nodes.size(); ++q) {
-      const double t = a + h * (g.nodes[q] + 1.0);
-      const Eigen::MatrixXd c = jn.preimage.derivatives(t, 1);
-      const Eigen::Vector2d uv = clamp_to_domain(space, c.row(0).transpose(), t);
-      const Eigen::Vector3d n = normals.evaluate(t).normalized();
-      const BasisSample b = space.basis(uv(0), uv(1), 1);
-      const Eigen::MatrixXd d = evaluate_surface(space, poles, uv(0), uv(1), 1);
-      const Eigen::Vector3d cross =
-          -c(1, 1) * d.row(1).transpose() + c(1, 0) * d.row(2).transpose();
-      const double length = std::max(cross.norm(), 1e-300);
-      const double w = weight * g.weights[q] * h / (t1 - t0), sw = std::sqrt(w) / length;
-      std::vector<int> cols;
-      Eigen::VectorXd coeff(3 * static_cast<Eigen::Index>(b.index.size()));
-      for (size_t k = 0; k < b.index.size(); ++k) {
-        const Eigen::Index kk = static_cast<Eigen::Index>(k);
-        const double dk = -c(1, 1) * b.values(1, kk) + c(1, 0) * b.values(2, kk);
-        for (int e = 0; e < 3; ++e) {
-          cols.push_back(offset + 3 * b.index[k] + e);
-          coeff(3 * kk + e) = sw * dk * n(e);
-        }
-      }
-      out.index.push_back(std::move(cols));
-      out.coeff.push_back(std::move(coeff));
-      out.weight.push_back(w);
-      rhs.push_back(0.0);
-    }
-  }
-  out.rhs = Eigen::Map<Eigen::VectorXd>(rhs.data(), static_cast<Eigen::Index>(rhs.size()));
-  return out;
-}
-
-std::vector<ConstraintSamples> hinge_samples(const ModelProblem& pb, const State& st,
-                                             const Layout& lay, const std::vector<Aim>& aims) {
+// Each sheet's tangent plane along the seam held to its aimed normals: ribbon rows across the
+// pre-image only (the sheet also contains the curve).
+std::vector<ConstraintSamples> hinge_samples(const ModelProblem& pb, const Layout& lay,
+                                             const std::vector<Aim>& aims) {
   std::vector<ConstraintSamples> out;
   for (size_t h = 0; h < pb.hinges.size(); ++h) {
     const Hinge& hg = pb.hinges[h];
     for (int side = 0; side < 2; ++side) {
       const size_t s = static_cast<size_t>(side == 0 ? hg.sheet_a : hg.sheet_b);
       const Join& jn = pb.joins[static_cast<size_t>(find_join(pb, static_cast<int>(s), hg.curve))];
-      out.push_back(cross_rows(pb.sheets[s].space, jn,
-                               normal_field(aims[h].t, side == 0 ? aims[h].na : aims[h].nb),
-                               st.sheet_poles(s), hg.weight, lay.sheet[s]));
+      RibbonConstraint ribbon{
+          jn.preimage, normal_field(aims[h].t, side == 0 ? aims[h].na : aims[h].nb), hg.weight};
+      ribbon.across_only = true;
+      ConstraintSamples block = sample_ribbon(pb.sheets[s].space, ribbon);
+      shift_columns(block, lay.sheet[s]);
+      out.push_back(std::move(block));
     }
   }
   return out;
@@ -538,7 +499,7 @@ ModelResult solve_model(const ModelProblem& pb, const SolveOptions& opt) {
       }
       if (it > pb.hinge_iterations) break;
       joint.quad.blocks.resize(base_blocks);
-      for (ConstraintSamples& b : hinge_samples(pb, st, joint.lay, aims))
+      for (ConstraintSamples& b : hinge_samples(pb, joint.lay, aims))
         joint.quad.blocks.push_back(std::move(b));
       rep.solve = SolveReport();
       st.x = solve_joint(joint.quad, opt, rep.solve);

@@ -39,20 +39,27 @@ ConstraintSamples sample_ribbon(const SplineSpace& space, const RibbonConstraint
     const double a = pieces[i], h = 0.5 * (pieces[i + 1] - pieces[i]);
     for (size_t q = 0; q < g.nodes.size(); ++q) {
       const double t = a + h * (g.nodes[q] + 1.0);
-      const Eigen::Vector2d uv = clamp_to_domain(space, c.preimage.evaluate(t), t);
+      const Eigen::MatrixXd pre = c.preimage.derivatives(t, 1);
+      const Eigen::Vector2d uv = clamp_to_domain(space, pre.row(0).transpose(), t);
       const Eigen::Vector3d n = unit_vector(c.normals.evaluate(t), "ribbon: the normal field");
       const BasisSample s = space.basis(uv(0), uv(1), 1);
-      // Each of the two rows carries half the sample's share of the weight.
-      const double w = 0.5 * c.weight * g.weights[q] * h / (t1 - t0), sw = std::sqrt(w);
-      for (int d = 1; d <= 2; ++d) {
+      // Rows: w_u . N and w_v . N, or the derivative across the pre-image alone. Each carries its
+      // share of the sample's weight.
+      const int rows = c.across_only ? 1 : 2;
+      const double w = c.weight * g.weights[q] * h / (t1 - t0) / rows, sw = std::sqrt(w);
+      for (int r = 0; r < rows; ++r) {
         std::vector<int> cols;
         Eigen::VectorXd coeff(3 * static_cast<Eigen::Index>(s.index.size()));
-        for (size_t k = 0; k < s.index.size(); ++k)
+        for (size_t k = 0; k < s.index.size(); ++k) {
+          const Eigen::Index kk = static_cast<Eigen::Index>(k);
+          const double dk = c.across_only
+                                ? -pre(1, 1) * s.values(1, kk) + pre(1, 0) * s.values(2, kk)
+                                : s.values(r + 1, kk);
           for (int e = 0; e < 3; ++e) {
             cols.push_back(3 * s.index[k] + e);
-            coeff(3 * static_cast<Eigen::Index>(k) + e) =
-                sw * s.values(d, static_cast<Eigen::Index>(k)) * n(e);
+            coeff(3 * kk + e) = sw * dk * n(e);
           }
+        }
         out.index.push_back(std::move(cols));
         out.coeff.push_back(std::move(coeff));
         out.weight.push_back(w);

@@ -7,8 +7,8 @@
 // handles, so moving a handle moves the curve and every sheet joined to it.
 //
 // A hinge sets the angle between two sheets across a join (pi: tangent-continuous). The angle is
-// not linear in the poles: each sheet's tangent plane along the seam is held by ribbon rows (W&W
-// 4.2.2: its derivative across the pre-image is perpendicular to an aimed normal) whose normals
+// not linear in the poles: each sheet's tangent plane along the seam is held by a ribbon across its
+// pre-image (W&W 4.2.2, RibbonConstraint::across_only) to aimed normals, whose normals
 // are re-aimed after every solve -- the two sheets' in-sheet directions across the seam are turned
 // evenly about their bisector until they make the angle -- and the system is solved again until
 // the aim stops changing. The rows are fitted like curves (to SolveOptions::fit_tolerance), so a

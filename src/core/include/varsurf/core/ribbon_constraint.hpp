@@ -13,6 +13,11 @@ struct RibbonConstraint {
   BSplineCurve preimage;  // 2D (u, v)
   BSplineCurve normals;   // 3D field N(t) over the same parameter range; only its direction counts
   double weight = 1.0;
+  // Only the derivative across the pre-image, (-v' w_u + u' w_v) . N = 0, one row per sample: for
+  // a ribbon along a curve the sheet also contains. The row along the pre-image then repeats the
+  // incidence, which holds only to its tolerance, and the two disagreeing a little make the sheet
+  // ripple beside the curve (seen on hinged seams).
+  bool across_only = false;
 };
 
 // Gauss samples on the pieces of the pre-image (as for curve incidence), weighted by parameter
