@@ -84,6 +84,19 @@ def _normalize_curves(curves) -> List[Tuple[object, Tuple[str, ...]]]:
 # creation
 
 
+def attach_view_provider(obj, class_name: str):
+    """In the GUI, give ``obj`` its view provider (``varsurf.gui.view_providers.<class_name>``)
+    and let it set itself up (e.g. hide the inputs the object consumes); headless, nothing."""
+    if not FreeCAD.GuiUp:
+        return
+    from varsurf.gui import view_providers
+
+    getattr(view_providers, class_name)(obj.ViewObject)
+    on_created = getattr(obj.ViewObject.Proxy, "on_created", None)
+    if on_created is not None:
+        on_created(obj.ViewObject)
+
+
 def make_sheet(
     base,
     curves: Iterable = (),
@@ -130,11 +143,7 @@ def make_sheet(
     obj.MinSpans = int(min_spans)
     obj.MaxSpans = int(max_spans)
     obj.Degree = int(degree)
-    if FreeCAD.GuiUp:
-        from varsurf.gui.view_providers import ViewProviderSheet
-
-        ViewProviderSheet(obj.ViewObject)
-        obj.ViewObject.Proxy.on_created(obj.ViewObject)
+    attach_view_provider(obj, "ViewProviderSheet")
     return obj
 
 
@@ -198,10 +207,7 @@ def make_constraint(
         link, subs = region_loop
         obj.RegionLoop = (link, list(subs) if not isinstance(subs, str) else [subs])
     sheet.Constraints = list(sheet.Constraints) + [obj]
-    if FreeCAD.GuiUp:
-        from varsurf.gui.view_providers import ViewProviderConstraint
-
-        ViewProviderConstraint(obj.ViewObject)
+    attach_view_provider(obj, "ViewProviderConstraint")
     return obj
 
 
@@ -220,11 +226,7 @@ def make_solid(sheets, tolerance=None, name: str = "Solid"):
     obj.Sheets = sheets
     if tolerance is not None:
         obj.Tolerance = float(tolerance)
-    if FreeCAD.GuiUp:
-        from varsurf.gui.view_providers import ViewProviderSolid
-
-        ViewProviderSolid(obj.ViewObject)
-        obj.ViewObject.Proxy.on_created(obj.ViewObject)
+    attach_view_provider(obj, "ViewProviderSolid")
     return obj
 
 

@@ -40,10 +40,7 @@ class JointOutcome:
     curve_edges: Dict[str, object]  # key -> Part.Edge of each variational curve as solved
     join_gaps: List[float]  # per join: largest sheet-to-curve distance (mm)
     hinge_angles: List[tuple]  # per hinge: (min, max, max error) in degrees
-    hinge_iterations: int = 0
-    converged: bool = True
-    seconds: float = 0.0
-    summary: str = ""
+    summary: str = ""  # what was solved, the iterations and the time
 
 
 def _loop_sides(nat, preimages: Dict[str, object], gap: float) -> Dict[str, int]:
@@ -161,9 +158,10 @@ def solve_joint(sheets: Sequence[JointSheet], variational: Dict[str, Variational
     summary = (f"joint solve of {len(sheets)} sheets, {len(curves)} join curves "
                f"({len(variational)} variational), {len(hinges)} hinges in {rep.hinge_iterations} "
                f"iterations, {rep.total_seconds:.2f} s")
+    if not rep.converged:
+        summary += f"; the hinges' aims still turned by {math.degrees(rep.last_turn):.2g} degrees"
     return JointOutcome(faces=faces, curve_edges=edges, join_gaps=list(rep.join_gaps),
-                        hinge_angles=angles, hinge_iterations=int(rep.hinge_iterations),
-                        converged=bool(rep.converged), seconds=float(rep.total_seconds), summary=summary)
+                        hinge_angles=angles, summary=summary)
 
 
 def _fixed_curve(nat, target):

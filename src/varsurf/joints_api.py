@@ -14,7 +14,7 @@ from typing import Optional, Sequence
 
 import FreeCAD
 
-from varsurf.api import _is_sheet, _ref, run_in_transaction, single_element
+from varsurf.api import _is_sheet, _ref, attach_view_provider, run_in_transaction, single_element
 
 TRANSACTION_SPACE_CURVE = "Add VarSurf space curve"
 TRANSACTION_HINGE = "Add VarSurf hinge"
@@ -54,11 +54,7 @@ def make_space_curve(base, handle_parameters: Optional[Sequence[float]] = None,
     obj.Handles = [FreeCAD.Vector(*p) for p in handles]
     if spans is not None:
         obj.Spans = int(spans)
-    if FreeCAD.GuiUp:
-        from varsurf.gui.view_providers import ViewProviderSpaceCurve
-
-        ViewProviderSpaceCurve(obj.ViewObject)
-        obj.ViewObject.Proxy.on_created(obj.ViewObject)
+    attach_view_provider(obj, "ViewProviderSpaceCurve")
     return obj
 
 
@@ -86,10 +82,7 @@ def make_hinge(solid, sheet_a, sheet_b, curve, angle: float = 180.0, name: str =
     obj.Curve = (obj_ref, [sub])
     obj.Angle = float(angle)
     solid.Hinges = list(solid.Hinges or []) + [obj]
-    if FreeCAD.GuiUp:
-        from varsurf.gui.view_providers import ViewProviderHinge
-
-        ViewProviderHinge(obj.ViewObject)
+    attach_view_provider(obj, "ViewProviderHinge")
     return obj
 
 

@@ -93,14 +93,7 @@ def part_curve(native_curve):
     import FreeCAD
     import Part
 
-    flat = list(native_curve.knots)
-    knots, mults = [], []
-    for k in flat:
-        if knots and abs(k - knots[-1]) <= 1e-14 * max(1.0, abs(k)):
-            mults[-1] += 1
-        else:
-            knots.append(k)
-            mults.append(1)
+    knots, mults = native().split_knots(list(native_curve.knots))
     poles = [FreeCAD.Vector(*map(float, row)) for row in native_curve.poles]
     curve = Part.BSplineCurve()
     curve.buildFromPolesMultsKnots(poles, mults, knots, False, int(native_curve.degree))

@@ -95,8 +95,7 @@ TEST(Ribbon, AcrossOnlyMeetsTheSameFoldWhereTheSheetHoldsTheCurve) {
   const SolveResult both = solve_sheet(pb);
   pb.ribbons[0].across_only = true;
   const SolveResult across = solve_sheet(pb);
-  EXPECT_EQ(sample_ribbon(pb.space, pb.ribbons[0]).rows() * 2,
-            sample_ribbon(pb.space, r).rows());
+  EXPECT_EQ(sample_ribbon(pb.space, pb.ribbons[0]).rows() * 2, sample_ribbon(pb.space, r).rows());
   EXPECT_LT(ribbon_angle_error(pb.space, across.poles, r, 400), 1e-9);
   EXPECT_LT(incidence_error(pb.space, across.poles, hold), 1e-9);
   EXPECT_LT((across.poles - both.poles).cwiseAbs().maxCoeff(), 1e-8);

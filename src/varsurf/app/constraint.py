@@ -11,7 +11,7 @@ from __future__ import annotations
 import FreeCAD
 
 from varsurf import constraints
-from varsurf.app.feature import FeatureProxy, add_missing_properties
+from varsurf.app.feature import FeatureProxy
 
 TYPE = "VarSurf::Constraint"
 
@@ -47,10 +47,6 @@ _DEFAULTS = {
     "RegionV1": 1.0,
     "Weight": 1.0,
 }
-
-
-def _add_missing_properties(obj):
-    add_missing_properties(obj, _PROPERTIES, _DEFAULTS)
 
 
 def _location_point(obj):
@@ -134,9 +130,8 @@ class ConstraintFeature(FeatureProxy):
 
     Type = TYPE
     TYPE = TYPE
-
-    def add_properties(self, obj):
-        _add_missing_properties(obj)
+    PROPERTIES = _PROPERTIES
+    DEFAULTS = _DEFAULTS
 
     def onDocumentRestored(self, obj):
         super().onDocumentRestored(obj)

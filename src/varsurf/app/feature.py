@@ -30,7 +30,11 @@ def add_missing_properties(obj, table, defaults=None):
 
 class FeatureProxy(VersionedState):
     """A proxy that adds its object's properties when created and when its document is opened
-    (so files from older versions gain new properties). Subclasses set TYPE and add_properties."""
+    (so files from older versions gain new properties). Subclasses set TYPE, PROPERTIES (rows for
+    add_missing_properties) and DEFAULTS, and extend add_properties for anything more."""
+
+    PROPERTIES = ()
+    DEFAULTS = {}
 
     def __init__(self, obj):
         obj.Proxy = self
@@ -42,4 +46,4 @@ class FeatureProxy(VersionedState):
         self.add_properties(obj)
 
     def add_properties(self, obj):
-        raise NotImplementedError
+        add_missing_properties(obj, self.PROPERTIES, self.DEFAULTS)

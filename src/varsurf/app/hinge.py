@@ -8,7 +8,7 @@ and holds each hinge's angle all along the curve; it reports the angles reached.
 from __future__ import annotations
 
 from varsurf import model
-from varsurf.app.feature import FeatureProxy, add_missing_properties
+from varsurf.app.feature import FeatureProxy
 
 TYPE = "VarSurf::Hinge"
 DEFAULT_ANGLE = 180.0
@@ -20,10 +20,6 @@ _PROPERTIES = [
     ("Angle", "App::PropertyAngle", "Hinge", "Angle between the sheets across the curve, in (0, 180] degrees; 180 is a smooth (tangent-continuous) seam", False),
     ("Enabled", "App::PropertyBool", "Hinge", "Off: the Solid ignores this hinge", False),
 ]
-
-
-def _add_missing_properties(obj):
-    add_missing_properties(obj, _PROPERTIES, {"Angle": DEFAULT_ANGLE, "Enabled": True})
 
 
 def is_hinge(obj) -> bool:
@@ -57,9 +53,8 @@ class HingeFeature(FeatureProxy):
 
     Type = TYPE
     TYPE = TYPE
-
-    def add_properties(self, obj):
-        _add_missing_properties(obj)
+    PROPERTIES = _PROPERTIES
+    DEFAULTS = {"Angle": DEFAULT_ANGLE, "Enabled": True}
 
     def execute(self, obj):
         import FreeCAD

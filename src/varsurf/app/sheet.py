@@ -11,7 +11,7 @@ from __future__ import annotations
 import FreeCAD
 
 from varsurf import model
-from varsurf.app.feature import FeatureProxy, add_missing_properties
+from varsurf.app.feature import FeatureProxy
 from varsurf.app.constraint import spec_of
 
 TYPE = "VarSurf::Sheet"
@@ -79,10 +79,6 @@ _DEFAULTS = {
     "MaxSpans": (model.DEFAULT_MAX_SPANS, 1, 512, 1),
     "Status": "Not computed",
 }
-
-
-def _add_missing_properties(obj):
-    add_missing_properties(obj, _PROPERTIES, _DEFAULTS)
 
 
 def _restore_constraints(obj):
@@ -208,8 +204,11 @@ class SheetFeature(FeatureProxy):
     Type = TYPE
     TYPE = TYPE
 
+    PROPERTIES = _PROPERTIES
+    DEFAULTS = _DEFAULTS
+
     def add_properties(self, obj):
-        _add_missing_properties(obj)
+        super().add_properties(obj)
         _restore_constraints(obj)
 
     def onDocumentRestored(self, obj):

@@ -16,7 +16,7 @@ from varsurf import assembly, joint, model
 from varsurf.app import hinge as hinge_feature
 from varsurf.app import sheet as sheet_feature
 from varsurf.app import space_curve as space_curve_feature
-from varsurf.app.feature import FeatureProxy, add_missing_properties
+from varsurf.app.feature import FeatureProxy
 
 TYPE = "VarSurf::Solid"
 
@@ -37,10 +37,6 @@ _PROPERTIES = [
 DEFAULT_TOLERANCE = 2 * model.DEFAULT_TOLERANCE
 #: A hinge farther than this from its angle anywhere along its curve is warned about (degrees).
 HINGE_ANGLE_TOLERANCE = 0.05
-
-
-def _add_missing_properties(obj):
-    add_missing_properties(obj, _PROPERTIES, {"Tolerance": DEFAULT_TOLERANCE})
 
 
 def join_inputs(obj):
@@ -103,9 +99,8 @@ class SolidFeature(FeatureProxy):
 
     Type = TYPE
     TYPE = TYPE
-
-    def add_properties(self, obj):
-        _add_missing_properties(obj)
+    PROPERTIES = _PROPERTIES
+    DEFAULTS = {"Tolerance": DEFAULT_TOLERANCE}
 
     def execute(self, obj):
         try:

@@ -12,7 +12,7 @@ from __future__ import annotations
 import FreeCAD
 
 from varsurf import model, space_curve
-from varsurf.app.feature import FeatureProxy, add_missing_properties
+from varsurf.app.feature import FeatureProxy
 
 TYPE = "VarSurf::SpaceCurve"
 
@@ -26,14 +26,6 @@ _PROPERTIES = [
     ("Bend", "App::PropertyFloat", "SpaceCurve", "Weight of the displacement's second derivative (>= 0)", False),
     ("Status", "App::PropertyString", "Result", "OK, or what went wrong", True),
 ]
-
-
-def _add_missing_properties(obj):
-    add_missing_properties(obj, _PROPERTIES, {
-        "Spans": (space_curve.DEFAULT_SPANS, 1, 512, 1),
-        "Stretch": space_curve.DEFAULT_STRETCH,
-        "Bend": space_curve.DEFAULT_BEND,
-    })
 
 
 def base_edge(obj):
@@ -73,10 +65,12 @@ class SpaceCurveFeature(FeatureProxy):
 
     Type = TYPE
     TYPE = TYPE
-
-    def add_properties(self, obj):
-        _add_missing_properties(obj)
-        obj.setEditorMode("Status", 1)
+    PROPERTIES = _PROPERTIES
+    DEFAULTS = {
+        "Spans": (space_curve.DEFAULT_SPANS, 1, 512, 1),
+        "Stretch": space_curve.DEFAULT_STRETCH,
+        "Bend": space_curve.DEFAULT_BEND,
+    }
 
     def execute(self, obj):
         try:

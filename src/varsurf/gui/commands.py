@@ -80,43 +80,31 @@ class CommandFromSelection:
         self.run(Gui.Selection.getSelectionEx(), do_command=Gui.doCommand, on_error=show_selection_error)
 
 
-def _solid_command():
-    """Join the selected Sheets along their shared curves into a shell or solid."""
-    return CommandFromSelection(
-        "VarSurf_Solid.svg",
-        QT_TRANSLATE_NOOP("VarSurf_Solid", "Join sheets into a solid"),
-        QT_TRANSLATE_NOOP(
-            "VarSurf_Solid",
-            "Join Sheets along the curves they share: each is trimmed to its shared curves and\n"
-            "the faces form a shell, a solid when closed. Select two or more Sheets.",
-        ),
-        api.solid_selection_to_sheets, api.run_solid_command)
-
-
-def _space_curve_command():
-    """A variational curve from the selected edge."""
-    return CommandFromSelection(
-        "VarSurf_SpaceCurve.svg",
-        QT_TRANSLATE_NOOP("VarSurf_SpaceCurve", "Variational space curve"),
-        QT_TRANSLATE_NOOP(
-            "VarSurf_SpaceCurve",
-            "A curve reshaped by handles (both ends and the middle): sheets that pass through it\n"
-            "follow it, and in a Solid it is solved with them. Select one edge.",
-        ),
-        joints_api.space_curve_selection_to_base, joints_api.run_space_curve_command)
-
-
-def _hinge_command():
-    """A hinge between two sheets of a Solid."""
-    return CommandFromSelection(
-        "VarSurf_Hinge.svg",
-        QT_TRANSLATE_NOOP("VarSurf_Hinge", "Hinge"),
-        QT_TRANSLATE_NOOP(
-            "VarSurf_Hinge",
-            "Hold the angle between two Sheets across the curve they share (180 degrees: smooth).\n"
-            "Select two Sheets of a Solid and their shared edge, or the Solid's edge between them.",
-        ),
-        joints_api.hinge_selection_to_args, joints_api.run_hinge_command)
+# Commands on a selection of sheets and curves: name, icon, menu text, tooltip, selection check,
+# what it runs.
+SELECTION_COMMANDS = [
+    ("VarSurf_Solid", "VarSurf_Solid.svg",
+     QT_TRANSLATE_NOOP("VarSurf_Solid", "Join sheets into a solid"),
+     QT_TRANSLATE_NOOP(
+         "VarSurf_Solid",
+         "Join Sheets along the curves they share: each is trimmed to its shared curves and\n"
+         "the faces form a shell, a solid when closed. Select two or more Sheets."),
+     api.solid_selection_to_sheets, api.run_solid_command),
+    ("VarSurf_SpaceCurve", "VarSurf_SpaceCurve.svg",
+     QT_TRANSLATE_NOOP("VarSurf_SpaceCurve", "Variational space curve"),
+     QT_TRANSLATE_NOOP(
+         "VarSurf_SpaceCurve",
+         "A curve reshaped by handles (both ends and the middle): sheets that pass through it\n"
+         "follow it, and in a Solid it is solved with them. Select one edge."),
+     joints_api.space_curve_selection_to_base, joints_api.run_space_curve_command),
+    ("VarSurf_Hinge", "VarSurf_Hinge.svg",
+     QT_TRANSLATE_NOOP("VarSurf_Hinge", "Hinge"),
+     QT_TRANSLATE_NOOP(
+         "VarSurf_Hinge",
+         "Hold the angle between two Sheets across the curve they share (180 degrees: smooth).\n"
+         "Select two Sheets of a Solid and their shared edge, or the Solid's edge between them."),
+     joints_api.hinge_selection_to_args, joints_api.run_hinge_command),
+]
 
 
 class CommandConstraint:
@@ -205,12 +193,11 @@ CONSTRAINT_COMMANDS = [
      QT_TRANSLATE_NOOP("VarSurf_FrozenRegion", "Keep a region of the sheet as the base shape.\nSelect a Sheet and, optionally, closed edges (e.g. a sketch) bounding the region.")),
 ]
 
-COMMANDS = ["VarSurf_Sheet", "VarSurf_Solid", "VarSurf_SpaceCurve", "VarSurf_Hinge"]
+COMMANDS = ["VarSurf_Sheet"] + [row[0] for row in SELECTION_COMMANDS]
 CONSTRAINTS = [name for name, _kind, _menu, _tip in CONSTRAINT_COMMANDS]
 
 Gui.addCommand("VarSurf_Sheet", CommandSheet())
-Gui.addCommand("VarSurf_Solid", _solid_command())
-Gui.addCommand("VarSurf_SpaceCurve", _space_curve_command())
-Gui.addCommand("VarSurf_Hinge", _hinge_command())
+for _name, *_resources in SELECTION_COMMANDS:
+    Gui.addCommand(_name, CommandFromSelection(*_resources))
 for _name, _kind, _menu, _tip in CONSTRAINT_COMMANDS:
     Gui.addCommand(_name, CommandConstraint(_kind, _menu, _tip))
