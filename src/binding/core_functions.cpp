@@ -39,7 +39,9 @@ void bind_core_functions(py::module_& m) {
 
   py::class_<LoopStep>(m, "LoopStep")
       .def_readonly("curve", &LoopStep::curve)
-      .def_readonly("reversed", &LoopStep::reversed);
+      .def_readonly("reversed", &LoopStep::reversed)
+      .def_readonly("inside", &LoopStep::inside,
+                    "+1 if the enclosed region lies left of the curve's own direction, -1 right");
   py::class_<CurveLoop>(m, "CurveLoop", "2D curves chained into one closed loop.")
       .def_readonly("steps", &CurveLoop::steps)
       .def_readonly("signed_area", &CurveLoop::signed_area);

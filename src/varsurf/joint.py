@@ -50,8 +50,7 @@ def _loop_sides(nat, preimages: Dict[str, object], gap: float) -> Dict[str, int]
         loop = nat.chain_loop([preimages[k] for k in keys], gap)
     except nat.InvalidInput:
         return {}
-    ccw = 1 if loop.signed_area > 0 else -1
-    return {keys[step.curve]: (-ccw if step.reversed else ccw) for step in loop.steps}
+    return {keys[step.curve]: int(step.inside) for step in loop.steps}
 
 
 def solve_joint(sheets: Sequence[JointSheet], variational: Dict[str, VariationalCurve],

@@ -23,9 +23,12 @@ TEST(CurveLoop, ShuffledAndReversedSidesOfASquare) {
   ASSERT_EQ(loop.steps.size(), 4u);
   const std::vector<int> order = {0, 2, 1, 3};
   const std::vector<bool> reversed = {false, false, true, true};
+  // The square lies left of the bottom (+x) and right sides (+y), right of the top (+x) and left.
+  const std::vector<int> inside = {1, 1, -1, -1};
   for (size_t i = 0; i < 4; ++i) {
     EXPECT_EQ(loop.steps[i].curve, order[i]);
     EXPECT_EQ(loop.steps[i].reversed, reversed[i]);
+    EXPECT_EQ(loop.steps[i].inside, inside[i]);
   }
   EXPECT_NEAR(loop.signed_area, 1.0, 1e-12);  // counter-clockwise
   // Walked the other way round the area changes sign.
@@ -34,6 +37,7 @@ TEST(CurveLoop, ShuffledAndReversedSidesOfASquare) {
   const CurveLoop cw =
       chain_loop({line(0, 0, 0, 1), line(0, 1, 1, 1), line(1, 1, 1, 0), line(1, 0, 0, 0)}, 1e-9);
   EXPECT_NEAR(cw.signed_area, -1.0, 1e-12);
+  for (const LoopStep& step : cw.steps) EXPECT_EQ(step.inside, -1);  // walked clockwise, forward
 }
 
 TEST(CurveLoop, GapsAndBadCurves) {

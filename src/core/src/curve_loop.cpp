@@ -61,6 +61,8 @@ CurveLoop chain_loop(const std::vector<BSplineCurve>& curves, double gap) {
       prev = p;
     }
   }
+  const int ccw = loop.signed_area > 0.0 ? 1 : -1;
+  for (LoopStep& step : loop.steps) step.inside = step.reversed ? -ccw : ccw;
   return loop;
 }
 

@@ -10,6 +10,9 @@ namespace varsurf {
 struct LoopStep {
   int curve = 0;          // index into the given curves
   bool reversed = false;  // walked from its last parameter to its first
+  // +1 if the region the loop encloses lies left of the curve's own direction (first to last
+  // parameter), -1 if right: which side of the curve the trimmed sheet is on.
+  int inside = 1;
 };
 
 struct CurveLoop {
