@@ -18,6 +18,10 @@ from varsurf.model import SheetError, _build, _single_face, native, shape_from_b
 from varsurf.space_curve import VariationalCurve, part_curve
 
 
+#: A hinge farther than this (degrees) from its angle anywhere is a failure, not a result.
+HINGE_FAILURE = 1.0
+
+
 @dataclass
 class JointSheet:
     label: str
@@ -159,6 +163,13 @@ def solve_joint(sheets: Sequence[JointSheet], variational: Dict[str, Variational
                f"iterations, {rep.total_seconds:.2f} s")
     if not rep.converged:
         summary += f"; the hinges' aims still turned by {math.degrees(rep.last_turn):.2g} degrees"
+    for h, (_lo, _hi, error) in zip(hinges, angles):
+        if error > HINGE_FAILURE:  # not a seam a little off, but sheets folded away: build nothing
+            raise SheetError(
+                f"{h.name}: the sheets miss the hinge's {h.angle:.4g} degrees by up to {error:.3g} degrees "
+                f"({summary}). The curves meeting the seam at its ends must leave it at the hinge's "
+                "angle; a pair whose angle must turn far from where the sheets meet without the hinge "
+                "is not held yet")
     return JointOutcome(faces=faces, curve_edges=edges, join_gaps=list(rep.join_gaps),
                         hinge_angles=angles, summary=summary)
 
