@@ -328,6 +328,8 @@ void bind_core_types(py::module_& m) {
       .def_readwrite("max_fit_factor", &SolveOptions::max_fit_factor,
                      "Penalty mode: refine while a sample is farther than this times "
                      "fit_tolerance.")
+      .def_readwrite("penalty_steps", &SolveOptions::penalty_steps,
+                     "Penalty mode: at most this many refinement steps.")
       .def_readwrite("cluster_limit", &SolveOptions::cluster_limit,
                      "Automatic mode: larger groups of interacting constraints use the penalty "
                      "mode.");

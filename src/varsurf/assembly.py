@@ -16,6 +16,10 @@ from typing import List, Sequence
 from varsurf.model import SheetError, native, shape_from_brep
 
 
+class JoinGapError(SheetError):
+    """A sheet farther from a join curve than the tolerance."""
+
+
 @dataclass
 class AssemblyOutcome:
     shape: object  # Part.Solid when the faces close, else a shell or compound
@@ -83,7 +87,7 @@ def build_solid(sheets: Sequence, tolerance: float) -> AssemblyOutcome:
             except (nat.InvalidInput, nat.GeometryError) as error:
                 raise SheetError(f"{label} does not reach a join curve: {error}") from error
             if pre.max_distance > tolerance:
-                raise SheetError(f"{label} passes {pre.max_distance:.3g} mm from a join curve "
+                raise JoinGapError(f"{label} passes {pre.max_distance:.3g} mm from a join curve "
                                  f"(more than the tolerance {tolerance:.3g} mm)")
             gaps[key] = max(gaps.get(key, 0.0), float(pre.max_distance))
             ids.append(index[key])

@@ -196,6 +196,38 @@ TEST(ModelSolver, HingeMeetsAPrescribedAngle) {
   }
 }
 
+TEST(ModelSolver, HingeFindsWhereTheFoldSits) {
+  // Far edge of A at height 1, of B at 0, a smooth (180-degree) seam. Across the seam each
+  // coordinate of the pure-bending sheets is a cubic in the outward parameter s with f(0) = 0,
+  // f(1) = H, f''(1) = 0, whose energy is 3 (f'(0) - H)^2. Smooth means the outward derivatives
+  // are opposite up to a ratio k: (-p_a, q_a) = -k (p_b, q_b) in (x, z). Minimizing over p_b, q_b
+  // leaves ((k - 1)^2 + 1) / (k^2 + 1), least at k^2 = k + 1 (the golden ratio), with
+  // q_b = -k / (k^2 + 1), q_a = k^2 / (k^2 + 1). Where the fold sits is thus the energy's choice:
+  // aims fixed at the bisector of the sheets solved without the hinge would give another profile.
+  ModelProblem pb = two_sheets(0.0);
+  for (int j = 0; j < pb.sheets[0].space.nv(); ++j)
+    pb.sheets[0].initial_poles(pb.sheets[0].space.index(0, j), 2) = 1.0;
+  pb.curves.push_back(fixed_seam());
+  pb.hinges.push_back({0, 0, 1, pi});
+  const ModelResult r = solve_model(pb);
+  ASSERT_TRUE(r.report.converged);
+  EXPECT_LT(r.report.hinges[0].max_error * 180 / pi, 1e-4);
+  const double k = (1 + std::sqrt(5.0)) / 2;
+  const auto profile = [](double q, double far, double s) {
+    return q * s - 1.5 * (q - far) * s * s + 0.5 * (q - far) * s * s * s;
+  };
+  const SplineSpace& space = pb.sheets[0].space;
+  for (int i = 0; i <= 10; ++i)
+    for (int j = 0; j <= 4; ++j) {
+      const double s = i / 10.0, v = j / 4.0;
+      EXPECT_NEAR(height(space, r.sheet_poles[1], s, v), profile(-k / (k * k + 1), 0.0, s), 1e-6)
+          << s << " " << v;
+      EXPECT_NEAR(height(space, r.sheet_poles[0], 1.0 - s, v), profile(k * k / (k * k + 1), 1.0, s),
+                  1e-6)
+          << s << " " << v;
+    }
+}
+
 TEST(ModelSolver, RefusesBadModels) {
   ModelProblem pb = two_sheets(0.0);
   pb.curves.push_back(fixed_seam());

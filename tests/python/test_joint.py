@@ -154,6 +154,33 @@ def test_commands_make_space_curves_and_hinges(doc, native):
     assert len(errors) == 2 and "Select" in errors[0]
 
 
+def _tilted_side(y, sign, tilt):
+    """hinge_pair's side curve turned by `tilt` degrees about the seam: still 120 degrees between
+    the two sides, but their bisector leans."""
+    lift = math.radians(30.0 - sign * tilt)
+    start, end = V(0, y, 0), V(sign * hinge_pair.WIDTH, y, hinge_pair.RISE)
+    reach = hinge_pair.WIDTH / 3.0
+    curve = Part.BSplineCurve()
+    curve.buildFromPoles([start, start + V(sign * math.cos(lift), 0, math.sin(lift)) * reach,
+                          end - V(sign * reach, 0, 0), end])
+    return curve.toShape()
+
+
+def test_hinge_finds_where_the_fold_sits(doc, native):
+    """Where the sheets without the hinge would meet is not where the fold must sit: with the
+    sides leaning 5 degrees the bisector turns along the seam (measured: 120 +- 0.004 degrees,
+    28 iterations)."""
+    solid = hinge_pair.build(doc, 120.0)
+    for name, sign in (("Left", -1), ("Right", 1)):
+        edges = doc.getObject(name + "Edges")
+        far = edges.Shape.Edges[1].copy()
+        edges.Shape = Part.Compound([_tilted_side(0.0, sign, 5.0), far,
+                                     _tilted_side(hinge_pair.LENGTH, sign, 5.0)])
+    doc.recompute()
+    _hinge_ok(solid, 120.0)
+    assert "still turned" not in solid.JointSolve, solid.JointSolve
+
+
 def test_bad_hinges_and_curves_are_reported(doc, native, console_errors):
     solid = hinge_pair.build(doc, 120.0)
     left, right = solid.Sheets
@@ -172,23 +199,11 @@ def test_bad_hinges_and_curves_are_reported(doc, native, console_errors):
     assert solid.isValid(), solid.getStatusString()
     with pytest.raises(ValueError):
         varsurf.make_hinge(solid, left, left.Document.getObject("Seam"), (seam, "Edge1"))
-    # A pair tilted 5 degrees at the seam's ends (left side steeper): the hinge iteration does not
-    # hold that yet; an error naming the hinge, not a folded shape.
-    def tilted(y, sign):
-        lift = math.radians(30.0 - sign * 5.0)
-        start, end = V(0, y, 0), V(sign * hinge_pair.WIDTH, y, hinge_pair.RISE)
-        reach = hinge_pair.WIDTH / 3.0
-        curve = Part.BSplineCurve()
-        curve.buildFromPoles([start, start + V(sign * math.cos(lift), 0, math.sin(lift)) * reach,
-                              end - V(sign * reach, 0, 0), end])
-        return curve.toShape()
-
-    for name, sign in (("Left", -1), ("Right", 1)):
-        edges = doc.getObject(name + "Edges")
-        far = edges.Shape.Edges[1].copy()
-        edges.Shape = Part.Compound([tilted(0.0, sign), far, tilted(hinge_pair.LENGTH, sign)])
+    # Side curves opening by 120 degrees and a hinge asking 150: contradictory at the seam's ends;
+    # an error naming the hinge, not a folded shape.
+    bad.Angle = 150.0
     doc.recompute()
-    assert not solid.isValid() and "miss the hinge" in solid.getStatusString(), solid.getStatusString()
+    assert not solid.isValid() and "with hinges NoAngle" in solid.getStatusString(), solid.getStatusString()
     ring = doc.addObject("Part::Feature", "Ring")
     ring.Shape = Part.makeCircle(10.0)
     closed = varsurf.make_space_curve((ring, "Edge1"))

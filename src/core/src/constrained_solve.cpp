@@ -254,6 +254,7 @@ ConstrainedSolve::ConstrainedSolve(const Quadratic& pb, const SolveOptions& opt,
   } else if (m.mode == SolveMode::penalty || m.krylov) {
     if (!(opt.penalty_weight > 0.0) || !std::isfinite(opt.penalty_weight))
       throw InvalidInput("penalty weight must be a positive number");
+    if (opt.penalty_steps < 1) throw InvalidInput("penalty steps must be at least 1");
     // W&W eq. 10 minimizes |(mu B; H) p - (mu d; f)|; its normal equations (Q + mu^2 B^T B) p =
     // f + mu^2 B^T d keep the sparsity of Q (each sample row touches one span's poles), so a
     // sparse Cholesky replaces W&W's sparse QR of the stacked system, which would need a square
@@ -416,7 +417,8 @@ Eigen::MatrixXd ConstrainedSolve::Impl::solve_penalty(const Eigen::MatrixXd& g,
   double worst = 0.0;
   bool met = true;
   int it = 0;
-  const int max_steps = 200;  // beyond, the space is too coarse: the caller refines it
+  const int max_steps =
+      opt.penalty_steps;  // beyond, the space is too coarse: the caller refines it
   for (it = 1; it <= max_steps; ++it) {
     const Eigen::MatrixXd next = penalty_step(g + eps * center, dk);
     const double move = (next - x).cwiseAbs().maxCoeff();

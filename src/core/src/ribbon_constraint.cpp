@@ -27,8 +27,10 @@ void validate(const RibbonConstraint& c) {
 
 }  // namespace
 
-ConstraintSamples sample_ribbon(const SplineSpace& space, const RibbonConstraint& c) {
+ConstraintSamples sample_ribbon(const SplineSpace& space, const RibbonConstraint& c,
+                                std::vector<double>* at) {
   validate(c);
+  if (at) at->clear();
   const double t0 = c.preimage.first(), t1 = c.preimage.last();
   const std::vector<double> pieces = curve_pieces(space, c.preimage, &c.normals);
   const GaussRule& g = gauss_legendre(gauss_points_along(space, c.preimage));
@@ -64,6 +66,7 @@ ConstraintSamples sample_ribbon(const SplineSpace& space, const RibbonConstraint
         out.coeff.push_back(std::move(coeff));
         out.weight.push_back(w);
         rhs.push_back(0.0);
+        if (at) at->push_back(t);
       }
     }
   }

@@ -94,6 +94,17 @@ def _solve_together(obj, inputs):
             for (label, _face, shared, own), face in zip(inputs, result.faces)]
 
 
+def _hinge_blame(obj):
+    """A sheet pulled off its curves by a hinge: the hinge's angle contradicts the curves meeting
+    its seam (where they end on it, they set both tangent planes), and the joint solve gives way
+    at the curves. Say so."""
+    names = [h.Label for h in (obj.Hinges or []) if h.Enabled]
+    if not names:
+        return ""
+    return (f" (with hinges {', '.join(names)}: the curves meeting a hinged seam at its ends must "
+            "leave it at the hinge's angle)")
+
+
 class SolidFeature(FeatureProxy):
     """Proxy of a VarSurf Solid (Part::FeaturePython)."""
 
@@ -105,7 +116,10 @@ class SolidFeature(FeatureProxy):
     def execute(self, obj):
         try:
             inputs = _solve_together(obj, join_inputs(obj))
-            outcome = assembly.build_solid(inputs, float(obj.Tolerance))
+            try:
+                outcome = assembly.build_solid(inputs, float(obj.Tolerance))
+            except assembly.JoinGapError as error:
+                raise model.SheetError(f"{error}{_hinge_blame(obj)}") from error
             if not outcome.valid:
                 raise model.SheetError("the sewn shape is not valid")
         except Exception as error:

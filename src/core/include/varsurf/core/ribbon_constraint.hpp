@@ -22,8 +22,9 @@ struct RibbonConstraint {
 
 // Gauss samples on the pieces of the pre-image (as for curve incidence), weighted by parameter
 // length so that the whole ribbon weighs `weight`. InvalidInput for a pre-image leaving the domain,
-// mismatched ranges or a vanishing normal.
-ConstraintSamples sample_ribbon(const SplineSpace& space, const RibbonConstraint& c);
+// mismatched ranges or a vanishing normal. `at`, if given, receives each row's curve parameter.
+ConstraintSamples sample_ribbon(const SplineSpace& space, const RibbonConstraint& c,
+                                std::vector<double>* at = nullptr);
 
 // Largest angle (radians) between the sheet's normal and N(t) over `samples` parameters.
 double ribbon_angle_error(const SplineSpace& space, const Eigen::MatrixX3d& poles,

@@ -92,6 +92,9 @@ struct SolveOptions {
   // a sample of a constraint is farther than max_fit_factor * fit_tolerance from it.
   double penalty_weight = 1e4;
   double max_fit_factor = 4.0;
+  // Penalty mode: at most this many refinement steps (beyond, the space is too coarse for the
+  // constraints and a refining caller adds detail).
+  int penalty_steps = 200;
   // Penalty mode: factor W&W's stacked least-squares system (mu B; S), S^T S the energy, by
   // sparse QR (SuiteSparseQR) instead of its normal equations by Cholesky: B's condition number is
   // not squared, at the price of a slower factorization.
