@@ -43,6 +43,21 @@ def image_stats(path):
     return {"width": w, "height": h, "variance": variance, "non_white": non_white / len(values)}
 
 
+def image_difference(a, b):
+    """Fraction of sampled pixels that differ (by more than a little) between two pictures."""
+    ia, ib = QtGui.QImage(a), QtGui.QImage(b)
+    if ia.isNull() or ib.isNull() or ia.size() != ib.size():
+        return 1.0
+    changed = total = 0
+    for y in range(0, ia.height(), 4):
+        for x in range(0, ia.width(), 4):
+            ca, cb = QtGui.QColor(ia.pixel(x, y)), QtGui.QColor(ib.pixel(x, y))
+            total += 1
+            if abs(ca.red() - cb.red()) + abs(ca.green() - cb.green()) + abs(ca.blue() - cb.blue()) > 30:
+                changed += 1
+    return changed / total
+
+
 def snapshot(name):
     """An isometric, fitted 800 x 600 picture of the active view, nothing selected; its path."""
     Gui.Selection.clearSelection()
@@ -158,6 +173,44 @@ def run(result):
     constraint = sheet.Constraints[0] if sheet.Constraints else None
     result["constraint_in_tree"] = constraint is not None and constraint in sheet.ViewObject.Proxy.claimChildren()
     result["constraint_icon"] = constraint.ViewObject.Proxy.getIcon() if constraint is not None else ""
+
+    # 4b. drag a Point's pin in the view: live re-solves, then one undoable step
+    import varsurf
+
+    face = sheet.Shape.Faces[0]
+    u0, u1, v0, v1 = face.ParameterRange
+    start = face.valueAt(u0 + 0.6 * (u1 - u0), v0 + 0.5 * (v1 - v0))
+    pin = varsurf.make_constraint(sheet, "Point", uv=(0.6, 0.5), origin=start, name="Pin")
+    doc.recompute()
+    handles = pin.ViewObject.Proxy.handles
+    result["pin_has_dragger"] = handles.dragger is not None
+    area_before = sheet.Shape.Area
+    before = snapshot("drag_before.png")
+    result["drag_began"] = handles.begin_drag()
+    moves = 30
+    t0 = time.perf_counter()
+    for k in range(1, moves + 1):
+        target = start + App.Vector(0, 0, 10.0 * k / moves)
+        handles.dragger.translation.setValue(*(target / handles.scale))  # as the pointer would
+        handles.drag_to(handles.dragger_target())
+        Gui.updateGui()  # redraw: the sheet is tessellated again each move
+    result["drag_moves_per_second"] = moves / (time.perf_counter() - t0)
+    result["area_during_drag"] = sheet.Shape.Area
+    during = snapshot("drag_during.png")
+    result["drag_image_change"] = image_difference(before, during)
+    result["drag_image_stats"] = image_stats(during)
+    handles.end_drag(handles.dragger_target())
+    result["drag_errors"] = list(handles.errors)
+    result["pin_origin_after"] = list(pin.Origin)
+    result["drag_target"] = list(start + App.Vector(0, 0, 10.0))
+    result["sheet_valid_after_drag"] = sheet.isValid()
+    result["undo_after_drag"] = list(doc.UndoNames[:1])
+    doc.undo()
+    doc.recompute()
+    result["area_before_drag"] = area_before
+    result["area_after_undo"] = sheet.Shape.Area
+    result["pin_origin_after_undo"] = list(pin.Origin)
+    result["pin_start"] = list(start)
 
     # 5. picture
     image = snapshot("smoke.png")

@@ -102,3 +102,19 @@ def test_constraint_commands_work_in_the_gui(smoke):
     assert smoke["space_curve_active"] and smoke["space_curve_ok"]
     assert smoke["space_curve_icon"].endswith("VarSurf_SpaceCurve.svg")
     assert smoke["hinge_image_stats"]["variance"] > 50.0, smoke["hinge_image_stats"]
+
+
+def test_dragging_a_pin_solves_live_and_undoes_in_one_step(smoke):
+    assert smoke["pin_has_dragger"] and smoke["drag_began"], smoke.get("drag_errors")
+    assert smoke["drag_errors"] == []
+    # the sheet followed the pin (the area grew) and the view changed
+    assert smoke["area_during_drag"] > smoke["area_before_drag"] + 1.0
+    assert smoke["drag_image_change"] > 0.005, smoke["drag_image_change"]
+    assert smoke["drag_image_stats"]["non_white"] > 0.03
+    # released: the target written, the sheet recomputed; one undo step puts both back
+    # (through the dragger's single-precision field)
+    assert all(abs(a - b) < 1e-4 for a, b in zip(smoke["pin_origin_after"], smoke["drag_target"]))
+    assert smoke["sheet_valid_after_drag"]
+    assert smoke["undo_after_drag"] == ["Drag VarSurf point"]
+    assert all(abs(a - b) < 1e-9 for a, b in zip(smoke["pin_origin_after_undo"], smoke["pin_start"]))
+    assert abs(smoke["area_after_undo"] - smoke["area_before_drag"]) < 1e-6 * smoke["area_before_drag"]

@@ -60,6 +60,12 @@ class ViewProviderSheet(_ViewProvider):
         obj = getattr(self, "Object", None)
         return _input_objects(obj) if obj is not None else []
 
+    def updateData(self, obj, prop):
+        if prop == "Shape":  # the constraints' handles sit on the solved sheet
+            from varsurf.gui.handles import refresh_sheet_handles
+
+            refresh_sheet_handles(obj)
+
     def on_created(self, vobj):
         """Hide the base face's object, as FreeCAD features hide the shapes they consume."""
         base = getattr(vobj.Object, "Base", None)
@@ -103,10 +109,34 @@ class ViewProviderSheet(_ViewProvider):
 
 
 class ViewProviderConstraint(_ViewProvider):
-    """Tree icon of a Constraint; it has no geometry of its own to draw."""
+    """Tree icon of a Constraint, and its handles in the 3D view (gui.handles): a Point's pin drags
+    its target with the Sheet re-solved live."""
 
     TYPE = "VarSurf::ViewProviderConstraint"
     ICON = "VarSurf_Constraint.svg"
+    MODE = "Handles"
+
+    def attach(self, vobj):
+        super().attach(vobj)
+        from varsurf.gui.handles import ConstraintHandles
+
+        self.handles = ConstraintHandles()
+        vobj.addDisplayMode(self.handles.root, self.MODE)
+        self.handles.rebuild(vobj.Object)
+
+    def getDisplayModes(self, vobj):
+        return [self.MODE]
+
+    def getDefaultDisplayMode(self):
+        return self.MODE
+
+    def setDisplayMode(self, mode):
+        return mode
+
+    def updateData(self, obj, prop):
+        handles = getattr(self, "handles", None)
+        if handles is not None:
+            handles.rebuild(obj)
 
 
 class ViewProviderSolid(_ViewProvider):

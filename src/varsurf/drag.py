@@ -1,0 +1,140 @@
+"""Dragging the target of a Sheet's Point constraint, with the Sheet re-solved as it moves
+(Welch & Witkin sec. 1: direct manipulation).
+
+The Sheet's last solve is prepared once (native ``PreparedSheet``: the constraints reduced and the
+system factored); each move changes only the target, so it costs a back-substitution, and the
+Sheet's Shape shows the result at once. Finishing writes the target into the document (the
+Location's vertex, or the constraint's Origin) and recomputes, all in one transaction: one undo
+puts the target and the sheet back. Cancelling restores the Sheet's shape and writes nothing.
+App side only (the view provider's dragger calls it).
+"""
+
+from __future__ import annotations
+
+import copy
+import math
+import time
+
+import FreeCAD
+
+from varsurf.app import sheet as sheet_feature
+from varsurf.model import SheetError, _build, _single_face, native, shape_from_brep
+
+TRANSACTION = "Drag VarSurf point"
+#: A target this far (relative to the sheet's size) from the prepared one is not this constraint.
+_SAME_TARGET = 1e-9
+
+
+class DragError(ValueError):
+    """The constraint cannot be dragged (the message says why)."""
+
+
+def point_target(constraint):
+    """The constraint's target now: its Location's vertex, or its Origin."""
+    if constraint.Location is not None and not constraint.UseOrigin:
+        link, subs = constraint.Location
+        subs = [s for s in subs if s]
+        import Part
+
+        shape = Part.getShape(link, subs[0], needSubElement=True) if subs else link.Shape
+        if shape.isNull() or not shape.Vertexes:
+            raise DragError(f"{constraint.Label}: its Location is not a vertex")
+        return FreeCAD.Vector(shape.Vertexes[0].Point)
+    return FreeCAD.Vector(constraint.Origin)
+
+
+def set_point_target(constraint, target):
+    """Write a dragged target into the document: into the linked vertex when it is a point object
+    with X, Y, Z (Part Vertex, Draft Point) placed without rotation, else into Origin (the
+    constraint then uses its Origin)."""
+    target = FreeCAD.Vector(target)
+    link = constraint.Location[0] if constraint.Location is not None else None
+    if link is not None and not constraint.UseOrigin and all(hasattr(link, a) for a in "XYZ"):
+        placement = link.Placement
+        if placement.Rotation.isNull() or placement.Rotation.Angle < 1e-12:
+            local = target - placement.Base
+            link.X, link.Y, link.Z = local.x, local.y, local.z
+            return
+    constraint.Origin = target
+    if link is not None:
+        constraint.UseOrigin = True
+
+
+def _point_index(sheet, constraint):
+    points = [c for c in (sheet.Constraints or []) if c.Enabled and c.Kind == "Point"]
+    if constraint not in points:
+        raise DragError(f"{constraint.Label} is not an enabled Point constraint of {sheet.Label}")
+    return points.index(constraint)
+
+
+class PointDrag:
+    """One drag of a Point constraint's target: ``move`` as often as the pointer moves, then
+    ``finish`` or ``cancel``."""
+
+    def __init__(self, sheet, constraint):
+        self.sheet, self.constraint, self.doc = sheet, constraint, sheet.Document
+        if not sheet.isValid():
+            raise DragError(f"{sheet.Label} is in error: fix it before dragging")
+        outcome = sheet_feature.outcome_of(sheet)
+        self.problem = copy.copy(outcome.problem)
+        self.index = _point_index(sheet, constraint)
+        points = list(self.problem.points)
+        if self.index >= len(points):
+            raise DragError(f"{constraint.Label} is not among {sheet.Label}'s solved points")
+        start = FreeCAD.Vector(*points[self.index].target)
+        size = max(sheet.Shape.BoundBox.DiagonalLength, 1.0)
+        if (start - point_target(constraint)).Length > _SAME_TARGET * size + 1e-12:
+            raise DragError(f"{sheet.Label} is not up to date with {constraint.Label}: recompute first")
+        self.start = start
+        self.start_shape = sheet.Shape.copy()
+        nat = native()
+        try:
+            self.prepared = nat.PreparedSheet(self.problem, outcome.options)
+        except nat.InvalidInput as error:
+            raise DragError(f"{sheet.Label} cannot be dragged live: {error}") from error
+        self.space = self.problem.space
+        self.last = None  # the last native SolveResult
+        self.moves = 0
+        self.seconds = 0.0  # spent in move(): solve and shape
+        self.doc.openTransaction(TRANSACTION)
+
+    def move(self, target):
+        """Re-solve for the target at `target` (a vector) and show it; returns the new face."""
+        target = FreeCAD.Vector(target)
+        if not all(math.isfinite(c) for c in target):
+            raise DragError("the dragged target is not finite")
+        began = time.perf_counter()
+        nat = native()
+        points = list(self.problem.points)
+        old = points[self.index]
+        points[self.index] = nat.PointConstraint(u=old.u, v=old.v, target=[target.x, target.y, target.z],
+                                                 weight=old.weight)
+        self.problem.points = points
+        try:
+            self.last = self.prepared.update(self.problem)
+        except (nat.InvalidInput, nat.SolveFailure) as error:
+            raise DragError(f"{self.sheet.Label}: {error}") from error
+        surface = _build(nat.BSplineSurface, space=self.space, poles=self.last.poles)
+        face = _single_face(shape_from_brep(nat.face_brep(surface)))
+        self.sheet.Shape = face
+        self.moves += 1
+        self.seconds += time.perf_counter() - began
+        return face
+
+    def finish(self, target):
+        """Write the target and recompute: one undoable step."""
+        try:
+            set_point_target(self.constraint, target)
+            self.doc.recompute()
+        except Exception:
+            self.doc.abortTransaction()
+            raise
+        self.doc.commitTransaction()
+        if not self.sheet.isValid():
+            raise SheetError(f"{self.sheet.Label}: {self.sheet.Status}")
+
+    def cancel(self):
+        """Put the Sheet's shape back; nothing is written."""
+        self.sheet.Shape = self.start_shape
+        self.doc.abortTransaction()
+        self.sheet.purgeTouched()

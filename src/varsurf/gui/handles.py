@@ -1,0 +1,293 @@
+"""Coin3D handles of a Constraint in the 3D view: a draggable pin for a Point, arrows for normals,
+tangents and directors, a plane patch or a line for points held in a plane or on a line, a star
+for attractors (red for a repeller), the curve with ticks along it for ribbons and G1 joins.
+
+Dragging a pin moves the Point's target and re-solves its Sheet live (varsurf.drag.PointDrag);
+releasing it commits one undoable step.
+"""
+
+from __future__ import annotations
+
+import FreeCAD as App
+from pivy import coin
+
+from varsurf import drag
+
+V = App.Vector
+PIN = (0.95, 0.55, 0.05)
+ARROW = (0.1, 0.45, 0.9)
+ATTRACT = (0.1, 0.65, 0.25)
+REPEL = (0.85, 0.1, 0.1)
+RIBBON = (0.55, 0.2, 0.75)
+#: Handles are this fraction of the sheet's diagonal.
+HANDLE_SIZE = 0.03
+#: Ticks drawn along a ribbon's curve.
+RIBBON_TICKS = 12
+
+_dragging = []  # the ConstraintHandles whose pin is being dragged (at most one)
+
+
+def sheet_of(constraint):
+    """The Sheet that lists `constraint` (None if it is not in one)."""
+    for obj in constraint.InList:
+        if constraint in (getattr(obj, "Constraints", None) or []):
+            return obj
+    return None
+
+
+def _material(parent, color):
+    m = coin.SoMaterial()
+    m.diffuseColor.setValue(*color)
+    m.emissiveColor.setValue(*(0.3 * c for c in color))
+    parent.addChild(m)
+
+
+def _line(parent, points, color, width=2.0):
+    sep = coin.SoSeparator()
+    _material(sep, color)
+    style = coin.SoDrawStyle()
+    style.lineWidth = width
+    sep.addChild(style)
+    coords = coin.SoCoordinate3()
+    coords.point.setValues(0, len(points), [tuple(p) for p in points])
+    sep.addChild(coords)
+    line = coin.SoLineSet()
+    line.numVertices.setValue(len(points))
+    sep.addChild(line)
+    parent.addChild(sep)
+
+
+def _arrow(parent, base, direction, length, color):
+    """A shaft and a cone from base along direction."""
+    if direction.Length == 0.0:
+        return
+    d = V(direction).normalize()
+    sep = coin.SoSeparator()
+    _material(sep, color)
+    xf = coin.SoTransform()
+    xf.translation.setValue(*(base + d * (0.5 * length)))
+    xf.rotation.setValue(coin.SbRotation(coin.SbVec3f(0, 1, 0), coin.SbVec3f(d.x, d.y, d.z)))
+    sep.addChild(xf)
+    shaft = coin.SoCylinder()
+    shaft.radius = 0.04 * length
+    shaft.height = length
+    sep.addChild(shaft)
+    tip = coin.SoTranslation()
+    tip.translation.setValue(0, 0.5 * length, 0)
+    sep.addChild(tip)
+    cone = coin.SoCone()
+    cone.bottomRadius = 0.12 * length
+    cone.height = 0.3 * length
+    sep.addChild(cone)
+    parent.addChild(sep)
+
+
+def _star(parent, at, size, color):
+    for axis in (V(1, 0, 0), V(0, 1, 0), V(0, 0, 1)):
+        _line(parent, [at - axis * size, at + axis * size], color, 3.0)
+    sep = coin.SoSeparator()
+    _material(sep, color)
+    t = coin.SoTranslation()
+    t.translation.setValue(*at)
+    sep.addChild(t)
+    ball = coin.SoSphere()
+    ball.radius = 0.25 * size
+    sep.addChild(ball)
+    parent.addChild(sep)
+
+
+def _plane_patch(parent, at, normal, size, color):
+    if normal.Length == 0.0:
+        return
+    n = V(normal).normalize()
+    a = n.cross(V(1, 0, 0) if abs(n.x) < 0.9 else V(0, 1, 0)).normalize()
+    b = n.cross(a)
+    corners = [at + (a * sa + b * sb) * size for sa, sb in ((-1, -1), (1, -1), (1, 1), (-1, 1), (-1, -1))]
+    _line(parent, corners, color)
+    _arrow(parent, at, n, size, color)
+
+
+def _on_sheet(sheet, constraint):
+    """Where a (u, v) constraint sits on the sheet, and the sheet's normal there."""
+    if sheet is None or sheet.Shape.isNull() or not sheet.Shape.Faces:
+        return None, None
+    face = sheet.Shape.Faces[0]
+    if constraint.Location is not None:
+        try:
+            at = drag.point_target(constraint) if constraint.Kind == "Point" else _location(constraint)
+        except Exception:
+            return None, None
+        u, v = face.Surface.parameter(at)
+    else:
+        u0, u1, v0, v1 = face.ParameterRange
+        u, v = u0 + constraint.U * (u1 - u0), v0 + constraint.V * (v1 - v0)
+    return face.valueAt(u, v), face.normalAt(u, v)
+
+
+def _location(constraint):
+    import Part
+
+    link, subs = constraint.Location
+    subs = [s for s in subs if s]
+    shape = Part.getShape(link, subs[0], needSubElement=True) if subs else link.Shape
+    return V(shape.Vertexes[0].Point)
+
+
+class ConstraintHandles:
+    """The Coin scene of one Constraint's handles; `root` goes into its view provider."""
+
+    def __init__(self):
+        self.root = coin.SoSeparator()
+        self.constraint = None
+        self.dragger = None
+        self.scale = 1.0
+        self.session = None
+        self.errors = []  # messages of refused drags (also in the report view)
+
+    # -- drawing --
+    def rebuild(self, constraint):
+        if self in _dragging:
+            return  # the pin under the pointer stays where it is until released
+        self.constraint = constraint
+        self.root.removeAllChildren()
+        self.dragger = None
+        if not getattr(constraint, "Enabled", False):
+            return
+        sheet = sheet_of(constraint)
+        size = HANDLE_SIZE * max(sheet.Shape.BoundBox.DiagonalLength if sheet and not sheet.Shape.isNull() else 100.0, 1.0)
+        kind = constraint.Kind
+        try:
+            self._draw(kind, constraint, sheet, size)
+        except Exception as error:  # a broken link draws nothing; the Sheet reports it
+            App.Console.PrintLog(f"VarSurf: {constraint.Label}: no handle drawn ({error})\n")
+
+    def _draw(self, kind, c, sheet, size):
+        if kind == "Point":
+            self._pin(drag.point_target(c), size)
+            return
+        if kind in ("Normal", "TangentU", "TangentV"):
+            at, _n = _on_sheet(sheet, c)
+            if at is not None:
+                _arrow(self.root, at, V(c.Vector), 4 * size, ARROW)
+        elif kind == "PointInPlane":
+            _plane_patch(self.root, V(c.Origin), V(c.Vector), 2 * size, ARROW)
+        elif kind == "PointOnLine":
+            d = V(c.Vector)
+            if d.Length > 0:
+                d.normalize()
+                _line(self.root, [V(c.Origin) - d * 6 * size, V(c.Origin) + d * 6 * size], ARROW, 3.0)
+        elif kind in ("PointAttractor", "PlaneAttractor", "LineAttractor", "Repeller"):
+            _star(self.root, V(c.Origin), size, REPEL if kind == "Repeller" else ATTRACT)
+            if kind == "PlaneAttractor":
+                _plane_patch(self.root, V(c.Origin), V(c.Vector), 2 * size, ATTRACT)
+        elif kind == "Director" and sheet is not None and not sheet.Shape.isNull():
+            face = sheet.Shape.Faces[0]
+            u0, u1, v0, v1 = face.ParameterRange
+            u = u0 + 0.5 * (c.RegionU0 + c.RegionU1) * (u1 - u0)
+            v = v0 + 0.5 * (c.RegionV0 + c.RegionV1) * (v1 - v0)
+            _arrow(self.root, face.valueAt(u, v), V(c.Vector), 4 * size, ARROW)
+        elif kind in ("Ribbon", "G1") and c.Curve is not None:
+            self._ribbon(c, sheet, size)
+
+    def _ribbon(self, c, sheet, size):
+        import Part
+
+        link, subs = c.Curve
+        subs = [s for s in subs if s]
+        edge = Part.getShape(link, subs[0], needSubElement=True) if subs else link.Shape.Edges[0]
+        points = edge.discretize(64)
+        _line(self.root, points, RIBBON, 4.0)
+        if sheet is None or sheet.Shape.isNull():
+            return
+        face = sheet.Shape.Faces[0]
+        for p in edge.discretize(RIBBON_TICKS):
+            u, v = face.Surface.parameter(p)
+            _line(self.root, [p, p + face.normalAt(u, v) * (2 * size)], RIBBON, 2.0)
+
+    def _pin(self, target, size):
+        """A point dragger at the target, drawn `size` big."""
+        sep = coin.SoSeparator()
+        scale = coin.SoScale()
+        self.scale = size
+        scale.scaleFactor.setValue(size, size, size)
+        sep.addChild(scale)
+        dragger = coin.SoDragPointDragger()
+        dragger.translation.setValue(*(target / size))
+        ball = coin.SoSeparator()  # an orange ball that rides with the dragger, seen from afar
+        _material(ball, PIN)
+        follow = coin.SoTranslation()
+        follow.translation.connectFrom(dragger.translation)
+        ball.addChild(follow)
+        sphere = coin.SoSphere()
+        sphere.radius = 0.6
+        ball.addChild(sphere)
+        sep.addChild(ball)
+        dragger.addStartCallback(lambda *_: self.begin_drag())
+        dragger.addMotionCallback(lambda *_: self.drag_to(self.dragger_target()))
+        dragger.addFinishCallback(lambda *_: self.end_drag(self.dragger_target()))
+        sep.addChild(dragger)
+        self.root.addChild(sep)
+        self.dragger = dragger
+
+    def dragger_target(self):
+        t = self.dragger.translation.getValue()
+        return V(t[0], t[1], t[2]) * self.scale
+
+    # -- dragging --
+    def begin_drag(self):
+        sheet = sheet_of(self.constraint)
+        try:
+            if sheet is None:
+                raise drag.DragError(f"{self.constraint.Label} is in no Sheet")
+            self.session = drag.PointDrag(sheet, self.constraint)
+        except drag.DragError as error:
+            self._refuse(error)
+            return False
+        _dragging.append(self)
+        return True
+
+    def drag_to(self, target):
+        if self.session is None:
+            return None
+        try:
+            return self.session.move(target)
+        except drag.DragError as error:
+            self._refuse(error)
+            return None
+
+    def end_drag(self, target):
+        session, self.session = self.session, None
+        if self in _dragging:
+            _dragging.remove(self)
+        if session is None:
+            return
+        try:
+            session.finish(target)
+        except Exception as error:
+            self._refuse(error)
+        self.rebuild(self.constraint)
+
+    def cancel_drag(self):
+        session, self.session = self.session, None
+        if self in _dragging:
+            _dragging.remove(self)
+        if session is not None:
+            session.cancel()
+        self.rebuild(self.constraint)
+
+    def _refuse(self, error):
+        self.errors.append(str(error))
+        App.Console.PrintError(f"VarSurf: {error}\n")
+
+
+def refresh_sheet_handles(sheet):
+    """Redraw the handles of a Sheet's constraints (their places follow the solved sheet)."""
+    for c in getattr(sheet, "Constraints", None) or []:
+        proxy = getattr(getattr(c, "ViewObject", None), "Proxy", None)
+        handles = getattr(proxy, "handles", None)
+        if handles is not None and handles not in _dragging:
+            handles.rebuild(c)
+
+
+def is_dragging():
+    return bool(_dragging)

@@ -1,0 +1,79 @@
+"""Dragging a Point constraint's target: each move is a back-substitution on the Sheet's kept
+factorization and equals a fresh solve; finishing is one undoable step; cancel writes nothing."""
+
+import math
+
+import FreeCAD
+import Part
+import pytest
+
+import varsurf
+from varsurf import drag
+from varsurf.app import sheet as sheet_feature
+from scenes import add_vertex, railed_sheet
+
+V = FreeCAD.Vector
+
+
+@pytest.fixture
+def sheet(doc, native):
+    return railed_sheet(doc)
+
+
+def _poles(sheet):
+    return sheet_feature.outcome_of(sheet).surface.poles
+
+
+def test_a_drag_equals_a_fresh_solve_and_one_undo_restores(sheet):
+    doc = sheet.Document
+    pin = add_vertex(doc, "Pin", (60.0, 50.0, 12.0))
+    c = varsurf.make_constraint(sheet, "Point", location=(pin, "Vertex1"), name="Pin")
+    doc.recompute()
+    assert sheet.isValid(), sheet.getStatusString()
+    before_poles, before_area = _poles(sheet).copy(), sheet.Shape.Area
+    session = drag.PointDrag(sheet, c)
+    for k in range(1, 6):  # the pointer moves up by 1.5 mm five times
+        face = session.move(V(60.0, 50.0, 12.0 + 1.5 * k))
+        assert face.isValid() and sheet.Shape.distToShape(Part.Vertex(V(60, 50, 12 + 1.5 * k)))[0] < 1e-6
+    dragged = session.last.poles.copy()
+    assert session.moves == 5
+    session.finish(V(60.0, 50.0, 19.5))
+    assert (pin.X, pin.Y, pin.Z) == (60.0, 50.0, 19.5)  # the linked vertex moved
+    assert sheet.isValid(), sheet.getStatusString()
+    fresh = _poles(sheet)
+    assert fresh.shape == dragged.shape and abs(fresh - dragged).max() < 1e-8  # drag == recompute
+    assert abs(fresh - before_poles).max() > 1.0
+    doc.undo()  # one step: the vertex and the sheet
+    doc.recompute()
+    assert pin.Z == 12.0
+    assert abs(_poles(sheet) - before_poles).max() < 1e-9
+    assert abs(sheet.Shape.Area - before_area) < 1e-9 * before_area
+
+
+def test_cancel_writes_nothing_and_bad_drags_are_refused(sheet):
+    doc = sheet.Document
+    c = varsurf.make_constraint(sheet, "Point", uv=(0.4, 0.6), origin=(40.0, 48.0, 9.0), name="Pin")
+    n = varsurf.make_constraint(sheet, "Normal", uv=(0.5, 0.5), vector=(0, 0, 1), name="Up")
+    doc.recompute()
+    assert sheet.isValid(), sheet.getStatusString()
+    area = sheet.Shape.Area
+    session = drag.PointDrag(sheet, c)
+    session.move(V(40.0, 48.0, 20.0))
+    assert abs(sheet.Shape.Area - area) > 1.0
+    with pytest.raises(drag.DragError, match="not finite"):
+        session.move(V(40.0, 48.0, math.nan))
+    session.cancel()
+    assert abs(sheet.Shape.Area - area) < 1e-9 * area
+    assert tuple(c.Origin) == (40.0, 48.0, 9.0)
+    assert "Touched" not in sheet.State
+    with pytest.raises(drag.DragError, match="not an enabled Point"):
+        drag.PointDrag(sheet, n)
+    # The Origin edited without a recompute: the sheet no longer shows this target.
+    c.Origin = V(40.0, 48.0, 11.0)
+    with pytest.raises(drag.DragError, match="recompute first"):
+        drag.PointDrag(sheet, c)
+    doc.recompute()
+    session = drag.PointDrag(sheet, c)
+    session.move(V(30.0, 48.0, 11.0))
+    session.finish(V(30.0, 48.0, 11.0))  # no linked vertex: the Origin takes the target
+    assert tuple(c.Origin) == (30.0, 48.0, 11.0) and sheet.isValid()
