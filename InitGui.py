@@ -47,9 +47,12 @@ class VarSurfWorkbench(FreeCADGui.Workbench):
         commands = varsurf.gui.commands.COMMANDS
         constraints = varsurf.gui.commands.CONSTRAINTS
         self.appendToolbar("VarSurf", commands)
+        analysis = varsurf.gui.commands.ANALYSIS
         self.appendToolbar("VarSurf constraints", constraints)
+        self.appendToolbar("VarSurf analysis", analysis)
         self.appendMenu("&VarSurf", commands)
         self.appendMenu(["&VarSurf", "Constraints"], constraints)
+        self.appendMenu(["&VarSurf", "Analysis"], analysis)
 
     def Activated(self):
         pass

@@ -9,7 +9,7 @@ PACKAGES=(
   libocct-data-exchange-dev libocct-ocaf-dev libocct-visualization-dev
   pybind11-dev python3-pybind11 python3-dev python3-numpy python3-pytest
   libgtest-dev libgmock-dev libbenchmark-dev
-  freecad libgl1-mesa-dri xvfb xauth clang-format
+  freecad python3-matplotlib libgl1-mesa-dri xvfb xauth clang-format
 )
 
 missing=()

@@ -212,6 +212,44 @@ def run(result):
     result["pin_origin_after_undo"] = list(pin.Origin)
     result["pin_start"] = list(start)
 
+    # 4c. color maps through the command (macro lines), and the L-curve plot
+    Gui.Selection.clearSelection()
+    Gui.Selection.addSelection(doc.Name, sheet.Name)
+    result["color_map_active"] = bool(Gui.Command.get("VarSurf_ColorMap").isActive())
+    plain = snapshot("map_none.png")
+    maps = {}
+    for expected in ("Deviation", "MeanCurvature", "GaussianCurvature", "Zebra"):
+        Gui.Selection.clearSelection()
+        Gui.Selection.addSelection(doc.Name, sheet.Name)
+        Gui.runCommand("VarSurf_ColorMap")
+        picture = snapshot(f"map_{expected}.png")
+        overlay = sheet.ViewObject.Proxy.overlay
+        maps[expected] = {
+            "mode": sheet.ViewObject.Analysis,
+            "range": sheet.ViewObject.AnalysisRange,
+            "cells": len(overlay.grid.triangles) if overlay.grid is not None else 0,
+            "change": image_difference(plain, picture),
+        }
+    result["color_maps"] = maps
+    sheet.ViewObject.Analysis = "None"
+    result["overlay_cleared"] = sheet.ViewObject.Proxy.overlay.root.getNumChildren() == 0
+    sheet.SolveMode = "TSVD"
+    doc.recompute()
+    Gui.Selection.clearSelection()
+    Gui.Selection.addSelection(doc.Name, sheet.Name)
+    result["lcurve_active"] = bool(Gui.Command.get("VarSurf_LCurve").isActive())
+    Gui.runCommand("VarSurf_LCurve")
+    import tempfile
+
+    lcurve = os.path.join(tempfile.gettempdir(), f"varsurf-lcurve-{doc.Name}-{sheet.Name}.png")
+    result["lcurve_image_stats"] = image_stats(lcurve)
+    if os.path.isfile(lcurve):
+        import shutil
+
+        shutil.copy(lcurve, os.path.join(OUT, "lcurve.png"))
+    sheet.SolveMode = "Automatic"
+    doc.recompute()
+
     # 5. picture
     image = snapshot("smoke.png")
     result["image"] = image

@@ -118,3 +118,18 @@ def test_dragging_a_pin_solves_live_and_undoes_in_one_step(smoke):
     assert smoke["undo_after_drag"] == ["Drag VarSurf point"]
     assert all(abs(a - b) < 1e-9 for a, b in zip(smoke["pin_origin_after_undo"], smoke["pin_start"]))
     assert abs(smoke["area_after_undo"] - smoke["area_before_drag"]) < 1e-6 * smoke["area_before_drag"]
+
+
+def test_color_maps_and_the_l_curve(smoke):
+    assert smoke["color_map_active"]
+    maps = smoke["color_maps"]
+    assert [maps[m]["mode"] for m in maps] == ["Deviation", "MeanCurvature", "GaussianCurvature", "Zebra"]
+    for mode, shown in maps.items():
+        assert shown["cells"] == 2 * 48 * 48, mode
+        assert shown["change"] > 0.02, (mode, shown["change"])  # the sheet is colored
+        assert "…" in shown["range"], (mode, shown["range"])
+    assert maps["Deviation"]["range"].endswith("mm")
+    assert smoke["overlay_cleared"]
+    assert smoke["lcurve_active"]
+    stats = smoke["lcurve_image_stats"]
+    assert (stats["width"], stats["height"]) == (600, 450) and stats["variance"] > 50.0

@@ -193,10 +193,89 @@ CONSTRAINT_COMMANDS = [
      QT_TRANSLATE_NOOP("VarSurf_FrozenRegion", "Keep a region of the sheet as the base shape.\nSelect a Sheet and, optionally, closed edges (e.g. a sketch) bounding the region.")),
 ]
 
+def _selected_sheets():
+    from varsurf.app import sheet as sheet_feature
+
+    return [s.Object for s in Gui.Selection.getSelectionEx()
+            if getattr(getattr(s.Object, "Proxy", None), "Type", "") == sheet_feature.TYPE]
+
+
+def _obj_expr(obj):
+    return f"App.getDocument({obj.Document.Name!r}).getObject({obj.Name!r})"
+
+
+class CommandColorMap:
+    """Switch the selected Sheets' color map to the next analysis (view property Analysis)."""
+
+    def GetResources(self):
+        return {
+            "Pixmap": resources.icon("VarSurf_ColorMap.svg"),
+            "MenuText": QT_TRANSLATE_NOOP("VarSurf_ColorMap", "Color map"),
+            "ToolTip": QT_TRANSLATE_NOOP(
+                "VarSurf_ColorMap",
+                "Show the next color map on the selected sheets: deviation from the base (or installed rest\n"
+                "shape), mean curvature, Gaussian curvature, zebra stripes, none. Select one or more Sheets.\n"
+                "The range of the colors is the view property AnalysisRange.",
+            ),
+        }
+
+    def IsActive(self):
+        return bool(_selected_sheets())
+
+    def Activated(self):
+        from varsurf.analysis import MODES
+
+        for sheet in _selected_sheets():
+            mode = str(getattr(sheet.ViewObject, "Analysis", "None"))
+            following = MODES[(MODES.index(mode) + 1) % len(MODES)] if mode in MODES else MODES[0]
+            Gui.doCommand(f"{_obj_expr(sheet)}.ViewObject.Analysis = {following!r}")
+
+
+class CommandLCurve:
+    """Plot the L-curve of the selected Sheet's TSVD/MTSVD solve."""
+
+    def GetResources(self):
+        return {
+            "Pixmap": resources.icon("VarSurf_LCurve.svg"),
+            "MenuText": QT_TRANSLATE_NOOP("VarSurf_LCurve", "L-curve"),
+            "ToolTip": QT_TRANSLATE_NOOP(
+                "VarSurf_LCurve",
+                "Plot the L-curve of the selected sheet's truncated SVD solve, its chosen corner marked.\n"
+                "Select one Sheet solved in TSVD or MTSVD mode.",
+            ),
+        }
+
+    def IsActive(self):
+        sheets = _selected_sheets()
+        return len(sheets) == 1 and bool(sheets[0].LCurveResiduals)
+
+    def Activated(self):
+        import tempfile
+
+        sheet = _selected_sheets()[0]
+        path = os.path.join(tempfile.gettempdir(), f"varsurf-lcurve-{sheet.Document.Name}-{sheet.Name}.png")
+        Gui.doCommand("import varsurf.analysis")
+        Gui.doCommand(f"varsurf.analysis.plot_lcurve({_obj_expr(sheet)}, {path!r})")
+        App.Console.PrintMessage(f"VarSurf: L-curve of {sheet.Label} written to {path}\n")
+        if _dialogs_allowed():
+            from PySide import QtGui
+
+            dialog = QtGui.QDialog(Gui.getMainWindow())
+            dialog.setWindowTitle(QtGui.QApplication.translate("VarSurf_LCurve", "L-curve"))
+            layout = QtGui.QVBoxLayout(dialog)
+            label = QtGui.QLabel(dialog)
+            label.setPixmap(QtGui.QPixmap(path))
+            layout.addWidget(label)
+            dialog.show()
+
+
 COMMANDS = ["VarSurf_Sheet"] + [row[0] for row in SELECTION_COMMANDS]
+ANALYSIS = ["VarSurf_ColorMap", "VarSurf_LCurve"]
 CONSTRAINTS = [name for name, _kind, _menu, _tip in CONSTRAINT_COMMANDS]
 
 Gui.addCommand("VarSurf_Sheet", CommandSheet())
+Gui.addCommand("VarSurf_ColorMap", CommandColorMap())
+Gui.addCommand("VarSurf_LCurve", CommandLCurve())
 for _name, *_resources in SELECTION_COMMANDS:
     Gui.addCommand(_name, CommandFromSelection(*_resources))
 for _name, _kind, _menu, _tip in CONSTRAINT_COMMANDS:

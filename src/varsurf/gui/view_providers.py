@@ -60,11 +60,31 @@ class ViewProviderSheet(_ViewProvider):
         obj = getattr(self, "Object", None)
         return _input_objects(obj) if obj is not None else []
 
-    def updateData(self, obj, prop):
-        if prop == "Shape":  # the constraints' handles sit on the solved sheet
-            from varsurf.gui.handles import refresh_sheet_handles
+    def attach(self, vobj):
+        super().attach(vobj)
+        from varsurf.gui import analysis_overlay
 
-            refresh_sheet_handles(obj)
+        analysis_overlay.add_view_properties(vobj)
+        self.overlay = analysis_overlay.AnalysisOverlay(vobj)
+
+    def updateData(self, obj, prop):
+        if prop != "Shape":
+            return
+        from varsurf.gui.handles import is_dragging, refresh_sheet_handles
+
+        refresh_sheet_handles(obj)  # the constraints' handles sit on the solved sheet
+        overlay = getattr(self, "overlay", None)
+        if overlay is None or obj.ViewObject is None:
+            return
+        if is_dragging():
+            overlay.root.removeAllChildren()  # back when the drag is released and recomputed
+        else:
+            overlay.update(obj.ViewObject)
+
+    def onChanged(self, vobj, prop):
+        overlay = getattr(self, "overlay", None)
+        if prop == "Analysis" and overlay is not None:
+            overlay.update(vobj)
 
     def on_created(self, vobj):
         """Hide the base face's object, as FreeCAD features hide the shapes they consume."""

@@ -1,0 +1,191 @@
+"""Fields to judge a solved sheet by, sampled on a grid over its face: deviation from a reference
+(the base or the rest shape), mean and Gaussian curvature (fairness), and zebra stripes (the
+reflection of stripes parallel to a direction: kinks and curvature jumps show as broken stripes).
+
+Plain geometry on Part faces (OCCT evaluates the surface and its curvature); the GUI colors a mesh
+with it (varsurf.gui.analysis_overlay). No GUI import.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import List, Optional, Tuple
+
+MODES = ("None", "Deviation", "MeanCurvature", "GaussianCurvature", "Zebra")
+#: Grid cells per direction.
+GRID = 48
+#: Zebra: stripes over the half turn of the normal.
+STRIPES = 12
+
+
+@dataclass
+class AnalysisGrid:
+    """Grid points (row-major, (n+1)^2), their normals, values, and the quads' triangles."""
+
+    n: int
+    points: List[Tuple[float, float, float]] = field(default_factory=list)
+    normals: List[Tuple[float, float, float]] = field(default_factory=list)
+    values: List[float] = field(default_factory=list)
+    triangles: List[Tuple[int, int, int]] = field(default_factory=list)
+
+    @property
+    def range(self) -> Tuple[float, float]:
+        finite = [v for v in self.values if math.isfinite(v)]
+        return (min(finite), max(finite)) if finite else (0.0, 0.0)
+
+
+def _single_face(shape):
+    faces = getattr(shape, "Faces", None) or []
+    if len(faces) != 1:
+        raise ValueError(f"analysis needs one face (got {len(faces)})")
+    return faces[0]
+
+
+def analyse(shape, mode: str, reference=None, direction=(0.0, 0.0, 1.0), n: int = GRID) -> AnalysisGrid:
+    """Sample `mode` on an (n+1) x (n+1) grid over the face's parameter box.
+
+    Deviation: signed distance (mm) from the reference face along its normal, by projecting each
+    point onto it (None: the deviation is not defined, ValueError). MeanCurvature and
+    GaussianCurvature: 1/mm and 1/mm^2. Zebra: in [0, 1], light to dark as the normal's angle
+    to `direction` turns through STRIPES stripes over a half turn.
+    """
+    if mode not in MODES or mode == "None":
+        raise ValueError(f"analysis mode must be one of {', '.join(MODES[1:])} (got {mode!r})")
+    if not 1 <= n <= 400:
+        raise ValueError(f"analysis grid must have 1 to 400 cells per direction (got {n})")
+    face = _single_face(shape)
+    surface = face.Surface
+    ref = None
+    if mode == "Deviation":
+        if reference is None:
+            raise ValueError("deviation needs a reference face (the base, or an installed rest shape)")
+        ref = _single_face(reference)
+    u0, u1, v0, v1 = face.ParameterRange
+    d = _unit(direction)
+    grid = AnalysisGrid(n=n)
+    for i in range(n + 1):
+        u = u0 + (u1 - u0) * i / n
+        for j in range(n + 1):
+            v = v0 + (v1 - v0) * j / n
+            p = face.valueAt(u, v)
+            try:
+                normal = face.normalAt(u, v)
+            except Exception:  # a degenerate point (a pole): no normal there
+                normal = None
+            grid.points.append((p.x, p.y, p.z))
+            grid.normals.append((normal.x, normal.y, normal.z) if normal is not None else (0.0, 0.0, 1.0))
+            grid.values.append(_value(mode, surface, ref, u, v, p, normal, d))
+    for i in range(n):
+        for j in range(n):
+            a, b = i * (n + 1) + j, (i + 1) * (n + 1) + j
+            grid.triangles.append((a, b, b + 1))
+            grid.triangles.append((a, b + 1, a + 1))
+    return grid
+
+
+def _value(mode, surface, ref, u, v, p, normal, d):
+    if mode == "Deviation":
+        ru, rv = ref.Surface.parameter(p)
+        q = ref.valueAt(ru, rv)
+        offset = p - q
+        try:
+            sign = 1.0 if offset.dot(ref.normalAt(ru, rv)) >= 0.0 else -1.0
+        except Exception:
+            sign = 1.0
+        return sign * offset.Length
+    if mode in ("MeanCurvature", "GaussianCurvature"):
+        try:
+            return float(surface.curvature(u, v, "Mean" if mode == "MeanCurvature" else "Gauss"))
+        except Exception:
+            return math.nan
+    if normal is None:
+        return math.nan
+    angle = math.acos(max(-1.0, min(1.0, normal.x * d[0] + normal.y * d[1] + normal.z * d[2])))
+    return 0.5 + 0.5 * math.cos(2.0 * STRIPES * angle)  # smooth: per-vertex colors blend it
+
+
+def _unit(v):
+    length = math.sqrt(sum(c * c for c in v))
+    if not length > 0.0:
+        raise ValueError("zebra direction must not be zero")
+    return tuple(c / length for c in v)
+
+
+def ramp(value: float, lo: float, hi: float) -> Tuple[float, float, float]:
+    """Blue (lo) - green - red (hi); grey for a missing value. A range symmetric about 0 keeps 0
+    green."""
+    if not math.isfinite(value):
+        return (0.6, 0.6, 0.6)
+    t = 0.5 if hi <= lo else min(1.0, max(0.0, (value - lo) / (hi - lo)))
+    if t < 0.5:
+        s = t / 0.5
+        return (0.0, s, 1.0 - s)
+    s = (t - 0.5) / 0.5
+    return (s, 1.0 - s, 0.0)
+
+
+def colors(mode: str, grid: AnalysisGrid) -> List[Tuple[float, float, float]]:
+    """Per-vertex colors: grey levels for zebra, the blue-green-red ramp otherwise."""
+    if mode == "Zebra":
+        return [(v, v, v) if math.isfinite(v) else (0.6, 0.6, 0.6) for v in grid.values]
+    lo, hi = color_range(mode, grid)
+    return [ramp(v, lo, hi) for v in grid.values]
+
+
+def color_range(mode: str, grid: AnalysisGrid) -> Tuple[float, float]:
+    """The range the colors span: symmetric about 0 for signed fields, 0..1 for zebra."""
+    if mode == "Zebra":
+        return (0.0, 1.0)
+    lo, hi = grid.range
+    m = max(abs(lo), abs(hi))
+    return (-m, m)
+
+
+def reference_of(sheet) -> Optional[object]:
+    """The face a Sheet's deviation is measured from: its installed rest shape, else its base."""
+    if str(getattr(sheet, "RestShape", "None")) == "Installed":
+        rest = getattr(sheet, "InstalledRest", None)
+        if rest is not None and not rest.isNull() and len(rest.Faces) == 1:
+            return rest
+    base = getattr(sheet, "Base", None)
+    if base and base[0] is not None:
+        import Part
+
+        subs = [s for s in base[1] if s]
+        if subs:
+            return Part.getShape(base[0], subs[0], needSubElement=True)
+    return None
+
+
+def plot_lcurve(sheet, path: str) -> str:
+    """The L-curve of a Sheet's TSVD/MTSVD solve (residual norm against solution change norm per
+    truncation k, log-log) with the chosen corner marked, written as a PNG; its path. ValueError
+    when the last solve drew no L-curve (other solve modes)."""
+    residuals, norms = list(sheet.LCurveResiduals), list(sheet.LCurveNorms)
+    corner = int(sheet.LCurveCorner)
+    if not residuals or len(residuals) != len(norms) or not 1 <= corner <= len(residuals):
+        raise ValueError(f"{sheet.Label} has no L-curve: solve it in TSVD or MTSVD mode")
+    import matplotlib
+
+    matplotlib.use("Agg", force=False)  # a file, whatever the GUI uses
+    from matplotlib.figure import Figure
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    keep = [(r, e) for r, e in zip(residuals, norms) if r > 0.0 and e > 0.0]
+    figure = Figure(figsize=(6.0, 4.5), dpi=100)
+    FigureCanvasAgg(figure)
+    axes = figure.add_subplot(1, 1, 1)
+    axes.loglog([r for r, _ in keep], [e for _, e in keep], "o-", markersize=3, color="#2060c0")
+    r, e = residuals[corner - 1], norms[corner - 1]
+    if r > 0.0 and e > 0.0:
+        axes.loglog([r], [e], "o", markersize=10, markerfacecolor="none", markeredgecolor="#d02020",
+                    markeredgewidth=2, label=f"corner: k = {corner}")
+        axes.legend()
+    axes.set_xlabel("constraint residual norm ‖B x − d‖")
+    axes.set_ylabel("solution change norm ‖x − x₀‖")
+    axes.set_title(f"L-curve of {sheet.Label} ({len(residuals)} truncations)")
+    axes.grid(True, which="both", alpha=0.3)
+    figure.tight_layout()
+    figure.savefig(path)
+    return path

@@ -1,0 +1,85 @@
+"""The Sheet's analysis color map in the 3D view: the grid of varsurf.analysis as a Coin mesh with
+per-vertex colors, drawn just in front of the sheet's own shading (a polygon offset)."""
+
+from __future__ import annotations
+
+import FreeCAD as App
+from pivy import coin
+
+from varsurf import analysis
+
+PROPERTY = "Analysis"
+RANGE_PROPERTY = "AnalysisRange"
+
+
+def add_view_properties(vobj):
+    """The view properties of the color map (added once; kept in the file)."""
+    if PROPERTY not in vobj.PropertiesList:
+        vobj.addProperty("App::PropertyEnumeration", PROPERTY, "VarSurf",
+                         "Color map on the sheet: deviation from the base (or installed rest shape), "
+                         "mean or Gaussian curvature, or zebra stripes")
+        setattr(vobj, PROPERTY, list(analysis.MODES))
+        setattr(vobj, PROPERTY, "None")
+    if RANGE_PROPERTY not in vobj.PropertiesList:
+        vobj.addProperty("App::PropertyString", RANGE_PROPERTY, "VarSurf",
+                         "The values the colors span (blue to red)")
+        vobj.setEditorMode(RANGE_PROPERTY, 1)
+
+
+class AnalysisOverlay:
+    """A switchable Coin mesh under the Sheet's view provider root."""
+
+    def __init__(self, vobj):
+        self.root = coin.SoSeparator()
+        vobj.RootNode.addChild(self.root)
+        self.grid = None
+
+    def update(self, vobj):
+        self.root.removeAllChildren()
+        self.grid = None
+        mode = str(getattr(vobj, PROPERTY, "None"))
+        obj = vobj.Object
+        if mode == "None" or obj.Shape.isNull():
+            setattr(vobj, RANGE_PROPERTY, "")
+            return
+        try:
+            grid = analysis.analyse(obj.Shape, mode, reference=analysis.reference_of(obj))
+        except Exception as error:
+            setattr(vobj, RANGE_PROPERTY, f"unavailable: {error}")
+            App.Console.PrintWarning(f"VarSurf: {obj.Label}: no {mode} map ({error})\n")
+            return
+        lo, hi = analysis.color_range(mode, grid)
+        unit = {"Deviation": "mm", "MeanCurvature": "1/mm", "GaussianCurvature": "1/mm²"}.get(mode, "")
+        setattr(vobj, RANGE_PROPERTY, f"{lo:.4g} … {hi:.4g} {unit}".strip())
+        offset = coin.SoPolygonOffset()  # in front of the sheet's own faces
+        offset.factor = -1.0
+        offset.units = -2.0
+        self.root.addChild(offset)
+        binding = coin.SoMaterialBinding()
+        binding.value = coin.SoMaterialBinding.PER_VERTEX_INDEXED
+        self.root.addChild(binding)
+        material = coin.SoMaterial()
+        colors = analysis.colors(mode, grid)
+        material.diffuseColor.setValues(0, len(colors), colors)
+        self.root.addChild(material)
+        coords = coin.SoCoordinate3()
+        coords.point.setValues(0, len(grid.points), grid.points)
+        self.root.addChild(coords)
+        normals = coin.SoNormal()
+        normals.vector.setValues(0, len(grid.normals), grid.normals)
+        self.root.addChild(normals)
+        nbinding = coin.SoNormalBinding()
+        nbinding.value = coin.SoNormalBinding.PER_VERTEX_INDEXED
+        self.root.addChild(nbinding)
+        hints = coin.SoShapeHints()  # lit from both sides
+        hints.vertexOrdering = coin.SoShapeHints.UNKNOWN_ORDERING
+        self.root.addChild(hints)
+        faces = coin.SoIndexedFaceSet()
+        index = []
+        for a, b, c in grid.triangles:
+            index.extend((a, b, c, -1))
+        faces.coordIndex.setValues(0, len(index), index)
+        faces.materialIndex.setValues(0, len(index), index)
+        faces.normalIndex.setValues(0, len(index), index)
+        self.root.addChild(faces)
+        self.grid = grid
