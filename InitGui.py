@@ -53,6 +53,9 @@ class VarSurfWorkbench(FreeCADGui.Workbench):
         self.appendMenu("&VarSurf", commands)
         self.appendMenu(["&VarSurf", "Constraints"], constraints)
         self.appendMenu(["&VarSurf", "Analysis"], analysis)
+        ui = os.path.join(self._folder, "Resources", "ui", "preferences.ui")
+        if os.path.isfile(ui):
+            FreeCADGui.addPreferencePage(ui, "VarSurf")
 
     def Activated(self):
         pass

@@ -100,15 +100,16 @@ def attach_view_provider(obj, class_name: str):
 def make_sheet(
     base,
     curves: Iterable = (),
-    stretch: float = model.DEFAULT_STRETCH,
-    bend: float = model.DEFAULT_BEND,
+    stretch: Optional[float] = None,
+    bend: Optional[float] = None,
     fix_boundary: bool = True,
-    tolerance: float = model.DEFAULT_TOLERANCE,
-    min_spans: int = model.DEFAULT_MIN_SPANS,
-    max_spans: int = model.DEFAULT_MAX_SPANS,
+    tolerance: Optional[float] = None,
+    min_spans: Optional[int] = None,
+    max_spans: Optional[int] = None,
     doc=None,
     name: str = "Sheet",
-    degree: int = model.SHEET_MIN_DEGREE,
+    degree: Optional[int] = None,
+    solve_mode: Optional[str] = None,
 ):
     """Add a VarSurf Sheet to the document (it is computed at the next recompute).
 
@@ -121,8 +122,18 @@ def make_sheet(
     min_spans, max_spans: spans per direction the base face is refined to, and the limit of the
         automatic refinement used when the curves cannot be met within the tolerance.
     degree: the sheet's smallest degree in u and v (the base is elevated to it).
+    solve_mode: one of model.SOLVE_MODES.
+    Omitted values come from the VarSurf preferences (built in: thin plate 0 and 1, tolerance
+    0.01 mm, 16 to 64 spans, degree 3, Automatic).
     """
     from varsurf.app.sheet import SheetFeature
+    from varsurf.preferences import sheet_defaults
+
+    given = dict(stretch=stretch, bend=bend, tolerance=tolerance, min_spans=min_spans,
+                 max_spans=max_spans, degree=degree, solve_mode=solve_mode)
+    values = {k: (v if v is not None else sheet_defaults()[k]) for k, v in given.items()}
+    if values["solve_mode"] not in model.SOLVE_MODES:
+        raise ValueError(f"solve_mode must be one of {', '.join(model.SOLVE_MODES)} (got {values['solve_mode']!r})")
 
     curve_links = _normalize_curves(curves)
     if base is not None:
@@ -136,13 +147,14 @@ def make_sheet(
     if base is not None:
         obj.Base = (base_obj, face_name)
     obj.Curves = [(o, names) for o, names in curve_links]
-    obj.Stretch = float(stretch)
-    obj.Bend = float(bend)
+    obj.Stretch = float(values["stretch"])
+    obj.Bend = float(values["bend"])
     obj.FixBoundary = bool(fix_boundary)
-    obj.Tolerance = float(tolerance)
-    obj.MinSpans = int(min_spans)
-    obj.MaxSpans = int(max_spans)
-    obj.Degree = int(degree)
+    obj.Tolerance = float(values["tolerance"])
+    obj.MinSpans = int(values["min_spans"])
+    obj.MaxSpans = int(values["max_spans"])
+    obj.Degree = int(values["degree"])
+    obj.SolveMode = values["solve_mode"]
     attach_view_provider(obj, "ViewProviderSheet")
     return obj
 

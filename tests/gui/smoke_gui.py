@@ -250,6 +250,20 @@ def run(result):
     sheet.SolveMode = "Automatic"
     doc.recompute()
 
+    # 4d. the preferences page loads in FreeCAD's own loader, its widgets bound to parameters
+    from varsurf.gui import resources
+
+    page = Gui.PySideUic.loadUi(resources.ui("preferences.ui"))
+    entries = {}
+    for kind, name in ((QtGui.QSpinBox, "degreeSpin"), (QtGui.QSpinBox, "minSpansSpin"),
+                       (QtGui.QDoubleSpinBox, "bendSpin"), (QtGui.QDoubleSpinBox, "toleranceSpin"),
+                       (QtGui.QComboBox, "solveModeCombo")):
+        widget = page.findChild(kind, name)
+        entries[name] = bytes(widget.property("prefEntry")).decode() if widget is not None else None
+    result["preference_entries"] = entries
+    result["preference_modes"] = [page.findChild(QtGui.QComboBox, "solveModeCombo").itemText(i)
+                                  for i in range(page.findChild(QtGui.QComboBox, "solveModeCombo").count())]
+
     # 5. picture
     image = snapshot("smoke.png")
     result["image"] = image

@@ -133,3 +133,11 @@ def test_color_maps_and_the_l_curve(smoke):
     assert smoke["lcurve_active"]
     stats = smoke["lcurve_image_stats"]
     assert (stats["width"], stats["height"]) == (600, 450) and stats["variance"] > 50.0
+
+
+def test_preferences_page_binds_the_defaults(smoke):
+    assert smoke["preference_entries"] == {"degreeSpin": "Degree", "minSpansSpin": "MinSpans", "bendSpin": "Bend",
+                                           "toleranceSpin": "Tolerance", "solveModeCombo": "SolveMode"}
+    from varsurf import model
+
+    assert smoke["preference_modes"] == list(model.SOLVE_MODES)  # the stored index means a mode

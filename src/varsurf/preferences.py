@@ -1,0 +1,46 @@
+"""The user's defaults for new sheets (Edit > Preferences > VarSurf, Resources/ui/preferences.ui),
+read from FreeCAD's parameters. Values out of range fall back to the built-in defaults."""
+
+from __future__ import annotations
+
+import math
+
+import FreeCAD
+
+from varsurf import model
+
+PARAM_PATH = "User parameter:BaseApp/Preferences/Mod/VarSurf"
+
+# name -> (kind, built-in default, valid?)
+_ENTRIES = {
+    "Degree": ("Int", model.SHEET_MIN_DEGREE, lambda v: 2 <= v <= 9),
+    "MinSpans": ("Int", model.DEFAULT_MIN_SPANS, lambda v: 1 <= v <= 512),
+    "MaxSpans": ("Int", model.DEFAULT_MAX_SPANS, lambda v: 1 <= v <= 1024),
+    "Stretch": ("Float", model.DEFAULT_STRETCH, lambda v: math.isfinite(v) and v >= 0.0),
+    "Bend": ("Float", model.DEFAULT_BEND, lambda v: math.isfinite(v) and v >= 0.0),
+    "Tolerance": ("Float", model.DEFAULT_TOLERANCE, lambda v: math.isfinite(v) and v > 0.0),
+    "SolveMode": ("Int", 0, lambda v: 0 <= v < len(model.SOLVE_MODES)),  # a combo box's index
+}
+
+
+def group():
+    return FreeCAD.ParamGet(PARAM_PATH)
+
+
+def get(name: str):
+    kind, default, valid = _ENTRIES[name]
+    value = group().GetInt(name, default) if kind == "Int" else group().GetFloat(name, float(default))
+    return value if valid(value) else default
+
+
+def sheet_defaults() -> dict:
+    """make_sheet's keyword defaults from the preferences."""
+    return {
+        "degree": get("Degree"),
+        "min_spans": get("MinSpans"),
+        "max_spans": max(get("MaxSpans"), get("MinSpans")),
+        "stretch": get("Stretch"),
+        "bend": get("Bend"),
+        "tolerance": get("Tolerance"),
+        "solve_mode": model.SOLVE_MODES[get("SolveMode")],
+    }
