@@ -70,6 +70,25 @@ def snapshot(name):
     return path
 
 
+def press_task_button(which):
+    """Click OK or Cancel of the open task panel, as the user would."""
+    for widget in QtGui.QApplication.allWidgets():
+        if isinstance(widget, QtGui.QDialogButtonBox):
+            button = widget.button(which)
+            if button is not None and button.isVisible():
+                button.click()
+                break
+    Gui.updateGui()
+
+
+def task_widgets(form="VarSurfSheet"):
+    """The named widgets of the open task panel's form (not of other forms with the same names)."""
+    forms = [w for w in QtGui.QApplication.allWidgets() if w.objectName() == form and w.isVisible()]
+    if not forms:
+        raise RuntimeError(f"no visible {form} panel")
+    return {w.objectName(): w for w in forms[-1].findChildren(QtGui.QWidget) if w.objectName()}
+
+
 def report_view_text():
     widget = Gui.getMainWindow().findChild(QtGui.QTextEdit, "Report view")
     return widget.toPlainText() if widget is not None else ""
@@ -137,7 +156,7 @@ def run(result):
     Gui.updateGui()
     result["task_panel_open"] = bool(Gui.Control.activeDialog())
     bend_before = sheet.Bend
-    widgets = {w.objectName(): w for w in QtGui.QApplication.allWidgets() if w.objectName()}
+    widgets = task_widgets()
     table_rows = widgets["deviationTable"].rowCount()
     widgets["bendSpin"].setValue(5.0)
     widgets["updateButton"].click()  # preview with the new value
@@ -147,13 +166,7 @@ def run(result):
     Gui.getMainWindow().grab().save(window_shot)
     result["task_panel_image"] = window_shot
     result["bend_during_edit"] = sheet.Bend
-    for widget in QtGui.QApplication.allWidgets():
-        if isinstance(widget, QtGui.QDialogButtonBox):
-            button = widget.button(QtGui.QDialogButtonBox.Cancel)
-            if button is not None and button.isVisible():
-                button.click()
-                break
-    Gui.updateGui()
+    press_task_button(QtGui.QDialogButtonBox.Cancel)
     result["bend_after_cancel"] = sheet.Bend
     result["bend_restored"] = sheet.Bend == bend_before
     result["task_panel_closed"] = not Gui.Control.activeDialog()
@@ -263,6 +276,26 @@ def run(result):
     result["preference_entries"] = entries
     result["preference_modes"] = [page.findChild(QtGui.QComboBox, "solveModeCombo").itemText(i)
                                   for i in range(page.findChild(QtGui.QComboBox, "solveModeCombo").count())]
+
+    # 4e. the sheet's panel again: space, solve mode and rest shape; constraints listed; OK commits
+    Gui.ActiveDocument.setEdit(sheet.Name, 0)
+    Gui.updateGui()
+    widgets = task_widgets()
+    result["panel_rows_with_constraints"] = [widgets["deviationTable"].item(r, 0).text()
+                                             for r in range(widgets["deviationTable"].rowCount())]
+    widgets["installButton"].click()  # install, then cancel: nothing kept
+    Gui.updateGui()
+    result["rest_during_edit"] = sheet.RestShape
+    press_task_button(QtGui.QDialogButtonBox.Cancel)
+    result["rest_after_cancel"] = sheet.RestShape
+    result["installed_after_cancel"] = not sheet.InstalledRest.isNull()
+    Gui.ActiveDocument.setEdit(sheet.Name, 0)
+    Gui.updateGui()
+    widgets = task_widgets()
+    widgets["degreeSpin"].setValue(4)
+    widgets["solveModeCombo"].setCurrentText("Exact")
+    press_task_button(QtGui.QDialogButtonBox.Ok)
+    result["panel_ok"] = [sheet.Degree, sheet.DegreeU, sheet.SolveMode, sheet.isValid(), doc.UndoNames[:1]]
 
     # 5. picture
     image = snapshot("smoke.png")

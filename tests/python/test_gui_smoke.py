@@ -141,3 +141,11 @@ def test_preferences_page_binds_the_defaults(smoke):
     from varsurf import model
 
     assert smoke["preference_modes"] == list(model.SOLVE_MODES)  # the stored index means a mode
+
+
+def test_sheet_panel_edits_space_mode_and_rest_shape(smoke):
+    rows = smoke["panel_rows_with_constraints"]
+    assert rows[:2] == ["Rail:Edge1", "Side:Edge1"] and len(rows) == 4  # two curves, Normal and Pin
+    assert smoke["rest_during_edit"] == "Installed"
+    assert smoke["rest_after_cancel"] == "Base" and not smoke["installed_after_cancel"]
+    assert smoke["panel_ok"] == [4, 4, "Exact", True, ["Edit VarSurf sheet"]]

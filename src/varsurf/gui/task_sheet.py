@@ -1,4 +1,4 @@
-"""Task panel to edit a Sheet's weights and see its results."""
+"""Task panel to edit a Sheet (energy, space, solve mode, rest shape) and see its results."""
 
 from __future__ import annotations
 
@@ -9,11 +9,13 @@ from PySide import QtCore, QtGui
 from varsurf.gui import resources
 
 TRANSACTION_EDIT = "Edit VarSurf sheet"
-_EDITABLE = ("Stretch", "Bend", "FixBoundary", "Tolerance")
+_EDITABLE = ("Stretch", "Bend", "FixBoundary", "Tolerance", "Degree", "MinSpans", "MaxSpans", "SolveMode",
+             "RestShape", "InstalledRest")
 
 
 class TaskPanelSheet:
-    """Stretch, Bend, FixBoundary, Tolerance; results per curve. OK commits, Cancel undoes."""
+    """Energy weights, tolerance, degree, spans, solve mode and rest shape (install / melt);
+    results per curve and constraint. Update previews; OK commits, Cancel undoes."""
 
     def __init__(self, obj):
         self.obj = obj
@@ -25,6 +27,15 @@ class TaskPanelSheet:
         self.fix_boundary = self._child(QtGui.QCheckBox, "fixBoundaryCheck")
         self.tolerance = self._child(QtGui.QLineEdit, "toleranceEdit")
         self.update_button = self._child(QtGui.QPushButton, "updateButton")
+        self.degree = self._child(QtGui.QSpinBox, "degreeSpin")
+        self.min_spans = self._child(QtGui.QSpinBox, "minSpansSpin")
+        self.max_spans = self._child(QtGui.QSpinBox, "maxSpansSpin")
+        self.solve_mode = self._child(QtGui.QComboBox, "solveModeCombo")
+        self.rest_shape = self._child(QtGui.QComboBox, "restShapeCombo")
+        self.install_button = self._child(QtGui.QPushButton, "installButton")
+        self.melt_button = self._child(QtGui.QPushButton, "meltButton")
+        self.solve_mode.addItems(list(obj.getEnumerationsOfProperty("SolveMode")))
+        self.rest_shape.addItems(list(obj.getEnumerationsOfProperty("RestShape")))
         self.table = self._child(QtGui.QTableWidget, "deviationTable")
         self.poles_label = self._child(QtGui.QLabel, "polesValue")
         self.time_label = self._child(QtGui.QLabel, "solveTimeValue")
@@ -46,6 +57,8 @@ class TaskPanelSheet:
         self._load_values()
         self.show_results()
         self.update_button.clicked.connect(self.update)
+        self.install_button.clicked.connect(self.install_rest_shape)
+        self.melt_button.clicked.connect(self.melt)
 
     def _child(self, kind, name):
         widget = self.form.findChild(kind, name)
@@ -59,6 +72,11 @@ class TaskPanelSheet:
         self.bend.setValue(float(self.obj.Bend))
         self.fix_boundary.setChecked(bool(self.obj.FixBoundary))
         self.tolerance.setText(f"{float(self.obj.Tolerance):g}")
+        self.degree.setValue(int(self.obj.Degree))
+        self.min_spans.setValue(int(self.obj.MinSpans))
+        self.max_spans.setValue(int(self.obj.MaxSpans))
+        self.solve_mode.setCurrentText(str(self.obj.SolveMode))
+        self.rest_shape.setCurrentText(str(self.obj.RestShape))
 
     def _store_values(self):
         self.obj.Stretch = float(self.stretch.value())
@@ -70,15 +88,21 @@ class TaskPanelSheet:
             tolerance = float(self.obj.Tolerance)
         if tolerance > 0.0:
             self.obj.Tolerance = tolerance
+        self.obj.Degree = int(self.degree.value())
+        self.obj.MinSpans = int(self.min_spans.value())
+        self.obj.MaxSpans = max(int(self.max_spans.value()), int(self.min_spans.value()))
+        self.obj.SolveMode = self.solve_mode.currentText()
+        if self.rest_shape.currentText() != "Installed" or not self.obj.InstalledRest.isNull():
+            self.obj.RestShape = self.rest_shape.currentText()
 
     def show_results(self):
         obj = self.obj
-        names = list(obj.CurveNames)
-        deviations = list(obj.MaxDeviations)
-        self.table.setRowCount(len(names))
-        for row, (name, dev) in enumerate(zip(names, deviations)):
+        rows = [(name, dev, "mm") for name, dev in zip(obj.CurveNames, obj.MaxDeviations)]
+        rows += list(zip(obj.ConstraintNames, obj.ConstraintResiduals, obj.ConstraintUnits))
+        self.table.setRowCount(len(rows))
+        for row, (name, dev, unit) in enumerate(rows):
             self.table.setItem(row, 0, QtGui.QTableWidgetItem(name))
-            item = QtGui.QTableWidgetItem(f"{dev:.3g}")
+            item = QtGui.QTableWidgetItem(f"{dev:.3g} {'°' if unit == 'deg' else unit}")
             item.setTextAlignment(QtCore.Qt.AlignRight | QtCore.Qt.AlignVCenter)
             self.table.setItem(row, 1, item)
         self.poles_label.setText(
@@ -93,6 +117,25 @@ class TaskPanelSheet:
         self._store_values()
         self.doc.recompute()
         self.show_results()
+
+    def install_rest_shape(self):
+        """The current result becomes the rest shape (inside the panel's transaction)."""
+        from varsurf import api
+
+        try:
+            api.install_rest_shape(self.obj)
+        except ValueError as error:
+            App.Console.PrintError(f"VarSurf: {error}\n")
+            return
+        self.rest_shape.setCurrentText("Installed")
+        self.update()
+
+    def melt(self):
+        from varsurf import api
+
+        api.melt(self.obj)
+        self.rest_shape.setCurrentText("None")
+        self.update()
 
     # -- task dialog protocol --
     def getStandardButtons(self):
