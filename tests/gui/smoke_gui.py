@@ -225,6 +225,21 @@ def run(result):
     result["pin_origin_after_undo"] = list(pin.Origin)
     result["pin_start"] = list(start)
 
+    # 4b'. the Pin's own panel: fields follow the kind, Update previews, Cancel restores
+    Gui.ActiveDocument.setEdit(pin.Name, 0)
+    Gui.updateGui()
+    widgets = task_widgets("VarSurfConstraint")
+    result["pin_panel_fields"] = {name: widgets[name].isEnabled() for name in ("uSpin", "originZ", "regionU0Spin", "angleSpin")}
+    result["pin_panel_residual"] = widgets["residualValue"].text()
+    origin_before = list(pin.Origin)
+    widgets["originZ"].setValue(pin.Origin.z + 3.0)
+    widgets["updateButton"].click()
+    Gui.updateGui()
+    result["pin_panel_preview"] = [pin.Origin.z - origin_before[2], sheet.isValid()]
+    press_task_button(QtGui.QDialogButtonBox.Cancel)
+    result["pin_panel_restored"] = list(pin.Origin) == origin_before and sheet.isValid()
+    result["pin_panel_image_stats"] = image_stats(snapshot("pin_panel.png"))
+
     # 4c. color maps through the command (macro lines), and the L-curve plot
     Gui.Selection.clearSelection()
     Gui.Selection.addSelection(doc.Name, sheet.Name)
@@ -360,6 +375,21 @@ def run(result):
     result["space_curve_ok"] = len(curves) == 1 and curves[0].isValid()
     result["space_curve_icon"] = curves[0].ViewObject.Proxy.getIcon() if curves else ""
     result["hinge_image_stats"] = image_stats(snapshot("hinge.png"))
+    # the Hinge's panel: a new angle, OK, one undoable step
+    hinge = hsolid.Hinges[0]
+    Gui.ActiveDocument.setEdit(hinge.Name, 0)
+    Gui.updateGui()
+    widgets = task_widgets("VarSurfHinge")
+    result["hinge_panel_reached"] = widgets["reachedValue"].text()
+    widgets["angleSpin"].setValue(150.0)
+    press_task_button(QtGui.QDialogButtonBox.Ok)
+    # the pair's side curves open at 180 degrees: 150 contradicts them, and the Solid says so
+    result["hinge_panel_ok"] = [float(hinge.Angle.Value if hasattr(hinge.Angle, "Value") else hinge.Angle),
+                                hsolid.isValid(), hsolid.Status, hdoc.UndoNames[:1]]
+    hdoc.undo()
+    hdoc.recompute()
+    result["hinge_after_undo"] = [float(hinge.Angle.Value if hasattr(hinge.Angle, "Value") else hinge.Angle),
+                                  hsolid.isValid()]
 
 
 def main():

@@ -149,3 +149,16 @@ def test_sheet_panel_edits_space_mode_and_rest_shape(smoke):
     assert smoke["rest_during_edit"] == "Installed"
     assert smoke["rest_after_cancel"] == "Base" and not smoke["installed_after_cancel"]
     assert smoke["panel_ok"] == [4, 4, "Exact", True, ["Edit VarSurf sheet"]]
+
+
+def test_constraint_and_hinge_panels(smoke):
+    # a Point: placed by (u, v) and its Origin; no region, no angle
+    assert smoke["pin_panel_fields"] == {"uSpin": True, "originZ": True, "regionU0Spin": False, "angleSpin": False}
+    assert smoke["pin_panel_residual"].endswith("mm"), smoke["pin_panel_residual"]
+    assert abs(smoke["pin_panel_preview"][0] - 3.0) < 1e-4 and smoke["pin_panel_preview"][1]  # 4 decimals shown
+    assert smoke["pin_panel_restored"]
+    assert "…" in smoke["hinge_panel_reached"] and "180" in smoke["hinge_panel_reached"]
+    angle, valid, status, undo = smoke["hinge_panel_ok"]
+    assert angle == 150.0 and undo == ["Edit VarSurf hinge"]
+    assert not valid and "with hinges" in status, status  # contradicts the pair's side curves
+    assert smoke["hinge_after_undo"] == [180.0, True]

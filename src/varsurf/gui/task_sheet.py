@@ -3,44 +3,45 @@
 from __future__ import annotations
 
 import FreeCAD as App
-import FreeCADGui as Gui
 from PySide import QtCore, QtGui
 
-from varsurf.gui import resources
+from varsurf.gui.task_base import PropertyTaskPanel
 
 TRANSACTION_EDIT = "Edit VarSurf sheet"
 _EDITABLE = ("Stretch", "Bend", "FixBoundary", "Tolerance", "Degree", "MinSpans", "MaxSpans", "SolveMode",
              "RestShape", "InstalledRest")
 
 
-class TaskPanelSheet:
+class TaskPanelSheet(PropertyTaskPanel):
     """Energy weights, tolerance, degree, spans, solve mode and rest shape (install / melt);
     results per curve and constraint. Update previews; OK commits, Cancel undoes."""
 
+    UI = "sheet.ui"
+    ICON = "VarSurf_Sheet.svg"
+    TRANSACTION = TRANSACTION_EDIT
+    EDITABLE = _EDITABLE
+
     def __init__(self, obj):
-        self.obj = obj
-        self.doc = obj.Document
-        self.form = Gui.PySideUic.loadUi(resources.ui("sheet.ui"))
-        self.form.setWindowIcon(QtGui.QIcon(resources.icon("VarSurf_Sheet.svg")))
-        self.stretch = self._child(QtGui.QDoubleSpinBox, "stretchSpin")
-        self.bend = self._child(QtGui.QDoubleSpinBox, "bendSpin")
-        self.fix_boundary = self._child(QtGui.QCheckBox, "fixBoundaryCheck")
-        self.tolerance = self._child(QtGui.QLineEdit, "toleranceEdit")
-        self.update_button = self._child(QtGui.QPushButton, "updateButton")
-        self.degree = self._child(QtGui.QSpinBox, "degreeSpin")
-        self.min_spans = self._child(QtGui.QSpinBox, "minSpansSpin")
-        self.max_spans = self._child(QtGui.QSpinBox, "maxSpansSpin")
-        self.solve_mode = self._child(QtGui.QComboBox, "solveModeCombo")
-        self.rest_shape = self._child(QtGui.QComboBox, "restShapeCombo")
-        self.install_button = self._child(QtGui.QPushButton, "installButton")
-        self.melt_button = self._child(QtGui.QPushButton, "meltButton")
+        super().__init__(obj)
+        self.stretch = self.child(QtGui.QDoubleSpinBox, "stretchSpin")
+        self.bend = self.child(QtGui.QDoubleSpinBox, "bendSpin")
+        self.fix_boundary = self.child(QtGui.QCheckBox, "fixBoundaryCheck")
+        self.tolerance = self.child(QtGui.QLineEdit, "toleranceEdit")
+        self.update_button = self.child(QtGui.QPushButton, "updateButton")
+        self.degree = self.child(QtGui.QSpinBox, "degreeSpin")
+        self.min_spans = self.child(QtGui.QSpinBox, "minSpansSpin")
+        self.max_spans = self.child(QtGui.QSpinBox, "maxSpansSpin")
+        self.solve_mode = self.child(QtGui.QComboBox, "solveModeCombo")
+        self.rest_shape = self.child(QtGui.QComboBox, "restShapeCombo")
+        self.install_button = self.child(QtGui.QPushButton, "installButton")
+        self.melt_button = self.child(QtGui.QPushButton, "meltButton")
         self.solve_mode.addItems(list(obj.getEnumerationsOfProperty("SolveMode")))
         self.rest_shape.addItems(list(obj.getEnumerationsOfProperty("RestShape")))
-        self.table = self._child(QtGui.QTableWidget, "deviationTable")
-        self.poles_label = self._child(QtGui.QLabel, "polesValue")
-        self.time_label = self._child(QtGui.QLabel, "solveTimeValue")
-        self.rank_label = self._child(QtGui.QLabel, "rankValue")
-        self.status_label = self._child(QtGui.QLabel, "statusValue")
+        self.table = self.child(QtGui.QTableWidget, "deviationTable")
+        self.poles_label = self.child(QtGui.QLabel, "polesValue")
+        self.time_label = self.child(QtGui.QLabel, "solveTimeValue")
+        self.rank_label = self.child(QtGui.QLabel, "rankValue")
+        self.status_label = self.child(QtGui.QLabel, "statusValue")
 
         header = self.table.horizontalHeader()
         header.setSectionResizeMode(0, QtGui.QHeaderView.Stretch)
@@ -52,22 +53,14 @@ class TaskPanelSheet:
         validator.setNotation(QtGui.QDoubleValidator.ScientificNotation)
         self.tolerance.setValidator(validator)
 
-        self._original = {name: getattr(obj, name) for name in _EDITABLE}
-        self.doc.openTransaction(TRANSACTION_EDIT)
-        self._load_values()
+        self.load()
         self.show_results()
         self.update_button.clicked.connect(self.update)
         self.install_button.clicked.connect(self.install_rest_shape)
         self.melt_button.clicked.connect(self.melt)
 
-    def _child(self, kind, name):
-        widget = self.form.findChild(kind, name)
-        if widget is None:
-            raise RuntimeError(f"sheet.ui has no {kind.__name__} named {name}")
-        return widget
-
     # -- values --
-    def _load_values(self):
+    def load(self):
         self.stretch.setValue(float(self.obj.Stretch))
         self.bend.setValue(float(self.obj.Bend))
         self.fix_boundary.setChecked(bool(self.obj.FixBoundary))
@@ -78,7 +71,7 @@ class TaskPanelSheet:
         self.solve_mode.setCurrentText(str(self.obj.SolveMode))
         self.rest_shape.setCurrentText(str(self.obj.RestShape))
 
-    def _store_values(self):
+    def store(self):
         self.obj.Stretch = float(self.stretch.value())
         self.obj.Bend = float(self.bend.value())
         self.obj.FixBoundary = bool(self.fix_boundary.isChecked())
@@ -112,12 +105,6 @@ class TaskPanelSheet:
         self.rank_label.setText(str(obj.ConstraintRank))
         self.status_label.setText(obj.Status)
 
-    def update(self):
-        """Apply the values and recompute, keeping the transaction open (a preview)."""
-        self._store_values()
-        self.doc.recompute()
-        self.show_results()
-
     def install_rest_shape(self):
         """The current result becomes the rest shape (inside the panel's transaction)."""
         from varsurf import api
@@ -136,25 +123,3 @@ class TaskPanelSheet:
         api.melt(self.obj)
         self.rest_shape.setCurrentText("None")
         self.update()
-
-    # -- task dialog protocol --
-    def getStandardButtons(self):
-        return int(QtGui.QDialogButtonBox.Ok | QtGui.QDialogButtonBox.Cancel)
-
-    def accept(self):
-        self._store_values()
-        self.doc.recompute()
-        self.doc.commitTransaction()
-        Gui.ActiveDocument.resetEdit()
-        return True
-
-    def reject(self):
-        self.doc.abortTransaction()
-        # With undo off the abort restores nothing: put the original values back by hand.
-        for name, value in self._original.items():
-            if getattr(self.obj, name) != value:
-                setattr(self.obj, name, value)
-        if self.obj.isTouched() or "Touched" in self.obj.State:
-            self.doc.recompute()
-        Gui.ActiveDocument.resetEdit()
-        return True

@@ -6,6 +6,13 @@ import FreeCAD as App
 import FreeCADGui as Gui
 
 from varsurf.gui import resources
+
+try:
+    from PySide.QtCore import QT_TRANSLATE_NOOP
+except ImportError:  # pragma: no cover - FreeCAD always ships the PySide shim
+
+    def QT_TRANSLATE_NOOP(context, text):
+        return text
 from varsurf.persistence import VersionedState
 
 TYPE = "VarSurf::ViewProviderSheet"
@@ -50,11 +57,47 @@ class _ViewProvider(VersionedState):
         pass
 
 
-class ViewProviderSheet(_ViewProvider):
+class _EditedInPanel:
+    """Double click or the context menu opens the object's task panel (PANEL: module, class)."""
+
+    PANEL = ("", "")
+    EDIT_TEXT = "Edit"
+
+    def doubleClicked(self, vobj):
+        Gui.ActiveDocument.setEdit(vobj.Object.Name, 0)
+        return True
+
+    def setupContextMenu(self, vobj, menu):
+        from PySide import QtGui
+
+        action = QtGui.QAction(QtGui.QIcon(self.getIcon()),
+                               QtGui.QApplication.translate("VarSurf", self.EDIT_TEXT), menu)
+        action.triggered.connect(lambda: Gui.ActiveDocument.setEdit(vobj.Object.Name, 0))
+        menu.addAction(action)
+
+    def setEdit(self, vobj, mode=0):
+        if mode != 0:
+            return False  # let FreeCAD handle Transform etc.
+        import importlib
+
+        module, name = self.PANEL
+        Gui.Control.showDialog(getattr(importlib.import_module(module), name)(vobj.Object))
+        return True
+
+    def unsetEdit(self, vobj, mode=0):
+        if mode != 0:
+            return False
+        Gui.Control.closeDialog()
+        return True
+
+
+class ViewProviderSheet(_EditedInPanel, _ViewProvider):
     """Tree icon, children (base, curves, constraints), double click to edit."""
 
     TYPE = TYPE
     ICON = "VarSurf_Sheet.svg"
+    PANEL = ("varsurf.gui.task_sheet", "TaskPanelSheet")
+    EDIT_TEXT = QT_TRANSLATE_NOOP("VarSurf", "Edit sheet")
 
     def claimChildren(self):
         obj = getattr(self, "Object", None)
@@ -98,43 +141,15 @@ class ViewProviderSheet(_ViewProvider):
             base[0].ViewObject.Visibility = True
         return True
 
-    def doubleClicked(self, vobj):
-        Gui.ActiveDocument.setEdit(vobj.Object.Name, 0)
-        return True
-
-    def setupContextMenu(self, vobj, menu):
-        from PySide import QtGui
-
-        action = QtGui.QAction(
-            QtGui.QIcon(self.getIcon()),
-            QtGui.QApplication.translate("VarSurf_Sheet", "Edit sheet"),
-            menu,
-        )
-        action.triggered.connect(lambda: Gui.ActiveDocument.setEdit(vobj.Object.Name, 0))
-        menu.addAction(action)
-
-    def setEdit(self, vobj, mode=0):
-        if mode != 0:
-            return False  # let FreeCAD handle Transform etc.
-        from varsurf.gui.task_sheet import TaskPanelSheet
-
-        Gui.Control.showDialog(TaskPanelSheet(vobj.Object))
-        return True
-
-    def unsetEdit(self, vobj, mode=0):
-        if mode != 0:
-            return False
-        Gui.Control.closeDialog()
-        return True
-
-
-class ViewProviderConstraint(_ViewProvider):
+class ViewProviderConstraint(_EditedInPanel, _ViewProvider):
     """Tree icon of a Constraint, and its handles in the 3D view (gui.handles): a Point's pin drags
     its target with the Sheet re-solved live."""
 
     TYPE = "VarSurf::ViewProviderConstraint"
     ICON = "VarSurf_Constraint.svg"
     MODE = "Handles"
+    PANEL = ("varsurf.gui.task_constraint", "TaskPanelConstraint")
+    EDIT_TEXT = QT_TRANSLATE_NOOP("VarSurf", "Edit constraint")
 
     def attach(self, vobj):
         super().attach(vobj)
@@ -197,11 +212,14 @@ class ViewProviderSpaceCurve(_ViewProvider):
             vobj.LineColor = (0.85, 0.35, 0.0)
 
 
-class ViewProviderHinge(_ViewProvider):
-    """Tree icon of a Hinge (data of its Solid: nothing of its own to draw)."""
+class ViewProviderHinge(_EditedInPanel, _ViewProvider):
+    """Tree icon of a Hinge (data of its Solid: nothing of its own to draw); its panel edits the
+    angle."""
 
     TYPE = "VarSurf::ViewProviderHinge"
     ICON = "VarSurf_Hinge.svg"
+    PANEL = ("varsurf.gui.task_hinge", "TaskPanelHinge")
+    EDIT_TEXT = QT_TRANSLATE_NOOP("VarSurf", "Edit hinge")
 
 
 def ensure_view_provider(obj):
