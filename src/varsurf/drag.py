@@ -138,3 +138,62 @@ class PointDrag:
         self.sheet.Shape = self.start_shape
         self.doc.abortTransaction()
         self.sheet.purgeTouched()
+
+
+HANDLE_TRANSACTION = "Drag VarSurf handle"
+#: While a handle moves, the sheets joined to its curve are solved again on each move only if that
+#: takes less than this (s); slower joint solves wait for the release, and the curve alone follows.
+LIVE_FOLLOW = 0.25
+
+
+class HandleDrag:
+    """One drag of a variational SpaceCurve's handle. Each move re-solves the curve; the solids
+    joined to it follow live when their recompute is quick (LIVE_FOLLOW), else at the release.
+    ``finish`` is one undoable step."""
+
+    def __init__(self, curve, index):
+        from varsurf.app import space_curve as space_curve_feature
+
+        if not space_curve_feature.is_space_curve(curve):
+            raise DragError(f"{curve.Label} is not a SpaceCurve")
+        if not 0 <= int(index) < len(curve.Handles):
+            raise DragError(f"{curve.Label} has {len(curve.Handles)} handles, no handle {index}")
+        self.curve, self.index, self.doc = curve, int(index), curve.Document
+        self.start = FreeCAD.Vector(curve.Handles[self.index])
+        self.follow = True
+        self.moves = 0
+        self.live_solves = 0
+        self.doc.openTransaction(HANDLE_TRANSACTION)
+
+    def _place(self, target):
+        target = FreeCAD.Vector(target)
+        if not all(math.isfinite(c) for c in target):
+            raise DragError("the dragged handle is not finite")
+        handles = list(self.curve.Handles)
+        handles[self.index] = target
+        self.curve.Handles = handles
+
+    def move(self, target):
+        self._place(target)
+        self.moves += 1
+        if self.follow:
+            began = time.perf_counter()
+            self.doc.recompute()
+            self.live_solves += 1
+            self.follow = time.perf_counter() - began < LIVE_FOLLOW
+        else:
+            self.curve.recompute()
+
+    def finish(self, target):
+        try:
+            self._place(target)
+            self.doc.recompute()
+        except Exception:
+            self.doc.abortTransaction()
+            raise
+        self.doc.commitTransaction()
+
+    def cancel(self):
+        self._place(self.start)
+        self.doc.recompute()
+        self.doc.abortTransaction()

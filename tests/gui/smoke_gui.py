@@ -392,10 +392,45 @@ def run(result):
                                   hsolid.isValid()]
 
 
+def drag_space_curve(result):
+    """8. Welch & Witkin Figure 2 in the view: drag the middle handle of the moving-curve example's
+    SpaceCurve; the curve and both joined sheets follow, one undo puts them back."""
+    import moving_curve
+
+    mdoc = App.newDocument("MovingSmoke")
+    solid, curve = moving_curve.build(mdoc)
+    Gui.updateGui()
+    handles = curve.ViewObject.Proxy.handles
+    result["curve_pins"] = [len(handles.draggers), len(curve.Handles)]
+    volume = solid.Shape.Volume
+    before = snapshot("curve_before.png")
+    result["curve_drag_began"] = handles.begin_drag(1)
+    start = handles.handle_position(1)
+    moves = 8
+    t0 = time.perf_counter()
+    for k in range(1, moves + 1):
+        target = start + App.Vector(0, 0, 8.0 * k / moves)
+        handles.draggers[1].translation.setValue(*(target / handles.scale))
+        handles.drag_to(handles.handle_position(1))
+        Gui.updateGui()
+    result["curve_moves_per_second"] = moves / (time.perf_counter() - t0)
+    result["curve_live_solves"] = handles.session.live_solves
+    during = snapshot("curve_during.png")
+    result["curve_image_change"] = image_difference(before, during)
+    handles.end_drag(handles.handle_position(1))
+    result["curve_drag_errors"] = list(handles.errors)
+    result["curve_solid"] = [solid.isValid(), bool(solid.Closed), solid.Shape.Volume - volume]
+    result["curve_undo_name"] = mdoc.UndoNames[:1]
+    mdoc.undo()
+    mdoc.recompute()
+    result["curve_volume_after_undo"] = abs(solid.Shape.Volume - volume) / volume
+
+
 def main():
     result = {"ok": False}
     try:
         run(result)
+        drag_space_curve(result)
         result["ok"] = True
     except Exception:
         result["error"] = traceback.format_exc()

@@ -77,3 +77,35 @@ def test_cancel_writes_nothing_and_bad_drags_are_refused(sheet):
     session.move(V(30.0, 48.0, 11.0))
     session.finish(V(30.0, 48.0, 11.0))  # no linked vertex: the Origin takes the target
     assert tuple(c.Origin) == (30.0, 48.0, 11.0) and sheet.isValid()
+
+
+def test_dragging_a_space_curve_handle_moves_the_joined_sheets(doc, native):
+    import sys
+    from pathlib import Path
+
+    sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "examples"))
+    import moving_curve
+
+    solid, curve = moving_curve.build(doc)
+    volume = solid.Shape.Volume
+    start = V(curve.Handles[1])
+    with pytest.raises(drag.DragError, match="no handle 7"):
+        drag.HandleDrag(curve, 7)
+    session = drag.HandleDrag(curve, 1)
+    for k in range(1, 5):
+        session.move(start + V(0, 0, 2.0 * k))
+    assert session.moves == 4 and session.live_solves >= 1
+    session.finish(start + V(0, 0, 8.0))
+    assert solid.isValid() and solid.Closed, solid.getStatusString()
+    assert solid.Shape.Volume > volume + 1000.0  # the top and front sheets rose with the edge
+    assert doc.UndoNames[0] == "Drag VarSurf handle"
+    doc.undo()
+    doc.recompute()
+    assert V(curve.Handles[1]) == start
+    assert abs(solid.Shape.Volume - volume) < 1e-6 * volume
+    session = drag.HandleDrag(curve, 1)
+    session.move(start + V(0, 0, 3.0))
+    with pytest.raises(drag.DragError, match="not finite"):
+        session.move(V(math.nan, 0, 0))
+    session.cancel()
+    assert V(curve.Handles[1]) == start and abs(solid.Shape.Volume - volume) < 1e-6 * volume

@@ -162,3 +162,14 @@ def test_constraint_and_hinge_panels(smoke):
     assert angle == 150.0 and undo == ["Edit VarSurf hinge"]
     assert not valid and "with hinges" in status, status  # contradicts the pair's side curves
     assert smoke["hinge_after_undo"] == [180.0, True]
+
+
+def test_dragging_a_space_curve_handle_moves_the_solid(smoke):
+    assert smoke["curve_pins"][0] == smoke["curve_pins"][1] >= 3
+    assert smoke["curve_drag_began"] and smoke["curve_drag_errors"] == []
+    assert smoke["curve_live_solves"] >= 1  # the box's joint solve is quick enough to follow live
+    assert smoke["curve_image_change"] > 0.003, smoke["curve_image_change"]
+    valid, closed, gained = smoke["curve_solid"]
+    assert valid and closed and gained > 1000.0, smoke["curve_solid"]
+    assert smoke["curve_undo_name"] == ["Drag VarSurf handle"]
+    assert smoke["curve_volume_after_undo"] < 1e-6

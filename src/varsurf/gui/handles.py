@@ -133,6 +133,37 @@ def _location(constraint):
     return V(shape.Vertexes[0].Point)
 
 
+def pin_position(dragger, scale):
+    t = dragger.translation.getValue()
+    return V(t[0], t[1], t[2]) * scale
+
+
+def add_pin(parent, target, size, on_begin, on_move, on_end):
+    """A point dragger at `target`, drawn `size` big, with an orange ball riding on it; the
+    callbacks get the dragged position. Returns the dragger."""
+    sep = coin.SoSeparator()
+    scale = coin.SoScale()
+    scale.scaleFactor.setValue(size, size, size)
+    sep.addChild(scale)
+    dragger = coin.SoDragPointDragger()
+    dragger.translation.setValue(*(target / size))
+    ball = coin.SoSeparator()  # seen from afar
+    _material(ball, PIN)
+    follow = coin.SoTranslation()
+    follow.translation.connectFrom(dragger.translation)
+    ball.addChild(follow)
+    sphere = coin.SoSphere()
+    sphere.radius = 0.6
+    ball.addChild(sphere)
+    sep.addChild(ball)
+    dragger.addStartCallback(lambda *_: on_begin())
+    dragger.addMotionCallback(lambda *_: on_move(pin_position(dragger, size)))
+    dragger.addFinishCallback(lambda *_: on_end(pin_position(dragger, size)))
+    sep.addChild(dragger)
+    parent.addChild(sep)
+    return dragger
+
+
 class ConstraintHandles:
     """The Coin scene of one Constraint's handles; `root` goes into its view provider."""
 
@@ -205,33 +236,12 @@ class ConstraintHandles:
             _line(self.root, [p, p + face.normalAt(u, v) * (2 * size)], RIBBON, 2.0)
 
     def _pin(self, target, size):
-        """A point dragger at the target, drawn `size` big."""
-        sep = coin.SoSeparator()
-        scale = coin.SoScale()
         self.scale = size
-        scale.scaleFactor.setValue(size, size, size)
-        sep.addChild(scale)
-        dragger = coin.SoDragPointDragger()
-        dragger.translation.setValue(*(target / size))
-        ball = coin.SoSeparator()  # an orange ball that rides with the dragger, seen from afar
-        _material(ball, PIN)
-        follow = coin.SoTranslation()
-        follow.translation.connectFrom(dragger.translation)
-        ball.addChild(follow)
-        sphere = coin.SoSphere()
-        sphere.radius = 0.6
-        ball.addChild(sphere)
-        sep.addChild(ball)
-        dragger.addStartCallback(lambda *_: self.begin_drag())
-        dragger.addMotionCallback(lambda *_: self.drag_to(self.dragger_target()))
-        dragger.addFinishCallback(lambda *_: self.end_drag(self.dragger_target()))
-        sep.addChild(dragger)
-        self.root.addChild(sep)
-        self.dragger = dragger
+        self.dragger = add_pin(self.root, target, size, self.begin_drag,
+                               lambda t: self.drag_to(t), lambda t: self.end_drag(t))
 
     def dragger_target(self):
-        t = self.dragger.translation.getValue()
-        return V(t[0], t[1], t[2]) * self.scale
+        return pin_position(self.dragger, self.scale)
 
     # -- dragging --
     def begin_drag(self):
@@ -291,3 +301,59 @@ def refresh_sheet_handles(sheet):
 
 def is_dragging():
     return bool(_dragging)
+
+
+class CurveHandles:
+    """The handles of a variational SpaceCurve, each a pin: dragging one moves the curve and, as
+    fast as their joint solve allows, every sheet joined to it (Welch & Witkin Figure 2)."""
+
+    def __init__(self, vobj):
+        self.root = coin.SoSeparator()
+        vobj.RootNode.addChild(self.root)
+        self.curve = None
+        self.draggers = []
+        self.scale = 1.0
+        self.session = None
+        self.errors = []
+
+    def rebuild(self, curve):
+        if self in _dragging:
+            return
+        self.curve = curve
+        self.root.removeAllChildren()
+        self.draggers = []
+        shape = curve.Shape
+        size = HANDLE_SIZE * max(shape.BoundBox.DiagonalLength if not shape.isNull() else 100.0, 1.0)
+        self.scale = size
+        for i, target in enumerate(curve.Handles):
+            self.draggers.append(add_pin(self.root, V(target), size, lambda i=i: self.begin_drag(i),
+                                         lambda t: self.drag_to(t), lambda t: self.end_drag(t)))
+
+    def handle_position(self, index):
+        return pin_position(self.draggers[index], self.scale)
+
+    def begin_drag(self, index):
+        try:
+            self.session = drag.HandleDrag(self.curve, index)
+        except drag.DragError as error:
+            self.errors.append(str(error))
+            App.Console.PrintError(f"VarSurf: {error}\n")
+            return False
+        _dragging.append(self)
+        return True
+
+    def drag_to(self, target):
+        if self.session is not None:
+            self.session.move(target)
+
+    def end_drag(self, target):
+        session, self.session = self.session, None
+        if self in _dragging:
+            _dragging.remove(self)
+        if session is not None:
+            try:
+                session.finish(target)
+            except Exception as error:
+                self.errors.append(str(error))
+                App.Console.PrintError(f"VarSurf: {error}\n")
+        self.rebuild(self.curve)

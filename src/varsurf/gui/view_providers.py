@@ -200,8 +200,8 @@ class ViewProviderSolid(_ViewProvider):
 
 
 class ViewProviderSpaceCurve(_ViewProvider):
-    """Tree icon of a variational SpaceCurve, drawn thick so it reads as a handle-driven curve;
-    hides its base edge's object only if that is a plain helper (not a sketch others use)."""
+    """Tree icon of a variational SpaceCurve, drawn thick so it reads as a handle-driven curve,
+    with a draggable pin on each handle (gui.handles.CurveHandles)."""
 
     TYPE = "VarSurf::ViewProviderSpaceCurve"
     ICON = "VarSurf_SpaceCurve.svg"
@@ -210,6 +210,17 @@ class ViewProviderSpaceCurve(_ViewProvider):
         if hasattr(vobj, "LineWidth"):
             vobj.LineWidth = 4.0
             vobj.LineColor = (0.85, 0.35, 0.0)
+
+    def attach(self, vobj):
+        super().attach(vobj)
+        from varsurf.gui.handles import CurveHandles
+
+        self.handles = CurveHandles(vobj)
+
+    def updateData(self, obj, prop):
+        handles = getattr(self, "handles", None)
+        if handles is not None and prop in ("Handles", "Shape"):
+            handles.rebuild(obj)
 
 
 class ViewProviderHinge(_EditedInPanel, _ViewProvider):
