@@ -108,7 +108,8 @@ class ViewProviderSheet(_EditedInPanel, _ViewProvider):
         from varsurf.gui import analysis_overlay
 
         analysis_overlay.add_view_properties(vobj)
-        self.overlay = analysis_overlay.AnalysisOverlay(vobj)
+        if getattr(self, "overlay", None) is None:  # FreeCAD attaches again when Proxy is set
+            self.overlay = analysis_overlay.AnalysisOverlay(vobj)
 
     def updateData(self, obj, prop):
         if prop != "Shape":
@@ -155,8 +156,9 @@ class ViewProviderConstraint(_EditedInPanel, _ViewProvider):
         super().attach(vobj)
         from varsurf.gui.handles import ConstraintHandles
 
-        self.handles = ConstraintHandles()
-        vobj.addDisplayMode(self.handles.root, self.MODE)
+        if getattr(self, "handles", None) is None:  # FreeCAD attaches again when Proxy is set
+            self.handles = ConstraintHandles()
+            vobj.addDisplayMode(self.handles.root, self.MODE)
         self.handles.rebuild(vobj.Object)
 
     def getDisplayModes(self, vobj):
@@ -215,7 +217,8 @@ class ViewProviderSpaceCurve(_ViewProvider):
         super().attach(vobj)
         from varsurf.gui.handles import CurveHandles
 
-        self.handles = CurveHandles(vobj)
+        if getattr(self, "handles", None) is None:  # FreeCAD attaches again when Proxy is set
+            self.handles = CurveHandles(vobj)
 
     def updateData(self, obj, prop):
         handles = getattr(self, "handles", None)
