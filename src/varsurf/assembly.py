@@ -118,6 +118,36 @@ def build_solid(sheets: Sequence, tolerance: float) -> AssemblyOutcome:
 SEAM_SAMPLES = 24
 
 
+def _edge_uv(edge, faces):
+    """For each of `faces` (the two sharing `edge`), a function t -> (u, v) on it: the edge's
+    pcurves when they can be matched to the faces (exact and fast), else projection. Projecting
+    every sample onto a B-spline surface cost 0.45 ms a point, most of a rounded box's rebuild."""
+    reps = []
+    for i in (0, 1):
+        try:
+            c2d, surface, placement, _first, _last = edge.curveOnSurface(i)
+        except Exception:
+            break
+        if not placement.isIdentity():
+            break
+        reps.append((c2d, surface))
+    lookups = []
+    if len(reps) == 2:
+        t = 0.5 * (edge.FirstParameter + edge.LastParameter)
+        for face in faces:
+            def gap(rep, face=face):
+                uv = rep[0].value(t)
+                return (rep[1].value(uv.x, uv.y) - face.Surface.value(uv.x, uv.y)).Length
+            best = min(reps, key=gap)
+            if gap(best) > 1e-9 * max(1.0, edge.BoundBox.DiagonalLength):
+                lookups = []
+                break
+            lookups.append(lambda t, c2d=best[0]: (c2d.value(t).x, c2d.value(t).y))
+    if len(lookups) != 2 or reps[0][1] is reps[1][1]:
+        lookups = [lambda t, f=f: f.Surface.parameter(edge.valueAt(t)) for f in faces]
+    return lookups
+
+
 def _seam_angles(shape):
     """(min, max) angle between the two faces across each edge they share, in degrees: 180 minus
     the angle between their outward normals, sampled along the edge."""
@@ -132,10 +162,13 @@ def _seam_angles(shape):
         if len(pair) != 2:
             continue
         a, b = faces[pair[0]], faces[pair[1]]
+        uv_a, uv_b = _edge_uv(e, (a, b))
+        t0, t1 = e.FirstParameter, e.LastParameter
         values = []
-        for p in e.discretize(SEAM_SAMPLES)[1:-1]:
-            na = a.normalAt(*a.Surface.parameter(p))
-            nb = b.normalAt(*b.Surface.parameter(p))
+        for k in range(1, SEAM_SAMPLES - 1):
+            t = t0 + (t1 - t0) * k / (SEAM_SAMPLES - 1)
+            na = a.normalAt(*uv_a(t))
+            nb = b.normalAt(*uv_b(t))
             values.append(180.0 - math.degrees(na.getAngle(nb)))
         if values:
             angles.append((min(values), max(values)))

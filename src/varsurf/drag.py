@@ -141,15 +141,16 @@ class PointDrag:
 
 
 HANDLE_TRANSACTION = "Drag VarSurf handle"
-#: While a handle moves, the sheets joined to its curve are solved again on each move only if that
-#: takes less than this (s); slower joint solves wait for the release, and the curve alone follows.
-LIVE_FOLLOW = 0.25
+#: While a handle moves, the curve follows every move; the sheets joined to it are solved again
+#: whenever at least this many times their last recompute has passed since it ended, so slow joint
+#: solves still follow, less often, and the pointer never waits more than one of them.
+FOLLOW_SPACING = 1.0
 
 
 class HandleDrag:
     """One drag of a variational SpaceCurve's handle. Each move re-solves the curve; the solids
-    joined to it follow live when their recompute is quick (LIVE_FOLLOW), else at the release.
-    ``finish`` is one undoable step."""
+    joined to it follow as often as their recompute allows (FOLLOW_SPACING), and exactly at the
+    release. ``finish`` is one undoable step."""
 
     def __init__(self, curve, index):
         from varsurf.app import space_curve as space_curve_feature
@@ -160,7 +161,7 @@ class HandleDrag:
             raise DragError(f"{curve.Label} has {len(curve.Handles)} handles, no handle {index}")
         self.curve, self.index, self.doc = curve, int(index), curve.Document
         self.start = FreeCAD.Vector(curve.Handles[self.index])
-        self.follow = True
+        self.next_follow = 0.0  # perf_counter time after which the next move recomputes all
         self.moves = 0
         self.live_solves = 0
         self.doc.openTransaction(HANDLE_TRANSACTION)
@@ -176,11 +177,12 @@ class HandleDrag:
     def move(self, target):
         self._place(target)
         self.moves += 1
-        if self.follow:
-            began = time.perf_counter()
+        began = time.perf_counter()
+        if began >= self.next_follow:
             self.doc.recompute()
             self.live_solves += 1
-            self.follow = time.perf_counter() - began < LIVE_FOLLOW
+            ended = time.perf_counter()
+            self.next_follow = ended + FOLLOW_SPACING * (ended - began)
         else:
             self.curve.recompute()
 
