@@ -406,9 +406,10 @@ def drag_space_curve(result):
     before = snapshot("curve_before.png")
     result["curve_drag_began"] = handles.begin_drag(1)
     start = handles.handle_position(1)
-    moves = 8
+    moves = 12
     t0 = time.perf_counter()
     for k in range(1, moves + 1):
+        time.sleep(1.0 / 30.0)  # a pointer moving at 30 events a second
         target = start + App.Vector(0, 0, 8.0 * k / moves)
         handles.draggers[1].translation.setValue(*(target / handles.scale))
         handles.drag_to(handles.handle_position(1))
@@ -418,6 +419,7 @@ def drag_space_curve(result):
     during = snapshot("curve_during.png")
     result["curve_image_change"] = image_difference(before, during)
     handles.end_drag(handles.handle_position(1))
+    snapshot("curve_after.png")
     result["curve_drag_errors"] = list(handles.errors)
     result["curve_solid"] = [solid.isValid(), bool(solid.Closed), solid.Shape.Volume - volume]
     result["curve_undo_name"] = mdoc.UndoNames[:1]

@@ -167,7 +167,7 @@ def test_constraint_and_hinge_panels(smoke):
 def test_dragging_a_space_curve_handle_moves_the_solid(smoke):
     assert smoke["curve_pins"][0] == smoke["curve_pins"][1] >= 3
     assert smoke["curve_drag_began"] and smoke["curve_drag_errors"] == []
-    assert smoke["curve_live_solves"] >= 1  # the box's joint solve is quick enough to follow live
+    assert smoke["curve_live_solves"] >= 2  # the box follows while the handle moves, not only at the end
     assert smoke["curve_image_change"] > 0.003, smoke["curve_image_change"]
     valid, closed, gained = smoke["curve_solid"]
     assert valid and closed and gained > 1000.0, smoke["curve_solid"]
