@@ -11,6 +11,7 @@
 #include "varsurf/core/knot_vector.hpp"
 #include "varsurf/core/sheet_solver.hpp"
 #include "varsurf/core/spline_space.hpp"
+#include "varsurf/core/surface_grid.hpp"
 
 namespace py = pybind11;
 using namespace pybind11::literals;
@@ -74,6 +75,15 @@ void bind_core_functions(py::module_& m) {
       },
       "space"_a, "poles"_a, "constraint"_a, "samples"_a = 200,
       "Largest |sheet(preimage(t)) - target(t)| over `samples` evenly spaced t.");
+
+  py::class_<SurfaceGrid>(m, "SurfaceGrid", "Points and unit normals on a uniform parameter grid.")
+      .def_readonly("nu", &SurfaceGrid::nu)
+      .def_readonly("nv", &SurfaceGrid::nv)
+      .def_readonly("points", &SurfaceGrid::points, "((nu+1)(nv+1)) x 3, u outer")
+      .def_readonly("normals", &SurfaceGrid::normals);
+  m.def("sample_grid", &sample_grid, "surface"_a, "nu"_a, "nv"_a,
+        py::call_guard<py::gil_scoped_release>(),
+        "Points and unit normals of the surface on an (nu+1) x (nv+1) grid over its domain.");
 
   m.def("flat_knots", &flat_knots, "knots"_a, "mults"_a,
         "Flat knot vector from distinct knots and multiplicities (FreeCAD's form).");

@@ -98,8 +98,9 @@ class PointDrag:
         self.seconds = 0.0  # spent in move(): solve and shape
         self.doc.openTransaction(TRANSACTION)
 
-    def move(self, target):
-        """Re-solve for the target at `target` (a vector) and show it; returns the new face."""
+    def move(self, target, update_shape=True):
+        """Re-solve for the target at `target` (a vector); returns the solved native surface. With
+        update_shape the Sheet's Shape shows it (a view may draw the surface itself instead)."""
         target = FreeCAD.Vector(target)
         if not all(math.isfinite(c) for c in target):
             raise DragError("the dragged target is not finite")
@@ -115,11 +116,11 @@ class PointDrag:
         except (nat.InvalidInput, nat.SolveFailure) as error:
             raise DragError(f"{self.sheet.Label}: {error}") from error
         surface = _build(nat.BSplineSurface, space=self.space, poles=self.last.poles)
-        face = _single_face(shape_from_brep(nat.face_brep(surface)))
-        self.sheet.Shape = face
+        if update_shape:
+            self.sheet.Shape = _single_face(shape_from_brep(nat.face_brep(surface)))
         self.moves += 1
         self.seconds += time.perf_counter() - began
-        return face
+        return surface
 
     def finish(self, target):
         """Write the target and recompute: one undoable step."""

@@ -208,7 +208,11 @@ def run(result):
         handles.drag_to(handles.dragger_target())
         Gui.updateGui()  # redraw: the sheet is tessellated again each move
     result["drag_moves_per_second"] = moves / (time.perf_counter() - t0)
-    result["area_during_drag"] = sheet.Shape.Area
+    preview = handles.preview.points
+    result["preview_through_pin"] = min(((p[0] - target.x) ** 2 + (p[1] - target.y) ** 2 + (p[2] - target.z) ** 2) ** 0.5
+                                        for p in preview.tolist())
+    result["preview_top"] = float(preview[:, 2].max())
+    result["sheet_top_before"] = sheet.Shape.BoundBox.ZMax
     during = snapshot("drag_during.png")
     result["drag_image_change"] = image_difference(before, during)
     result["drag_image_stats"] = image_stats(during)

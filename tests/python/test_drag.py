@@ -33,8 +33,8 @@ def test_a_drag_equals_a_fresh_solve_and_one_undo_restores(sheet):
     before_poles, before_area = _poles(sheet).copy(), sheet.Shape.Area
     session = drag.PointDrag(sheet, c)
     for k in range(1, 6):  # the pointer moves up by 1.5 mm five times
-        face = session.move(V(60.0, 50.0, 12.0 + 1.5 * k))
-        assert face.isValid() and sheet.Shape.distToShape(Part.Vertex(V(60, 50, 12 + 1.5 * k)))[0] < 1e-6
+        session.move(V(60.0, 50.0, 12.0 + 1.5 * k))
+        assert sheet.Shape.isValid() and sheet.Shape.distToShape(Part.Vertex(V(60, 50, 12 + 1.5 * k)))[0] < 1e-6
     dragged = session.last.poles.copy()
     assert session.moves == 5
     session.finish(V(60.0, 50.0, 19.5))

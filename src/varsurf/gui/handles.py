@@ -173,6 +173,7 @@ class ConstraintHandles:
         self.dragger = None
         self.scale = 1.0
         self.session = None
+        self.preview = None  # the drawn surface while dragging
         self.errors = []  # messages of refused drags (also in the report view)
 
     # -- drawing --
@@ -245,6 +246,8 @@ class ConstraintHandles:
 
     # -- dragging --
     def begin_drag(self):
+        from varsurf.gui.drag_preview import DragPreview
+
         sheet = sheet_of(self.constraint)
         try:
             if sheet is None:
@@ -253,22 +256,33 @@ class ConstraintHandles:
         except drag.DragError as error:
             self._refuse(error)
             return False
+        self.preview = DragPreview(sheet.ViewObject, self.session.space) if sheet.ViewObject else None
         _dragging.append(self)
         return True
 
     def drag_to(self, target):
+        """Re-solve for the target and draw the result (the Sheet's Shape waits for the release)."""
         if self.session is None:
             return None
         try:
-            return self.session.move(target)
+            surface = self.session.move(target, update_shape=self.preview is None)
         except drag.DragError as error:
             self._refuse(error)
             return None
+        if self.preview is not None:
+            self.preview.show(surface)
+        return surface
+
+    def _close_preview(self):
+        preview, self.preview = getattr(self, "preview", None), None
+        if preview is not None:
+            preview.close()
 
     def end_drag(self, target):
         session, self.session = self.session, None
         if self in _dragging:
             _dragging.remove(self)
+        self._close_preview()
         if session is None:
             return
         try:
@@ -281,6 +295,7 @@ class ConstraintHandles:
         session, self.session = self.session, None
         if self in _dragging:
             _dragging.remove(self)
+        self._close_preview()
         if session is not None:
             session.cancel()
         self.rebuild(self.constraint)
