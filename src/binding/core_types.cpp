@@ -1,6 +1,7 @@
 // Core data types. Fields are copied in and out (numpy arrays, lists): assign whole values, e.g.
 // `problem.curves = [...]`, not `problem.curves.append(...)`.
 #include <pybind11/eigen.h>
+#include <pybind11/functional.h>
 #include <pybind11/stl.h>
 
 #include <cmath>
@@ -328,6 +329,9 @@ void bind_core_types(py::module_& m) {
       .def_readwrite("max_fit_factor", &SolveOptions::max_fit_factor,
                      "Penalty mode: refine while a sample is farther than this times "
                      "fit_tolerance.")
+      .def_readwrite("keep_going", &SolveOptions::keep_going,
+                     "None, or a callable asked between iterative steps; False stops the solve "
+                     "(Cancelled).")
       .def_readwrite("penalty_steps", &SolveOptions::penalty_steps,
                      "Penalty mode: at most this many refinement steps.")
       .def_readwrite("cluster_limit", &SolveOptions::cluster_limit,

@@ -19,6 +19,10 @@ void bind_errors(py::module_& m) {
   solve.attr("__doc__") =
       "Well-formed input, but the numerical solve failed (singular system). Subclass of "
       "RuntimeError.";
+  auto& cancelled = py::register_exception<Cancelled>(m, "Cancelled", PyExc_RuntimeError);
+  cancelled.attr("__doc__") =
+      "The solve stopped because SolveOptions.keep_going returned False. Subclass of "
+      "RuntimeError.";
   auto& geometry =
       py::register_exception<occ::GeometryError>(m, "GeometryError", PyExc_RuntimeError);
   geometry.attr("__doc__") =

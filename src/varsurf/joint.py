@@ -63,7 +63,7 @@ def _loop_sides(nat, preimages: Dict[str, object], gap: float) -> Dict[str, int]
 
 
 def solve_joint(sheets: Sequence[JointSheet], variational: Dict[str, VariationalCurve],
-                hinges: Sequence[HingeSpec]) -> JointOutcome:
+                hinges: Sequence[HingeSpec], keep_going=None) -> JointOutcome:
     nat = native()
     if not sheets:
         raise SheetError("no sheets to solve")
@@ -145,10 +145,15 @@ def solve_joint(sheets: Sequence[JointSheet], variational: Dict[str, Variational
     # The first sheet's mode and rank tolerance; the joins as tight as the tightest sheet's curves.
     options = copy.copy(sheets[0].outcome.options)
     options.fit_tolerance = min(float(s.outcome.options.fit_tolerance) for s in sheets)
+    options.keep_going = keep_going
     try:
         result = nat.solve_model(model_problem, options)
     except nat.InvalidInput as error:
         raise SheetError(_named(str(error), labels, list(index), hinges)) from error
+    except nat.Cancelled as error:
+        from varsurf.model import CANCELLED
+
+        raise SheetError(CANCELLED) from error
 
     faces = []
     for problem, poles in zip(problems, result.sheet_poles):

@@ -43,6 +43,8 @@ DEFAULT_MAX_SPANS = 64
 SOLVE_MODES = ("Automatic", "Exact", "Penalty", "PenaltyQR", "CG", "TSVD", "MTSVD")
 #: Relative singular value below which constraint rows are numerically dependent.
 DEFAULT_RANK_TOLERANCE = 1e-9
+#: The error of a solve stopped by the user (through its progress indicator).
+CANCELLED = "the solve was cancelled; recompute to solve again"
 #: Points per curve at which the result's distance to the curve is measured.
 DEVIATION_SAMPLES = 200
 
@@ -293,6 +295,7 @@ def solve_sheet_on_face(
     bend_tensor: Optional[Sequence[float]] = None,
     degree: int = SHEET_MIN_DEGREE,
     solve_mode: str = "Automatic",
+    keep_going=None,
 ) -> SheetOutcome:
     """Solve the variational sheet over ``face`` that passes through ``edges``.
 
@@ -408,7 +411,11 @@ def solve_sheet_on_face(
     options.fit_tolerance = FIT_TO_TOLERANCE * float(tolerance)
     options.mode = getattr(nat.SolveMode, "penalty" if solve_mode == "PenaltyQR" else solve_mode.lower())
     options.penalty_qr = solve_mode == "PenaltyQR"
+    if keep_going is not None:  # asked between iterative steps and refinement levels
+        options.keep_going = keep_going
     while True:
+        if keep_going is not None and not keep_going():
+            raise SheetError(CANCELLED)
         sheet = nat.refine_surface(base, spans, spans, degree)
         space = sheet.space
         terms = constraint_specs.native_terms(placed, space, nat)
@@ -435,6 +442,8 @@ def solve_sheet_on_face(
             result = nat.solve_sheet(problem, options)
         except nat.InvalidInput as error:
             raise SheetError(str(error)) from error
+        except nat.Cancelled as error:
+            raise SheetError(CANCELLED) from error
         if not result.report.converged:
             raise SheetError(
                 f"the nonlinear terms (pressure, repellers, shape attractors) did not settle in "
@@ -468,6 +477,7 @@ def solve_sheet_on_face(
         deviations = [float(nat.max_deviation(surface, c, DEVIATION_SAMPLES)) for c in targets]
     residuals = [float(constraint_specs.residual(p, surface, base)) for p in placed]
     report = result.report
+    options.keep_going = None  # the outcome's options serve later solves (joint, drag)
     return SheetOutcome(
         shape=shape,
         surface=surface,

@@ -119,6 +119,23 @@ TEST(SolveModes, EnergyModesAgreeOnAWellPosedProblem) {
   }
 }
 
+TEST(SolveModes, KeepGoingIsAskedAndCanStopTheIterativeModes) {
+  const SheetProblem pb = well_posed_problem(8);
+  for (SolveMode mode : {SolveMode::penalty, SolveMode::cg}) {
+    SolveOptions opt = with_mode(mode);
+    const SolveResult plain = solve_sheet(pb, opt);
+    int asked = 0;
+    opt.keep_going = [&asked] { return ++asked > 0; };
+    const SolveResult watched = solve_sheet(pb, opt);
+    EXPECT_GT(asked, 0) << to_string(mode);
+    EXPECT_EQ((watched.poles - plain.poles).cwiseAbs().maxCoeff(), 0.0) << to_string(mode);
+    asked = 0;
+    opt.keep_going = [&asked] { return ++asked < 2; };
+    EXPECT_THROW(solve_sheet(pb, opt), Cancelled) << to_string(mode);
+    EXPECT_EQ(asked, 2) << to_string(mode);
+  }
+}
+
 TEST(SolveModes, PenaltyByQrEqualsPenaltyByCholesky) {
   // Welch & Witkin's eq. 10 factored as the stacked least-squares system (sparse QR) and through
   // its normal equations (sparse Cholesky): the same minimizer, on a well-posed problem both equal

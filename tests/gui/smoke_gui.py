@@ -316,6 +316,30 @@ def run(result):
     press_task_button(QtGui.QDialogButtonBox.Ok)
     result["panel_ok"] = [sheet.Degree, sheet.DegreeU, sheet.SolveMode, sheet.isValid(), doc.UndoNames[:1]]
 
+    # 4f. FreeCAD's progress indicator during a solve (shown at once here: no delay)
+    from varsurf import progress
+
+    shown = []
+
+    class Watch(progress.SolveProgress):
+        def __call__(self):
+            going = super().__call__()
+            if self.indicator is not None:
+                shown.append(self.asked)
+            return going
+
+    saved = progress.factory, progress.DELAY, progress.INTERVAL
+    progress.factory, progress.DELAY, progress.INTERVAL = Watch, 0.0, 0.0
+    try:
+        sheet.SolveMode = "Penalty"
+        doc.recompute()
+    finally:
+        progress.factory, progress.DELAY, progress.INTERVAL = saved
+    result["progress_shown"] = len(shown)
+    result["sheet_valid_with_progress"] = sheet.isValid()
+    sheet.SolveMode = "Exact"
+    doc.recompute()
+
     # 5. picture
     image = snapshot("smoke.png")
     result["image"] = image

@@ -175,3 +175,7 @@ def test_dragging_a_space_curve_handle_moves_the_solid(smoke):
     assert valid and closed and gained > 1000.0, smoke["curve_solid"]
     assert smoke["curve_undo_name"] == ["Drag VarSurf handle"]
     assert smoke["curve_volume_after_undo"] < 1e-6
+
+
+def test_progress_indicator_shows_during_a_solve(smoke):
+    assert smoke["progress_shown"] > 0 and smoke["sheet_valid_with_progress"]

@@ -23,6 +23,10 @@ using Sparse = Eigen::SparseMatrix<double>;
 
 }  // namespace
 
+void check_keep_going(const SolveOptions& options) {
+  if (options.keep_going && !options.keep_going()) throw Cancelled("the solve was cancelled");
+}
+
 const char* to_string(SolveMode mode) {
   switch (mode) {
     case SolveMode::automatic:
@@ -420,6 +424,7 @@ Eigen::MatrixXd ConstrainedSolve::Impl::solve_penalty(const Eigen::MatrixXd& g,
   const int max_steps =
       opt.penalty_steps;  // beyond, the space is too coarse: the caller refines it
   for (it = 1; it <= max_steps; ++it) {
+    check_keep_going(opt);
     const Eigen::MatrixXd next = penalty_step(g + eps * center, dk);
     const double move = (next - x).cwiseAbs().maxCoeff();
     x = next;
@@ -533,6 +538,7 @@ Eigen::MatrixXd ConstrainedSolve::Impl::solve_cg(const Eigen::MatrixXd& g, const
     const double stop = opt.cg_tolerance * std::max(res.norm(), 1e-300);
     int it = 0;
     while (it < max_it && res.norm() > stop) {
+      if (it % 16 == 0) check_keep_going(opt);
       const Eigen::VectorXd qp = project(apply(p));
       const double pqp = p.dot(qp);
       if (!(pqp > 0.0)) break;  // nothing left to lower along p

@@ -592,6 +592,7 @@ void solve_hinges(const ModelProblem& pb, const SolveOptions& opt, Joint& joint,
   }
   rep.converged = false;
   for (int it = 1; it <= pb.hinge_iterations; ++it) {
+    check_keep_going(opt);
     joint.quad.blocks.resize(base_blocks);
     std::vector<double> scale;
     for (size_t h = 0; h < pb.hinges.size(); ++h) {

@@ -109,6 +109,7 @@ Eigen::MatrixXd iterate_nonlinear(const SheetProblem& pb, const SolveOptions& op
     fixed_system = std::make_unique<ConstrainedSolve>(base, opt, setup);
   }
   for (int it = 1; it <= opt.max_iterations; ++it) {
+    check_keep_going(opt);
     const Eigen::MatrixX3d current = unflatten(x);
     QuadraticTerms model(poles);
     for (size_t i = 0; i < pb.repellers.size(); ++i) {

@@ -182,9 +182,16 @@ def compute(obj):
     options["exact_curves"] = exact
     options["stretch_tensor"] = list(getattr(obj, "StretchTensor", []) or [])
     options["bend_tensor"] = list(getattr(obj, "BendTensor", []) or [])
-    if face is None:
-        return model.solve_sheet_from_curves(edges, **options)
-    return model.solve_sheet_on_face(face, edges, **options)
+    from varsurf import progress
+
+    watch = progress.for_solve(obj.Label)
+    options["keep_going"] = watch
+    try:
+        if face is None:
+            return model.solve_sheet_from_curves(edges, **options)
+        return model.solve_sheet_on_face(face, edges, **options)
+    finally:
+        watch.stop()
 
 
 def curve_keys(obj):

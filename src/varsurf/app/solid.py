@@ -85,7 +85,13 @@ def _solve_together(obj, inputs):
         return inputs
     sheets = [joint.JointSheet(s.Label, sheet_feature.outcome_of(s), sheet_feature.curve_keys(s))
               for s in obj.Sheets]
-    result = joint.solve_joint(sheets, variational, hinges)
+    from varsurf import progress
+
+    watch = progress.for_solve(obj.Label)
+    try:
+        result = joint.solve_joint(sheets, variational, hinges, keep_going=watch)
+    finally:
+        watch.stop()
     obj.HingeAngles = [a for lo, hi, _err in result.hinge_angles for a in (lo, hi)]
     obj.HingeErrors = [err for _lo, _hi, err in result.hinge_angles]
     obj.JointSolve = result.summary

@@ -17,4 +17,9 @@ struct SolveFailure : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// The caller's progress callback asked to stop (SolveOptions::keep_going returned false).
+struct Cancelled : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
 }  // namespace varsurf

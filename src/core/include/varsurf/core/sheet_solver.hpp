@@ -9,6 +9,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -61,6 +62,10 @@ enum class SolveMode {
 
 const char* to_string(SolveMode mode);
 
+struct SolveOptions;
+// Throws Cancelled when options.keep_going says stop.
+void check_keep_going(const SolveOptions& options);
+
 struct SolveOptions {
   SolveMode mode = SolveMode::automatic;
   // Singular values of a constraint cluster below rank_tolerance * largest are treated as zero.
@@ -95,6 +100,9 @@ struct SolveOptions {
   // Penalty mode: at most this many refinement steps (beyond, the space is too coarse for the
   // constraints and a refining caller adds detail).
   int penalty_steps = 200;
+  // Called between the steps of iterative solves (penalty refinement, CG, nonlinear and hinge
+  // iterations); returning false stops the solve with Cancelled. Empty: never asked.
+  std::function<bool()> keep_going;
   // Penalty mode: factor W&W's stacked least-squares system (mu B; S), S^T S the energy, by
   // sparse QR (SuiteSparseQR) instead of its normal equations by Cholesky: B's condition number is
   // not squared, at the price of a slower factorization.
