@@ -184,6 +184,7 @@ def run(result):
     result["constraint_residuals"] = list(sheet.ConstraintResiduals)
     result["sheet_valid_with_constraint"] = sheet.isValid()
     constraint = sheet.Constraints[0] if sheet.Constraints else None
+    result["constraints_before_commands"] = len(sheet.Constraints)
     result["constraint_in_tree"] = constraint is not None and constraint in sheet.ViewObject.Proxy.claimChildren()
     result["constraint_icon"] = constraint.ViewObject.Proxy.getIcon() if constraint is not None else ""
 
@@ -243,6 +244,12 @@ def run(result):
     press_task_button(QtGui.QDialogButtonBox.Cancel)
     result["pin_panel_restored"] = list(pin.Origin) == origin_before and sheet.isValid()
     result["pin_panel_image_stats"] = image_stats(snapshot("pin_panel.png"))
+    Gui.ActiveDocument.setEdit(pin.Name, 0)
+    Gui.updateGui()
+    widgets = task_widgets("VarSurfConstraint")
+    widgets["weightSpin"].setValue(2.0)
+    press_task_button(QtGui.QDialogButtonBox.Ok)
+    result["pin_panel_ok"] = [pin.Weight, list(pin.Origin) == origin_before, sheet.isValid(), doc.UndoNames[:1]]
 
     # 4c. color maps through the command (macro lines), and the L-curve plot
     Gui.Selection.clearSelection()
@@ -351,6 +358,13 @@ def run(result):
     path = os.path.join(OUT, "smoke.FCStd")
     doc.saveAs(path)
     result["saved"] = os.path.isfile(path)
+    cdoc = App.newDocument("Commands")
+    csurface = scenes.add_face(cdoc, scenes.flat_face())
+    crail = scenes.add_line_sketch(cdoc, "Rail", 5.0, (20.0, 15.0), (40.0, 20.0))
+    cdoc.recompute()
+    csheet = varsurf.make_sheet((csurface, "Face1"), [(crail, "Edge1")])
+    cdoc.recompute()
+    every_constraint_command(result, cdoc, csheet, csurface, crail)
 
     # 6. the Solid command on two selected Sheets (the pillow example's, built without it)
     sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(varsurf.__file__)))), "examples"))
@@ -409,6 +423,16 @@ def run(result):
     Gui.updateGui()
     widgets = task_widgets("VarSurfHinge")
     result["hinge_panel_reached"] = widgets["reachedValue"].text()
+    widgets["angleSpin"].setValue(90.0)
+    widgets["updateButton"].click()
+    Gui.updateGui()
+    result["hinge_preview_angle"] = float(hinge.Angle.Value if hasattr(hinge.Angle, "Value") else hinge.Angle)
+    press_task_button(QtGui.QDialogButtonBox.Cancel)
+    result["hinge_after_cancel"] = [float(hinge.Angle.Value if hasattr(hinge.Angle, "Value") else hinge.Angle),
+                                    hsolid.isValid()]
+    Gui.ActiveDocument.setEdit(hinge.Name, 0)
+    Gui.updateGui()
+    widgets = task_widgets("VarSurfHinge")
     widgets["angleSpin"].setValue(150.0)
     press_task_button(QtGui.QDialogButtonBox.Ok)
     # the pair's side curves open at 180 degrees: 150 contradicts them, and the Solid says so
@@ -418,6 +442,43 @@ def run(result):
     hdoc.recompute()
     result["hinge_after_undo"] = [float(hinge.Angle.Value if hasattr(hinge.Angle, "Value") else hinge.Angle),
                                   hsolid.isValid()]
+
+
+def every_constraint_command(result, doc, sheet, surface, rail):
+    """Each constraint command on a selection prepared for its kind: active, creates one
+    constraint of that kind in one undoable step (undone again)."""
+    import varsurf.gui.commands as commands
+    from varsurf import constraints
+
+    vertex = doc.addObject("Part::Vertex", "PickedPoint")
+    face = sheet.Shape.Faces[0]
+    u0, u1, v0, v1 = face.ParameterRange
+    p = face.valueAt(0.5 * (u0 + u1), 0.3 * (v0 + v1))
+    vertex.X, vertex.Y, vertex.Z = p.x, p.y, p.z
+    doc.recompute()
+    outcome = {}
+    for name, kind, _menu, _tip in commands.CONSTRAINT_COMMANDS:
+        Gui.Selection.clearSelection()
+        Gui.Selection.addSelection(doc.Name, sheet.Name)
+        if kind == "Point":
+            Gui.Selection.addSelection(doc.Name, vertex.Name, "Vertex1")
+        if kind in constraints.CURVE_KINDS or kind in ("G0", "CurveAttractor"):
+            Gui.Selection.addSelection(doc.Name, rail.Name, "Edge1")
+        if kind in ("G1", "SurfaceAttractor"):
+            Gui.Selection.addSelection(doc.Name, surface.Name, "Face1")
+        active = bool(Gui.Command.get(name).isActive())
+        began = time.perf_counter()
+        before = list(sheet.Constraints)
+        Gui.runCommand(name)
+        Gui.updateGui()
+        added = [c for c in sheet.Constraints if c not in before]
+        outcome[kind] = [active, [c.Kind for c in added], list(doc.UndoNames[:1])]
+        if added:
+            doc.undo()
+            doc.recompute()
+        result.setdefault("constraint_command_seconds", {})[kind] = time.perf_counter() - began
+    result["every_constraint_command"] = outcome
+    result["constraints_after_undos"] = len(sheet.Constraints)
 
 
 def drag_space_curve(result):

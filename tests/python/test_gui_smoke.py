@@ -159,7 +159,9 @@ def test_constraint_and_hinge_panels(smoke):
     assert smoke["pin_panel_residual"].endswith("mm"), smoke["pin_panel_residual"]
     assert abs(smoke["pin_panel_preview"][0] - 3.0) < 1e-4 and smoke["pin_panel_preview"][1]  # 4 decimals shown
     assert smoke["pin_panel_restored"]
+    assert smoke["pin_panel_ok"] == [2.0, True, True, ["Edit VarSurf constraint"]]  # OK: weight only
     assert "…" in smoke["hinge_panel_reached"] and "180" in smoke["hinge_panel_reached"]
+    assert smoke["hinge_preview_angle"] == 90.0 and smoke["hinge_after_cancel"] == [180.0, True]
     angle, valid, status, undo = smoke["hinge_panel_ok"]
     assert angle == 150.0 and undo == ["Edit VarSurf hinge"]
     assert not valid and "with hinges" in status, status  # contradicts the pair's side curves
@@ -179,3 +181,14 @@ def test_dragging_a_space_curve_handle_moves_the_solid(smoke):
 
 def test_progress_indicator_shows_during_a_solve(smoke):
     assert smoke["progress_shown"] > 0 and smoke["sheet_valid_with_progress"]
+
+
+def test_every_constraint_command_on_a_prepared_selection(smoke):
+    from varsurf import constraints
+
+    outcome = smoke["every_constraint_command"]
+    assert sorted(outcome) == sorted(constraints.KINDS)
+    for kind, (active, added, undo) in outcome.items():
+        assert active, kind
+        assert added == [kind], (kind, added)
+        assert undo == ["Add VarSurf constraint"] or undo and "constraint" in undo[0].lower(), (kind, undo)
