@@ -478,6 +478,9 @@ def every_constraint_command(result, doc, sheet, surface, rail):
             doc.recompute()
         result.setdefault("constraint_command_seconds", {})[kind] = time.perf_counter() - began
     result["every_constraint_command"] = outcome
+    result["constraint_icons"] = {name: Gui.Command.get(name).getInfo().get("pixmap", "")
+                                  for name, *_rest in commands.CONSTRAINT_COMMANDS}
+    Gui.getMainWindow().grab().save(os.path.join(OUT, "toolbars.png"))
     result["constraints_after_undos"] = len(sheet.Constraints)
 
 

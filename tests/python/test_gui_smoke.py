@@ -87,7 +87,7 @@ def test_constraint_commands_work_in_the_gui(smoke):
     assert smoke["sheet_valid_with_constraint"]
     assert smoke["constraint_residuals"][0] < 1e-6  # degrees
     assert smoke["constraint_in_tree"]
-    assert smoke["constraint_icon"].endswith("VarSurf_Constraint.svg")
+    assert smoke["constraint_icon"].endswith("VarSurf_Normal.svg")  # the kind's own icon
     # The Solid command joins two selected Sheets; the Solid shows them as its children.
     assert smoke["solid_active"]
     assert smoke["solids"] == 1
@@ -188,6 +188,9 @@ def test_every_constraint_command_on_a_prepared_selection(smoke):
 
     outcome = smoke["every_constraint_command"]
     assert sorted(outcome) == sorted(constraints.KINDS)
+    icons = smoke["constraint_icons"]
+    assert len(set(icons.values())) == len(constraints.KINDS), icons  # one icon per kind
+    assert all(Path(p).is_file() for p in icons.values()), icons
     for kind, (active, added, undo) in outcome.items():
         assert active, kind
         assert added == [kind], (kind, added)

@@ -117,7 +117,7 @@ class CommandConstraint:
 
     def GetResources(self):
         return {
-            "Pixmap": resources.icon("VarSurf_Constraint.svg"),
+            "Pixmap": resources.icon(f"VarSurf_{self.kind}.svg"),
             "MenuText": self.menu_text,
             "ToolTip": self.tool_tip,
         }

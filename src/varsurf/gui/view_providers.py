@@ -161,6 +161,14 @@ class ViewProviderConstraint(_EditedInPanel, _ViewProvider):
             vobj.addDisplayMode(self.handles.root, self.MODE)
         self.handles.rebuild(vobj.Object)
 
+    def getIcon(self):
+        """The kind's own icon (the generic one for a kind without)."""
+        import os
+
+        kind = str(getattr(getattr(self, "Object", None), "Kind", ""))
+        path = resources.icon(f"VarSurf_{kind}.svg")
+        return path if kind and os.path.isfile(path) else resources.icon(self.ICON)
+
     def getDisplayModes(self, vobj):
         return [self.MODE]
 
