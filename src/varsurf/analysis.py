@@ -1,6 +1,7 @@
 """Fields to judge a solved sheet by, sampled on a grid over its face: deviation from a reference
 (the base or the rest shape), mean and Gaussian curvature (fairness), and zebra stripes (the
-reflection of stripes parallel to a direction: kinks and curvature jumps show as broken stripes).
+reflection of stripes parallel to a direction: kinks and curvature jumps show as broken stripes);
+and along each of its curves, the distance from the curve to the sheet (CurveDeviation).
 
 Plain geometry on Part faces (OCCT evaluates the surface and its curvature); the GUI colors a mesh
 with it (varsurf.gui.analysis_overlay). No GUI import.
@@ -12,7 +13,7 @@ import math
 from dataclasses import dataclass, field
 from typing import List, Optional, Tuple
 
-MODES = ("None", "Deviation", "MeanCurvature", "GaussianCurvature", "Zebra")
+MODES = ("None", "Deviation", "CurveDeviation", "MeanCurvature", "GaussianCurvature", "Zebra")
 #: Grid cells per direction.
 GRID = 48
 #: Zebra: stripes over the half turn of the normal.
@@ -50,8 +51,9 @@ def analyse(shape, mode: str, reference=None, direction=(0.0, 0.0, 1.0), n: int 
     GaussianCurvature: 1/mm and 1/mm^2. Zebra: in [0, 1], light to dark as the normal's angle
     to `direction` turns through STRIPES stripes over a half turn.
     """
-    if mode not in MODES or mode == "None":
-        raise ValueError(f"analysis mode must be one of {', '.join(MODES[1:])} (got {mode!r})")
+    if mode not in MODES or mode in ("None", "CurveDeviation"):
+        raise ValueError(f"a grid analysis is one of {', '.join(m for m in MODES if m not in ('None', 'CurveDeviation'))}"
+                         f" (got {mode!r})")
     if not 1 <= n <= 400:
         raise ValueError(f"analysis grid must have 1 to 400 cells per direction (got {n})")
     face = _single_face(shape)
@@ -82,6 +84,34 @@ def analyse(shape, mode: str, reference=None, direction=(0.0, 0.0, 1.0), n: int 
             grid.triangles.append((a, b, b + 1))
             grid.triangles.append((a, b + 1, a + 1))
     return grid
+
+
+#: Points per curve at which CurveDeviation is measured.
+CURVE_SAMPLES = 64
+
+
+@dataclass
+class CurveDeviation:
+    """One curve's sample points and their distances (mm) to the sheet."""
+
+    points: List[Tuple[float, float, float]]
+    distances: List[float]
+
+
+def curve_deviations(shape, edges, samples: int = CURVE_SAMPLES) -> List[CurveDeviation]:
+    """Distance from points along each edge to the sheet's surface (by projection onto it)."""
+    if samples < 2:
+        raise ValueError("a curve needs at least 2 samples")
+    face = _single_face(shape)
+    out = []
+    for edge in edges:
+        points, distances = [], []
+        for p in edge.discretize(samples):
+            u, v = face.Surface.parameter(p)
+            distances.append((face.Surface.value(u, v) - p).Length)
+            points.append((p.x, p.y, p.z))
+        out.append(CurveDeviation(points, distances))
+    return out
 
 
 def _value(mode, surface, ref, u, v, p, normal, d):

@@ -257,7 +257,7 @@ def run(result):
     result["color_map_active"] = bool(Gui.Command.get("VarSurf_ColorMap").isActive())
     plain = snapshot("map_none.png")
     maps = {}
-    for expected in ("Deviation", "MeanCurvature", "GaussianCurvature", "Zebra"):
+    for expected in ("Deviation", "CurveDeviation", "MeanCurvature", "GaussianCurvature", "Zebra"):
         Gui.Selection.clearSelection()
         Gui.Selection.addSelection(doc.Name, sheet.Name)
         Gui.runCommand("VarSurf_ColorMap")
@@ -267,6 +267,7 @@ def run(result):
             "mode": sheet.ViewObject.Analysis,
             "range": sheet.ViewObject.AnalysisRange,
             "cells": len(overlay.grid.triangles) if overlay.grid is not None else 0,
+            "curves": len(overlay.curves) if overlay.curves is not None else 0,
             "change": image_difference(plain, picture),
         }
     result["color_maps"] = maps

@@ -65,3 +65,15 @@ def test_l_curve_plot_marks_the_corner(doc, native, tmp_path):
     reds = sum(1 for y in range(0, 450, 2) for x in range(0, 600, 2)
                if (lambda c: c.red() > 180 and c.green() < 80 and c.blue() < 80)(QtGui.QColor(image.pixel(x, y))))
     assert reds > 5
+
+
+def test_curve_deviation_is_the_distance_to_the_sheet(doc, native):
+    sheet = railed_sheet(doc)  # boundary kept at z = 0, so far from the rail the sheet is low
+    rail = sheet.Curves[0][0].Shape.Edges[0]
+    above = Part.makeLine((10.0, 70.0, 1.0), (90.0, 70.0, 1.0))  # 1 mm above the flat base
+    flat = Part.makePlane(100.0, 80.0)
+    met, lifted = analysis.curve_deviations(sheet.Shape, [rail]), analysis.curve_deviations(flat, [above], 9)
+    assert max(met[0].distances) < float(sheet.Tolerance)  # the sheet passes through its rail
+    assert len(lifted[0].points) == 9 and all(abs(d - 1.0) < 1e-9 for d in lifted[0].distances)
+    with pytest.raises(ValueError, match="grid analysis"):
+        analysis.analyse(sheet.Shape, "CurveDeviation")

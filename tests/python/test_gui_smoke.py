@@ -125,10 +125,14 @@ def test_dragging_a_pin_solves_live_and_undoes_in_one_step(smoke):
 def test_color_maps_and_the_l_curve(smoke):
     assert smoke["color_map_active"]
     maps = smoke["color_maps"]
-    assert [maps[m]["mode"] for m in maps] == ["Deviation", "MeanCurvature", "GaussianCurvature", "Zebra"]
+    assert [maps[m]["mode"] for m in maps] == ["Deviation", "CurveDeviation", "MeanCurvature",
+                                               "GaussianCurvature", "Zebra"]
+    assert maps["CurveDeviation"]["curves"] == 2 and maps["CurveDeviation"]["range"].startswith("0 …")
     for mode, shown in maps.items():
-        assert shown["cells"] == 2 * 48 * 48, mode
-        assert shown["change"] > 0.02, (mode, shown["change"])  # the sheet is colored
+        if mode != "CurveDeviation":
+            assert shown["cells"] == 2 * 48 * 48, mode
+        # the sheet is colored (CurveDeviation: only its two curves are)
+        assert shown["change"] > (0.001 if mode == "CurveDeviation" else 0.02), (mode, shown["change"])
         assert "…" in shown["range"], (mode, shown["range"])
     assert maps["Deviation"]["range"].endswith("mm")
     assert smoke["overlay_cleared"]

@@ -26,6 +26,17 @@ def add_view_properties(vobj):
         vobj.setEditorMode(RANGE_PROPERTY, 1)
 
 
+def _sheet_edges(obj):
+    import Part
+
+    edges = []
+    for link, subs in getattr(obj, "Curves", None) or []:
+        for sub in subs:
+            if sub:
+                edges.append(Part.getShape(link, sub, needSubElement=True))
+    return edges
+
+
 class AnalysisOverlay:
     """A switchable Coin mesh under the Sheet's view provider root."""
 
@@ -33,14 +44,19 @@ class AnalysisOverlay:
         self.root = coin.SoSeparator()
         vobj.RootNode.addChild(self.root)
         self.grid = None
+        self.curves = None
 
     def update(self, vobj):
         self.root.removeAllChildren()
         self.grid = None
+        self.curves = None
         mode = str(getattr(vobj, PROPERTY, "None"))
         obj = vobj.Object
         if mode == "None" or obj.Shape.isNull():
             setattr(vobj, RANGE_PROPERTY, "")
+            return
+        if mode == "CurveDeviation":
+            self._curves(vobj, obj)
             return
         try:
             grid = analysis.analyse(obj.Shape, mode, reference=analysis.reference_of(obj))
@@ -83,3 +99,36 @@ class AnalysisOverlay:
         faces.normalIndex.setValues(0, len(index), index)
         self.root.addChild(faces)
         self.grid = grid
+
+    def _curves(self, vobj, obj):
+        """Each curve of the sheet, thick, colored by its distance to the sheet (0 green)."""
+        try:
+            found = analysis.curve_deviations(obj.Shape, _sheet_edges(obj))
+        except Exception as error:
+            setattr(vobj, RANGE_PROPERTY, f"unavailable: {error}")
+            return
+        top = max((max(c.distances) for c in found if c.distances), default=0.0)
+        setattr(vobj, RANGE_PROPERTY, f"0 … {top:.3g} mm")
+        style = coin.SoDrawStyle()
+        style.lineWidth = 6.0
+        self.root.addChild(style)
+        light = coin.SoLightModel()
+        light.model = coin.SoLightModel.BASE_COLOR
+        self.root.addChild(light)
+        binding = coin.SoMaterialBinding()
+        binding.value = coin.SoMaterialBinding.PER_VERTEX
+        self.root.addChild(binding)
+        for curve in found:
+            sep = coin.SoSeparator()
+            material = coin.SoMaterial()
+            colors = [analysis.ramp(d, -top, top) for d in curve.distances]
+            material.diffuseColor.setValues(0, len(colors), colors)
+            sep.addChild(material)
+            coords = coin.SoCoordinate3()
+            coords.point.setValues(0, len(curve.points), curve.points)
+            sep.addChild(coords)
+            line = coin.SoLineSet()
+            line.numVertices.setValue(len(curve.points))
+            sep.addChild(line)
+            self.root.addChild(sep)
+        self.curves = found
