@@ -29,6 +29,7 @@ class AssemblyOutcome:
     faces: int = 0
     free_edges: int = 0
     seam_gaps: List[float] = field(default_factory=list)  # per join curve: largest sheet-to-curve distance
+    seam_curves: List[str] = field(default_factory=list)  # the curves of seam_gaps, in order
     # per join curve shared by two faces: the smallest and largest angle between the faces across
     # it (degrees; 180 is a tangent-continuous seam), sampled along the curve
     seam_angles: List[tuple] = field(default_factory=list)
@@ -111,6 +112,7 @@ def build_solid(sheets: Sequence, tolerance: float) -> AssemblyOutcome:
         faces=int(result.faces),
         free_edges=int(result.free_edges),
         seam_gaps=list(gaps.values()),
+        seam_curves=[str(key) for key in gaps],
     )
 
 

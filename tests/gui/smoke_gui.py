@@ -390,6 +390,19 @@ def run(result):
         result["solid_children"] = [o.Name for o in solid.ViewObject.Proxy.claimChildren()]
         result["sheets_hidden"] = not pdoc.getObject("Top").ViewObject.Visibility
     result["solid_image_stats"] = image_stats(snapshot("solid.png"))
+    if solids:  # the Solid's panel: its joins listed; a tolerance edited, then cancelled
+        Gui.ActiveDocument.setEdit(solid.Name, 0)
+        Gui.updateGui()
+        widgets = task_widgets("VarSurfSolid")
+        result["solid_panel_seams"] = [widgets["seamTable"].item(r, 0).text()
+                                       for r in range(widgets["seamTable"].rowCount())]
+        tolerance = float(solid.Tolerance)
+        widgets["toleranceSpin"].setValue(tolerance * 2)
+        widgets["updateButton"].click()
+        Gui.updateGui()
+        result["solid_panel_preview"] = float(solid.Tolerance) / tolerance
+        press_task_button(QtGui.QDialogButtonBox.Cancel)
+        result["solid_panel_restored"] = float(solid.Tolerance) == tolerance and solid.isValid()
 
     # 7. the Hinge and SpaceCurve commands on the hinge-pair example (built without its hinge)
     import hinge_pair

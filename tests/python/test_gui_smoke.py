@@ -199,3 +199,8 @@ def test_every_constraint_command_on_a_prepared_selection(smoke):
         assert active, kind
         assert added == [kind], (kind, added)
         assert undo == ["Add VarSurf constraint"] or undo and "constraint" in undo[0].lower(), (kind, undo)
+
+
+def test_solid_panel_lists_its_joins(smoke):
+    assert smoke["solid_panel_seams"] == ["Rim:Edge1"], smoke["solid_panel_seams"]  # the pillow's rim
+    assert abs(smoke["solid_panel_preview"] - 2.0) < 1e-6 and smoke["solid_panel_restored"]

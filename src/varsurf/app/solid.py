@@ -27,6 +27,7 @@ _PROPERTIES = [
     ("Closed", "App::PropertyBool", "Result", "True if the sheets close into a solid", True),
     ("MaxEdgeTolerance", "App::PropertyFloat", "Result", "Worst edge/vertex tolerance after sewing (mm)", True),
     ("SeamGaps", "App::PropertyFloatList", "Result", "Per join curve: the largest distance from a sheet to it (mm)", True),
+    ("SeamCurves", "App::PropertyStringList", "Result", "The curves the sheets are joined along (or bounded by), in the order of SeamGaps", True),
     ("SeamAngles", "App::PropertyFloatList", "Result", "Per shared edge: the smallest and largest angle between the faces across it (degrees, pairs; 180 is tangent-continuous)", True),
     ("Hinges", "App::PropertyLinkList", "Solid", "Hinges: the angle between two of the Sheets across a curve they share (solved with the sheets as one system)", False),
     ("HingeAngles", "App::PropertyFloatList", "Result", "Per hinge: the smallest and largest angle reached along its curve (degrees, pairs)", True),
@@ -137,6 +138,7 @@ class SolidFeature(FeatureProxy):
         obj.Closed = outcome.closed
         obj.MaxEdgeTolerance = outcome.max_tolerance
         obj.SeamGaps = outcome.seam_gaps
+        obj.SeamCurves = outcome.seam_curves
         obj.SeamAngles = [v for pair in outcome.seam_angles for v in pair]
         for name, err in zip([h.Label for h in obj.Hinges if h.Enabled], obj.HingeErrors):
             if err > HINGE_ANGLE_TOLERANCE:

@@ -184,12 +184,14 @@ class ViewProviderConstraint(_EditedInPanel, _ViewProvider):
             handles.rebuild(obj)
 
 
-class ViewProviderSolid(_ViewProvider):
+class ViewProviderSolid(_EditedInPanel, _ViewProvider):
     """Tree icon of a Solid, with its Sheets as children; hides them, as Part features hide the
     shapes they consume."""
 
     TYPE = "VarSurf::ViewProviderSolid"
     ICON = "VarSurf_Solid.svg"
+    PANEL = ("varsurf.gui.task_solid", "TaskPanelSolid")
+    EDIT_TEXT = QT_TRANSLATE_NOOP("VarSurf", "Edit solid")
 
     def claimChildren(self):
         obj = getattr(self, "Object", None)
