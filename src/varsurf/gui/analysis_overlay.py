@@ -62,7 +62,8 @@ class AnalysisOverlay:
             grid = analysis.analyse(obj.Shape, mode, reference=analysis.reference_of(obj))
         except Exception as error:
             setattr(vobj, RANGE_PROPERTY, f"unavailable: {error}")
-            App.Console.PrintWarning(f"VarSurf: {obj.Label}: no {mode} map ({error})\n")
+            App.Console.PrintWarning(
+                App.Qt.translate("VarSurf", "VarSurf: {}: no {} map ({})").format(obj.Label, mode, error) + "\n")
             return
         lo, hi = analysis.color_range(mode, grid)
         unit = {"Deviation": "mm", "MeanCurvature": "1/mm", "GaussianCurvature": "1/mm²"}.get(mode, "")

@@ -256,7 +256,8 @@ class CommandLCurve:
         path = os.path.join(tempfile.gettempdir(), f"varsurf-lcurve-{sheet.Document.Name}-{sheet.Name}.png")
         Gui.doCommand("import varsurf.analysis")
         Gui.doCommand(f"varsurf.analysis.plot_lcurve({_obj_expr(sheet)}, {path!r})")
-        App.Console.PrintMessage(f"VarSurf: L-curve of {sheet.Label} written to {path}\n")
+        App.Console.PrintMessage(
+            App.Qt.translate("VarSurf_LCurve", "VarSurf: L-curve of {} written to {}").format(sheet.Label, path) + "\n")
         if _dialogs_allowed():
             from PySide import QtGui
 

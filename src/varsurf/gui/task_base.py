@@ -71,5 +71,10 @@ class PropertyTaskPanel:
         return True
 
 
+def translate(context, text):
+    """User strings go through FreeCAD's translation (Qt's tr) like FreeCAD's own."""
+    return App.Qt.translate(context, text)
+
+
 def message(text):
     App.Console.PrintError(f"VarSurf: {text}\n")

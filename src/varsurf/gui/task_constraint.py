@@ -10,7 +10,7 @@ from PySide import QtGui
 
 from varsurf import constraints
 from varsurf.gui.handles import sheet_of
-from varsurf.gui.task_base import PropertyTaskPanel, message
+from varsurf.gui.task_base import PropertyTaskPanel, message, translate
 
 _LINKS = {"location": ("Location", ("Vertex",)), "curve": ("Curve", ("Edge",)),
           "reference": ("Reference", ("Face", "Edge"))}
@@ -75,7 +75,8 @@ class TaskPanelConstraint(PropertyTaskPanel):
                 if name.startswith(kinds):
                     self.set_link(prefix, (sel.Object, name))
                     return True
-        message(f"{self.obj.Label}: select a {' or '.join(k.lower() for k in kinds)} in the 3D view first")
+        message(translate("VarSurf", "{}: select a {} in the 3D view first").format(
+            self.obj.Label, " or ".join(k.lower() for k in kinds)))
         return False
 
     # -- values --
@@ -141,7 +142,7 @@ class TaskPanelConstraint(PropertyTaskPanel):
         text = "—"
         if sheet is not None:
             if not sheet.isValid():
-                text = f"{sheet.Label} is in error: {sheet.Status}"
+                text = translate("VarSurf", "{} is in error: {}").format(sheet.Label, sheet.Status)
             elif self.obj.Label in list(sheet.ConstraintNames):
                 k = list(sheet.ConstraintNames).index(self.obj.Label)
                 unit = sheet.ConstraintUnits[k]

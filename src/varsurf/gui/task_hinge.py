@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from PySide import QtGui
 
-from varsurf.gui.task_base import PropertyTaskPanel
+from varsurf.gui.task_base import PropertyTaskPanel, translate
 
 
 def solid_of(hinge):
@@ -45,15 +45,16 @@ class TaskPanelHinge(PropertyTaskPanel):
     def show_results(self):
         solid = solid_of(self.obj)
         if solid is None:
-            self.reached.setText("not in a Solid")
+            self.reached.setText(translate("VarSurf", "not in a Solid"))
             return
         if not solid.isValid():
-            self.reached.setText(f"{solid.Label} is in error: {solid.Status}")
+            self.reached.setText(translate("VarSurf", "{} is in error: {}").format(solid.Label, solid.Status))
             return
         enabled = [h for h in solid.Hinges if h.Enabled]
         if self.obj not in enabled:
-            self.reached.setText("disabled")
+            self.reached.setText(translate("VarSurf", "disabled"))
             return
         k = enabled.index(self.obj)
         lo, hi = solid.HingeAngles[2 * k], solid.HingeAngles[2 * k + 1]
-        self.reached.setText(f"{lo:.3f}° … {hi:.3f}° (off by up to {solid.HingeErrors[k]:.3g}°)")
+        self.reached.setText(translate("VarSurf", "{:.3f}° … {:.3f}° (off by up to {:.3g}°)").format(
+            lo, hi, solid.HingeErrors[k]))
