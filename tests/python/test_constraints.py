@@ -229,3 +229,16 @@ def test_deleting_the_vertex_of_a_point_is_an_error_not_a_pull_to_the_origin(she
     assert not c.isValid() and "was it deleted?" in c.getStatusString(), c.getStatusString()
     assert "was it deleted?" in console_errors()
     assert sheet.Shape.BoundBox.ZMax > 11.0  # the last good sheet is kept, not pulled to (0, 0, 0)
+
+
+def test_curves_pulled_beyond_the_tolerance_are_a_warning(sheet, console_errors):
+    """An operator pulling the sheet off its curve farther than the tolerance somewhere (the solve
+    fits curves in RMS): the Status and the report view say which curve and how far."""
+    doc = sheet.Document
+    sheet.MaxSpans = sheet.MinSpans  # no refinement to hide behind
+    varsurf.make_constraint(sheet, "PointAttractor", origin=(30.0, 20.0, -30.0), region=(0.0, 1.0, 0.0, 1.0))
+    doc.recompute()
+    assert sheet.isValid()
+    assert sheet.Status.startswith("Warning:") and "beyond the tolerance: Rail:Edge1" in sheet.Status, sheet.Status
+    assert max(sheet.MaxDeviations) > float(sheet.Tolerance)
+    assert "farther than the tolerance" in console_errors()

@@ -266,3 +266,10 @@ class SheetFeature(FeatureProxy):
             f"OK: {outcome.pole_count_u} x {outcome.pole_count_v} poles, {n} curve"
             f"{'' if n == 1 else 's'}, max deviation {outcome.max_deviation:.3g} mm"
         )
+        off = [f"{name} ({dev:.3g} mm)" for name, dev in zip(outcome.curve_names, outcome.max_deviations)
+               if dev > float(obj.Tolerance)]
+        if off:  # met in the RMS the solve fits to, but farther somewhere: say so, in the result too
+            obj.Status = obj.Status.replace("OK:", "Warning:", 1) + f"; beyond the tolerance: {', '.join(off)}"
+            FreeCAD.Console.PrintWarning(
+                f"VarSurf: {obj.Label}: curves farther than the tolerance {float(obj.Tolerance):.3g} mm somewhere: "
+                f"{', '.join(off)} (operators pulling the sheet off its curves, or too few spans: see MaxSpans)\n")
