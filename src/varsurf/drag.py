@@ -148,35 +148,35 @@ HANDLE_TRANSACTION = "Drag VarSurf handle"
 FOLLOW_SPACING = 1.0
 
 
-class HandleDrag:
-    """One drag of a variational SpaceCurve's handle. Each move re-solves the curve; the solids
-    joined to it follow as often as their recompute allows (FOLLOW_SPACING), and exactly at the
-    release. ``finish`` is one undoable step."""
+class RecomputeDrag:
+    """A drag that writes a property on every move and lets the document recompute, as often as
+    that takes (FOLLOW_SPACING); the release recomputes exactly and is one undoable step.
+    Subclasses set TRANSACTION and implement _place(target) and _preview() (the cheap update
+    between full recomputes)."""
 
-    def __init__(self, curve, index):
-        from varsurf.app import space_curve as space_curve_feature
+    TRANSACTION = "Drag VarSurf handle"
 
-        if not space_curve_feature.is_space_curve(curve):
-            raise DragError(f"{curve.Label} is not a SpaceCurve")
-        if not 0 <= int(index) < len(curve.Handles):
-            raise DragError(f"{curve.Label} has {len(curve.Handles)} handles, no handle {index}")
-        self.curve, self.index, self.doc = curve, int(index), curve.Document
-        self.start = FreeCAD.Vector(curve.Handles[self.index])
+    def __init__(self, doc, start):
+        self.doc, self.start = doc, FreeCAD.Vector(start)
         self.next_follow = 0.0  # perf_counter time after which the next move recomputes all
         self.moves = 0
         self.live_solves = 0
-        self.doc.openTransaction(HANDLE_TRANSACTION)
+        self.doc.openTransaction(self.TRANSACTION)
 
-    def _place(self, target):
+    def _checked(self, target):
         target = FreeCAD.Vector(target)
         if not all(math.isfinite(c) for c in target):
             raise DragError("the dragged handle is not finite")
-        handles = list(self.curve.Handles)
-        handles[self.index] = target
-        self.curve.Handles = handles
+        return target
+
+    def _place(self, target):
+        raise NotImplementedError
+
+    def _preview(self):
+        pass
 
     def move(self, target):
-        self._place(target)
+        self._place(self._checked(target))
         self.moves += 1
         began = time.perf_counter()
         if began >= self.next_follow:
@@ -185,11 +185,11 @@ class HandleDrag:
             ended = time.perf_counter()
             self.next_follow = ended + FOLLOW_SPACING * (ended - began)
         else:
-            self.curve.recompute()
+            self._preview()
 
     def finish(self, target):
         try:
-            self._place(target)
+            self._place(self._checked(target))
             self.doc.recompute()
         except Exception:
             self.doc.abortTransaction()
@@ -200,3 +200,49 @@ class HandleDrag:
         self._place(self.start)
         self.doc.recompute()
         self.doc.abortTransaction()
+
+
+class HandleDrag(RecomputeDrag):
+    """One drag of a variational SpaceCurve's handle. Each move re-solves the curve; the solids
+    joined to it follow as often as their recompute allows (FOLLOW_SPACING), and exactly at the
+    release. ``finish`` is one undoable step."""
+
+    TRANSACTION = HANDLE_TRANSACTION
+
+    def __init__(self, curve, index):
+        from varsurf.app import space_curve as space_curve_feature
+
+        if not space_curve_feature.is_space_curve(curve):
+            raise DragError(f"{curve.Label} is not a SpaceCurve")
+        if not 0 <= int(index) < len(curve.Handles):
+            raise DragError(f"{curve.Label} has {len(curve.Handles)} handles, no handle {index}")
+        self.curve, self.index = curve, int(index)
+        super().__init__(curve.Document, curve.Handles[self.index])
+
+    def _place(self, target):
+        handles = list(self.curve.Handles)
+        handles[self.index] = target
+        self.curve.Handles = handles
+
+    def _preview(self):
+        self.curve.recompute()
+
+
+ORIGIN_TRANSACTION = "Drag VarSurf origin"
+
+
+class OriginDrag(RecomputeDrag):
+    """One drag of a constraint's or operator's Origin (a plane's or line's point, an attractor's
+    or repeller's centre): its Sheet is solved again as often as that takes, and exactly at the
+    release. Operators change the solve's terms, so there is no kept factorization to reuse."""
+
+    TRANSACTION = ORIGIN_TRANSACTION
+
+    def __init__(self, constraint):
+        if constraint.Kind == "Point" and constraint.Location is not None and not constraint.UseOrigin:
+            raise DragError(f"{constraint.Label} takes its target from its Location: drag its pin")
+        self.constraint = constraint
+        super().__init__(constraint.Document, constraint.Origin)
+
+    def _place(self, target):
+        self.constraint.Origin = target

@@ -492,6 +492,22 @@ def every_constraint_command(result, doc, sheet, surface, rail):
             doc.recompute()
         result.setdefault("constraint_command_seconds", {})[kind] = time.perf_counter() - began
     result["every_constraint_command"] = outcome
+    # an attractor's origin is a pin too: dragged, the sheet follows; one undo step
+    import varsurf
+
+    pull = varsurf.make_constraint(sheet, "PointAttractor", origin=(50.0, 40.0, 20.0),
+                                   region=(0.3, 0.7, 0.3, 0.7), name="Pull")
+    doc.recompute()
+    handles = pull.ViewObject.Proxy.handles
+    top = sheet.Shape.BoundBox.ZMax
+    began = handles.begin_origin_drag() if handles.dragger is not None else False
+    for z in (24.0, 28.0, 32.0):
+        handles.dragger.translation.setValue(*(App.Vector(50.0, 40.0, z) / handles.scale))
+        handles.drag_to(handles.dragger_target())
+        Gui.updateGui()
+    handles.end_drag(handles.dragger_target())
+    result["origin_drag"] = [began, round(pull.Origin.z, 3), sheet.Shape.BoundBox.ZMax - top,
+                             doc.UndoNames[:1], list(handles.errors)]
     result["constraint_icons"] = {name: Gui.Command.get(name).getInfo().get("pixmap", "")
                                   for name, *_rest in commands.CONSTRAINT_COMMANDS}
     Gui.getMainWindow().grab().save(os.path.join(OUT, "toolbars.png"))

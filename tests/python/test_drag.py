@@ -109,3 +109,25 @@ def test_dragging_a_space_curve_handle_moves_the_joined_sheets(doc, native):
         session.move(V(math.nan, 0, 0))
     session.cancel()
     assert V(curve.Handles[1]) == start and abs(solid.Shape.Volume - volume) < 1e-6 * volume
+
+
+def test_dragging_an_attractor_origin_re_solves_its_sheet(sheet):
+    doc = sheet.Document
+    pull = varsurf.make_constraint(sheet, "PointAttractor", origin=(50.0, 40.0, 20.0),
+                                   region=(0.3, 0.7, 0.3, 0.7), weight=1.0, name="Pull")
+    doc.recompute()
+    assert sheet.isValid(), sheet.getStatusString()
+    area = sheet.Shape.Area
+    top = sheet.Shape.BoundBox.ZMax
+    session = drag.OriginDrag(pull)
+    for z in (24.0, 28.0, 32.0):
+        session.move(V(50.0, 40.0, z))
+    assert session.live_solves >= 1
+    session.finish(V(50.0, 40.0, 32.0))
+    assert tuple(pull.Origin) == (50.0, 40.0, 32.0) and sheet.isValid()
+    assert sheet.Shape.BoundBox.ZMax > top + 1.0  # pulled higher
+    assert doc.UndoNames[0] == "Drag VarSurf origin"
+    doc.undo()
+    doc.recompute()
+    assert tuple(pull.Origin) == (50.0, 40.0, 20.0)
+    assert abs(sheet.Shape.Area - area) < 1e-9 * area

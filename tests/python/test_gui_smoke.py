@@ -204,3 +204,9 @@ def test_every_constraint_command_on_a_prepared_selection(smoke):
 def test_solid_panel_lists_its_joins(smoke):
     assert smoke["solid_panel_seams"] == ["Rim:Edge1"], smoke["solid_panel_seams"]  # the pillow's rim
     assert abs(smoke["solid_panel_preview"] - 2.0) < 1e-6 and smoke["solid_panel_restored"]
+
+
+def test_dragging_an_attractor_origin(smoke):
+    began, z, rise, undo, errors = smoke["origin_drag"]
+    assert began and errors == [] and abs(z - 32.0) < 1e-3  # (single-precision dragger field)
+    assert rise > 1.0 and undo == ["Drag VarSurf origin"]

@@ -25,6 +25,9 @@ HANDLE_SIZE = 0.03
 RIBBON_TICKS = 12
 
 _dragging = []  # the ConstraintHandles whose pin is being dragged (at most one)
+#: Kinds whose Origin is drawn as a draggable pin.
+ORIGIN_KINDS = ("PointInPlane", "PointOnLine", "PointAttractor", "PlaneAttractor", "LineAttractor",
+                "Repeller")
 
 
 def sheet_of(constraint):
@@ -197,6 +200,10 @@ class ConstraintHandles:
         if kind == "Point":
             self._pin(drag.point_target(c), size)
             return
+        if kind in ORIGIN_KINDS:  # its origin is a pin too: dragging it re-solves the sheet
+            self.scale = 0.8 * size
+            self.dragger = add_pin(self.root, V(c.Origin), self.scale, self.begin_origin_drag,
+                                   lambda t: self.drag_to(t), lambda t: self.end_drag(t))
         if kind in ("Normal", "TangentU", "TangentV"):
             at, _n = _on_sheet(sheet, c)
             if at is not None:
@@ -260,9 +267,24 @@ class ConstraintHandles:
         _dragging.append(self)
         return True
 
+    def begin_origin_drag(self):
+        try:
+            self.session = drag.OriginDrag(self.constraint)
+        except drag.DragError as error:
+            self._refuse(error)
+            return False
+        _dragging.append(self)
+        return True
+
     def drag_to(self, target):
         """Re-solve for the target and draw the result (the Sheet's Shape waits for the release)."""
         if self.session is None:
+            return None
+        if isinstance(self.session, drag.OriginDrag):
+            try:
+                self.session.move(target)
+            except drag.DragError as error:
+                self._refuse(error)
             return None
         try:
             surface = self.session.move(target, update_shape=self.preview is None)
