@@ -25,6 +25,25 @@ TRANSACTION = "Drag VarSurf point"
 _SAME_TARGET = 1e-9
 
 
+def _ref(obj) -> str:
+    return f"App.getDocument({obj.Document.Name!r}).getObject({obj.Name!r})"
+
+
+def _finish(doc, lines, do_command=None):
+    """Run a drag's closing lines and a recompute inside its open transaction, then commit it
+    (abort on failure)."""
+    from varsurf.api import _exec_line
+
+    run = do_command or _exec_line
+    try:
+        for line in lines + [f"App.getDocument({doc.Name!r}).recompute()"]:
+            run(line)
+    except Exception:
+        doc.abortTransaction()
+        raise
+    doc.commitTransaction()
+
+
 class DragError(ValueError):
     """The constraint cannot be dragged (the message says why)."""
 
@@ -122,15 +141,14 @@ class PointDrag:
         self.seconds += time.perf_counter() - began
         return surface
 
-    def finish(self, target):
-        """Write the target and recompute: one undoable step."""
-        try:
-            set_point_target(self.constraint, target)
-            self.doc.recompute()
-        except Exception:
-            self.doc.abortTransaction()
-            raise
-        self.doc.commitTransaction()
+    def finish(self, target, do_command=None):
+        """Write the target and recompute: one undoable step. do_command (FreeCADGui.doCommand in
+        the GUI) runs the macro lines that do it, so a macro records the drag's outcome."""
+        t = FreeCAD.Vector(target)
+        _finish(self.doc, [
+            "import varsurf.drag",
+            f"varsurf.drag.set_point_target({_ref(self.constraint)}, App.Vector({t.x!r}, {t.y!r}, {t.z!r}))",
+        ], do_command)
         if not self.sheet.isValid():
             raise SheetError(f"{self.sheet.Label}: {self.sheet.Status}")
 
@@ -187,14 +205,13 @@ class RecomputeDrag:
         else:
             self._preview()
 
-    def finish(self, target):
-        try:
-            self._place(self._checked(target))
-            self.doc.recompute()
-        except Exception:
-            self.doc.abortTransaction()
-            raise
-        self.doc.commitTransaction()
+    def finish(self, target, do_command=None):
+        """Place the target and recompute: one undoable step, through macro lines when
+        do_command is given (FreeCADGui.doCommand records them)."""
+        _finish(self.doc, self._lines(self._checked(target)), do_command)
+
+    def _lines(self, target):
+        raise NotImplementedError
 
     def cancel(self):
         self._place(self.start)
@@ -224,6 +241,10 @@ class HandleDrag(RecomputeDrag):
         handles[self.index] = target
         self.curve.Handles = handles
 
+    def _lines(self, t):
+        return ["import varsurf",
+                f"varsurf.move_handle({_ref(self.curve)}, {self.index}, App.Vector({t.x!r}, {t.y!r}, {t.z!r}))"]
+
     def _preview(self):
         self.curve.recompute()
 
@@ -246,3 +267,6 @@ class OriginDrag(RecomputeDrag):
 
     def _place(self, target):
         self.constraint.Origin = target
+
+    def _lines(self, t):
+        return [f"{_ref(self.constraint)}.Origin = App.Vector({t.x!r}, {t.y!r}, {t.z!r})"]

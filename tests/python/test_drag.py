@@ -123,7 +123,16 @@ def test_dragging_an_attractor_origin_re_solves_its_sheet(sheet):
     for z in (24.0, 28.0, 32.0):
         session.move(V(50.0, 40.0, z))
     assert session.live_solves >= 1
-    session.finish(V(50.0, 40.0, 32.0))
+    recorded = []
+
+    def record(line):  # what FreeCADGui.doCommand does: run the line, and a macro keeps it
+        from varsurf.api import _exec_line
+
+        recorded.append(line)
+        _exec_line(line)
+
+    session.finish(V(50.0, 40.0, 32.0), do_command=record)
+    assert recorded[0].endswith(".Origin = App.Vector(50.0, 40.0, 32.0)") and "recompute()" in recorded[-1]
     assert tuple(pull.Origin) == (50.0, 40.0, 32.0) and sheet.isValid()
     assert sheet.Shape.BoundBox.ZMax > top + 1.0  # pulled higher
     assert doc.UndoNames[0] == "Drag VarSurf origin"

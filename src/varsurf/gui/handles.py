@@ -9,6 +9,7 @@ releasing it commits one undoable step.
 from __future__ import annotations
 
 import FreeCAD as App
+import FreeCADGui as Gui
 from pivy import coin
 
 from varsurf import drag
@@ -308,7 +309,7 @@ class ConstraintHandles:
         if session is None:
             return
         try:
-            session.finish(target)
+            session.finish(target, do_command=Gui.doCommand)
         except Exception as error:
             self._refuse(error)
         self.rebuild(self.constraint)
@@ -389,7 +390,7 @@ class CurveHandles:
             _dragging.remove(self)
         if session is not None:
             try:
-                session.finish(target)
+                session.finish(target, do_command=Gui.doCommand)
             except Exception as error:
                 self.errors.append(str(error))
                 App.Console.PrintError(f"VarSurf: {error}\n")
