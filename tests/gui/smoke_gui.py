@@ -324,6 +324,16 @@ def run(result):
     press_task_button(QtGui.QDialogButtonBox.Ok)
     result["panel_ok"] = [sheet.Degree, sheet.DegreeU, sheet.SolveMode, sheet.isValid(), doc.UndoNames[:1]]
 
+    # 4e'. rest shape commands: install, then melt; each one undoable step with macro lines
+    rest = {}
+    for name in ("VarSurf_InstallRest", "VarSurf_Melt"):
+        Gui.Selection.clearSelection()
+        Gui.Selection.addSelection(doc.Name, sheet.Name)
+        active = bool(Gui.Command.get(name).isActive())
+        Gui.runCommand(name)
+        rest[name] = [active, sheet.RestShape, doc.UndoNames[:1], sheet.isValid()]
+    result["rest_commands"] = rest
+
     # 4f. FreeCAD's progress indicator during a solve (shown at once here: no delay)
     from varsurf import progress
 

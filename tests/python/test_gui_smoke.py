@@ -210,3 +210,9 @@ def test_dragging_an_attractor_origin(smoke):
     began, z, rise, undo, errors = smoke["origin_drag"]
     assert began and errors == [] and abs(z - 32.0) < 1e-3  # (single-precision dragger field)
     assert rise > 1.0 and undo == ["Drag VarSurf origin"]
+
+
+def test_rest_shape_commands(smoke):
+    rest = smoke["rest_commands"]
+    assert rest["VarSurf_InstallRest"] == [True, "Installed", ["VarSurf install rest shape"], True]
+    assert rest["VarSurf_Melt"] == [True, "None", ["VarSurf melt"], True]

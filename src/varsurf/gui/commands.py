@@ -270,12 +270,48 @@ class CommandLCurve:
             dialog.show()
 
 
-COMMANDS = ["VarSurf_Sheet"] + [row[0] for row in SELECTION_COMMANDS]
+class CommandRestShape:
+    """Install the selected Sheets' results as their rest shapes, or melt them (api functions)."""
+
+    def __init__(self, function, icon, menu_text, tool_tip):
+        self.function, self.icon, self.menu_text, self.tool_tip = function, icon, menu_text, tool_tip
+
+    def GetResources(self):
+        return {"Pixmap": resources.icon(self.icon), "MenuText": self.menu_text, "ToolTip": self.tool_tip}
+
+    def IsActive(self):
+        return bool(_selected_sheets())
+
+    def Activated(self):
+        sheets = _selected_sheets()
+        doc = sheets[0].Document
+        lines = ["import varsurf"] + [f"varsurf.{self.function}({_obj_expr(s)})" for s in sheets]
+        lines.append(f"App.getDocument({doc.Name!r}).recompute()")
+        try:
+            api.run_in_transaction(doc, f"VarSurf {self.function.replace('_', ' ')}", lines, Gui.doCommand)
+        except ValueError as error:
+            show_selection_error(str(error))
+
+
+REST_COMMANDS = [
+    ("VarSurf_InstallRest", "install_rest_shape", "VarSurf_InstallRest.svg",
+     QT_TRANSLATE_NOOP("VarSurf_InstallRest", "Install rest shape"),
+     QT_TRANSLATE_NOOP("VarSurf_InstallRest", "Make the selected sheets' current results their rest shapes: later edits\n"
+                       "keep this shape's detail (the energy acts on the displacement). Select one or more Sheets.")),
+    ("VarSurf_Melt", "melt", "VarSurf_Melt.svg",
+     QT_TRANSLATE_NOOP("VarSurf_Melt", "Melt"),
+     QT_TRANSLATE_NOOP("VarSurf_Melt", "Forget the selected sheets' rest shapes: they become as fair as their constraints\n"
+                       "allow. Select one or more Sheets.")),
+]
+
+COMMANDS = ["VarSurf_Sheet"] + [row[0] for row in SELECTION_COMMANDS] + [row[0] for row in REST_COMMANDS]
 ANALYSIS = ["VarSurf_ColorMap", "VarSurf_LCurve"]
 CONSTRAINTS = [name for name, _kind, _menu, _tip in CONSTRAINT_COMMANDS]
 
 Gui.addCommand("VarSurf_Sheet", CommandSheet())
 Gui.addCommand("VarSurf_ColorMap", CommandColorMap())
+for _name, *_rest in REST_COMMANDS:
+    Gui.addCommand(_name, CommandRestShape(*_rest))
 Gui.addCommand("VarSurf_LCurve", CommandLCurve())
 for _name, *_resources in SELECTION_COMMANDS:
     Gui.addCommand(_name, CommandFromSelection(*_resources))
