@@ -25,6 +25,9 @@ HINGE_FAILURE = 1.0
 #: tolerance shows as noise in the turns: a pair tilted 15 degrees still turned by 7e-5 rad after
 #: 40 iterations.
 HINGE_SETTLED = 1e-4
+#: At most this many hinge iterations (a pair leaning 15 degrees settles in 39; each is one
+#: factorization, and a long one can be cancelled from the progress indicator).
+HINGE_ITERATIONS = 80
 
 
 @dataclass
@@ -142,6 +145,7 @@ def solve_joint(sheets: Sequence[JointSheet], variational: Dict[str, Variational
     model_problem.joins = joins
     model_problem.hinges = native_hinges
     model_problem.hinge_tolerance = HINGE_SETTLED
+    model_problem.hinge_iterations = HINGE_ITERATIONS
     # The first sheet's mode and rank tolerance; the joins as tight as the tightest sheet's curves.
     options = copy.copy(sheets[0].outcome.options)
     options.fit_tolerance = min(float(s.outcome.options.fit_tolerance) for s in sheets)
