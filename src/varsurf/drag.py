@@ -48,6 +48,11 @@ class DragError(ValueError):
     """The constraint cannot be dragged (the message says why)."""
 
 
+class NotQuadratic(DragError):
+    """The sheet has iterated terms (repellers, shape attractors, pressure): no kept
+    factorization; drag its target with a TargetDrag (recomputes) instead."""
+
+
 def point_target(constraint):
     """The constraint's target now: its Location's vertex, or its Origin."""
     if constraint.Location is not None and not constraint.UseOrigin:
@@ -110,7 +115,7 @@ class PointDrag:
         try:
             self.prepared = nat.PreparedSheet(self.problem, outcome.options)
         except nat.InvalidInput as error:
-            raise DragError(f"{sheet.Label} cannot be dragged live: {error}") from error
+            raise NotQuadratic(f"{sheet.Label} cannot be dragged by back-substitution: {error}") from error
         self.space = self.problem.space
         self.last = None  # the last native SolveResult
         self.moves = 0
@@ -270,3 +275,22 @@ class OriginDrag(RecomputeDrag):
 
     def _lines(self, t):
         return [f"{_ref(self.constraint)}.Origin = App.Vector({t.x!r}, {t.y!r}, {t.z!r})"]
+
+
+class TargetDrag(RecomputeDrag):
+    """A Point's target dragged on a sheet whose solve iterates (no factorization to keep): the
+    sheet is recomputed as often as that takes, and exactly at the release."""
+
+    TRANSACTION = TRANSACTION
+
+    def __init__(self, sheet, constraint):
+        _point_index(sheet, constraint)
+        self.sheet, self.constraint = sheet, constraint
+        super().__init__(sheet.Document, point_target(constraint))
+
+    def _place(self, target):
+        set_point_target(self.constraint, target)
+
+    def _lines(self, t):
+        return ["import varsurf.drag",
+                f"varsurf.drag.set_point_target({_ref(self.constraint)}, App.Vector({t.x!r}, {t.y!r}, {t.z!r}))"]

@@ -140,3 +140,21 @@ def test_dragging_an_attractor_origin_re_solves_its_sheet(sheet):
     doc.recompute()
     assert tuple(pull.Origin) == (50.0, 40.0, 20.0)
     assert abs(sheet.Shape.Area - area) < 1e-9 * area
+
+
+def test_a_sheet_with_iterated_terms_drags_by_recomputing(sheet):
+    """A repeller makes the solve iterate: no kept factorization, so the pin's drag recomputes."""
+    doc = sheet.Document
+    varsurf.make_constraint(sheet, "Repeller", origin=(80.0, 60.0, -5.0), region=(0.6, 1.0, 0.6, 1.0),
+                            weight=0.5, name="Away")
+    pin = varsurf.make_constraint(sheet, "Point", uv=(0.4, 0.6), origin=(40.0, 48.0, 9.0), name="Pin")
+    doc.recompute()
+    assert sheet.isValid(), sheet.getStatusString()
+    with pytest.raises(drag.NotQuadratic, match="back-substitution"):
+        drag.PointDrag(sheet, pin)
+    session = drag.TargetDrag(sheet, pin)
+    session.move(V(40.0, 48.0, 12.0))
+    session.finish(V(40.0, 48.0, 15.0))
+    assert tuple(pin.Origin) == (40.0, 48.0, 15.0) and sheet.isValid()
+    assert sheet.Shape.distToShape(Part.Vertex(V(40.0, 48.0, 15.0)))[0] < 1e-3
+    assert doc.UndoNames[0] == "Drag VarSurf point"

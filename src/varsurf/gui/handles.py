@@ -260,11 +260,15 @@ class ConstraintHandles:
         try:
             if sheet is None:
                 raise drag.DragError(f"{self.constraint.Label} is in no Sheet")
-            self.session = drag.PointDrag(sheet, self.constraint)
+            try:
+                self.session = drag.PointDrag(sheet, self.constraint)
+            except drag.NotQuadratic:  # iterated terms: recompute as often as that takes
+                self.session = drag.TargetDrag(sheet, self.constraint)
         except drag.DragError as error:
             self._refuse(error)
             return False
-        self.preview = DragPreview(sheet.ViewObject, self.session.space) if sheet.ViewObject else None
+        self.preview = (DragPreview(sheet.ViewObject, self.session.space)
+                        if sheet.ViewObject and isinstance(self.session, drag.PointDrag) else None)
         _dragging.append(self)
         return True
 
@@ -281,7 +285,7 @@ class ConstraintHandles:
         """Re-solve for the target and draw the result (the Sheet's Shape waits for the release)."""
         if self.session is None:
             return None
-        if isinstance(self.session, drag.OriginDrag):
+        if isinstance(self.session, drag.RecomputeDrag):
             try:
                 self.session.move(target)
             except drag.DragError as error:
