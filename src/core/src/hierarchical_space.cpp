@@ -1,0 +1,204 @@
+#include "varsurf/core/hierarchical_space.hpp"
+
+#include <algorithm>
+#include <string>
+
+#include "varsurf/core/errors.hpp"
+#include "varsurf/core/knot_refinement.hpp"
+#include "varsurf/core/knot_vector.hpp"
+
+namespace varsurf {
+
+namespace {
+
+// For each basis function of (knots, degree): the first and last span (distinct-breakpoint
+// interval) of its support.
+void support_spans(const std::vector<double>& knots, int degree, std::vector<int>& first,
+                   std::vector<int>& last) {
+  const std::vector<double> bp = breakpoints(knots, degree);
+  const auto index = [&](double t) {
+    return static_cast<int>(std::lower_bound(bp.begin(), bp.end(), t) - bp.begin());
+  };
+  const int n = static_cast<int>(knots.size()) - degree - 1;
+  first.resize(static_cast<size_t>(n));
+  last.resize(static_cast<size_t>(n));
+  for (int a = 0; a < n; ++a) {
+    first[static_cast<size_t>(a)] = index(knots[static_cast<size_t>(a)]);
+    last[static_cast<size_t>(a)] = index(knots[static_cast<size_t>(a + degree + 1)]) - 1;
+  }
+}
+
+int spans_of(const std::vector<double>& knots, int degree) {
+  return static_cast<int>(breakpoints(knots, degree).size()) - 1;
+}
+
+}  // namespace
+
+HierarchicalSpace::HierarchicalSpace(SplineSpace base) {
+  base.validate();
+  if (base.weights.size() > 0) throw InvalidInput("a hierarchical space needs a non-rational base");
+  layers_.push_back(make_layer(std::move(base)));
+  std::fill(layers_[0].region.begin(), layers_[0].region.end(), 1);
+  collect_dofs();
+}
+
+HierarchicalSpace::Layer HierarchicalSpace::make_layer(SplineSpace space) const {
+  Layer l;
+  support_spans(space.knots_u, space.degree_u, l.first_u, l.last_u);
+  support_spans(space.knots_v, space.degree_v, l.first_v, l.last_v);
+  const size_t cells = static_cast<size_t>(spans_of(space.knots_u, space.degree_u)) *
+                       static_cast<size_t>(spans_of(space.knots_v, space.degree_v));
+  l.region.assign(cells, 0);
+  l.refined.assign(cells, 0);
+  l.space = std::move(space);
+  return l;
+}
+
+const HierarchicalSpace::Layer& HierarchicalSpace::at(int level) const {
+  if (level < 0 || level >= levels())
+    throw InvalidInput("no level " + std::to_string(level) + " (the space has " +
+                       std::to_string(levels()) + ")");
+  return layers_[static_cast<size_t>(level)];
+}
+
+const SplineSpace& HierarchicalSpace::layer(int level) const {
+  return at(level).space;
+}
+
+int HierarchicalSpace::spans_u(int level) const {
+  return spans_of(at(level).space.knots_u, at(level).space.degree_u);
+}
+
+int HierarchicalSpace::spans_v(int level) const {
+  return spans_of(at(level).space.knots_v, at(level).space.degree_v);
+}
+
+bool HierarchicalSpace::in_region(int level, int su, int sv) const {
+  const Layer& l = at(level);
+  if (su < 0 || sv < 0 || su >= spans_u(level) || sv >= spans_v(level)) return false;
+  return l.region[static_cast<size_t>(su * spans_v(level) + sv)] != 0;
+}
+
+bool HierarchicalSpace::refined(int level, int su, int sv) const {
+  const Layer& l = at(level);
+  if (su < 0 || sv < 0 || su >= spans_u(level) || sv >= spans_v(level)) return false;
+  return l.refined[static_cast<size_t>(su * spans_v(level) + sv)] != 0;
+}
+
+void HierarchicalSpace::add_level() {
+  const SplineSpace& last = layers_.back().space;
+  SplineSpace next = last;
+  next.knots_u = dyadic_knots(last.knots_u, last.degree_u);
+  next.knots_v = dyadic_knots(last.knots_v, last.degree_v);
+  layers_.push_back(make_layer(std::move(next)));
+}
+
+void HierarchicalSpace::refine(int level, int su, int sv) {
+  if (!in_region(level, su, sv))
+    throw InvalidInput("span (" + std::to_string(su) + ", " + std::to_string(sv) + ") of level " +
+                       std::to_string(level) + " is not in that level's region");
+  Layer& l = layers_[static_cast<size_t>(level)];
+  const int nv = spans_v(level);
+  char& flag = l.refined[static_cast<size_t>(su * nv + sv)];
+  if (flag) return;
+  flag = 1;
+  if (level + 1 == levels()) add_level();
+  Layer& child = layers_[static_cast<size_t>(level + 1)];
+  const int cv = spans_v(level + 1);
+  for (int a = 0; a < 2; ++a)
+    for (int b = 0; b < 2; ++b)
+      child.region[static_cast<size_t>((2 * su + a) * cv + 2 * sv + b)] = 1;
+  collect_dofs();
+}
+
+int HierarchicalSpace::refine_box(int level, double u0, double u1, double v0, double v1) {
+  const SplineSpace& s = layer(level);
+  const std::vector<double> bu = breakpoints(s.knots_u, s.degree_u);
+  const std::vector<double> bv = breakpoints(s.knots_v, s.degree_v);
+  int count = 0;
+  for (int su = 0; su + 1 < static_cast<int>(bu.size()); ++su)
+    for (int sv = 0; sv + 1 < static_cast<int>(bv.size()); ++sv) {
+      const bool overlaps =
+          bu[static_cast<size_t>(su)] < u1 && bu[static_cast<size_t>(su + 1)] > u0 &&
+          bv[static_cast<size_t>(sv)] < v1 && bv[static_cast<size_t>(sv + 1)] > v0;
+      if (overlaps && in_region(level, su, sv) && !refined(level, su, sv)) {
+        refine(level, su, sv);
+        ++count;
+      }
+    }
+  return count;
+}
+
+void HierarchicalSpace::collect_dofs() {
+  dofs_.clear();
+  for (int k = 0; k < levels(); ++k) {
+    const Layer& l = layers_[static_cast<size_t>(k)];
+    const int nv = spans_v(k);
+    for (int i = 0; i < l.space.nu(); ++i)
+      for (int j = 0; j < l.space.nv(); ++j) {
+        bool inside = true, all_refined = true;
+        for (int su = l.first_u[static_cast<size_t>(i)]; su <= l.last_u[static_cast<size_t>(i)];
+             ++su)
+          for (int sv = l.first_v[static_cast<size_t>(j)]; sv <= l.last_v[static_cast<size_t>(j)];
+               ++sv) {
+            const size_t cell = static_cast<size_t>(su * nv + sv);
+            inside = inside && l.region[cell];
+            all_refined = all_refined && l.refined[cell];
+          }
+        if (inside && !all_refined) dofs_.push_back({k, i, j});
+      }
+  }
+}
+
+Eigen::SparseMatrix<double> HierarchicalSpace::to_finest() const {
+  const int top = levels() - 1;
+  const SplineSpace& fine = finest();
+  // Each level's basis in the finest one, per direction: the product of one-level refinements.
+  std::vector<Eigen::SparseMatrix<double>> tu(static_cast<size_t>(levels())),
+      tv(static_cast<size_t>(levels()));
+  tu[static_cast<size_t>(top)] = Eigen::MatrixXd::Identity(fine.nu(), fine.nu()).sparseView();
+  tv[static_cast<size_t>(top)] = Eigen::MatrixXd::Identity(fine.nv(), fine.nv()).sparseView();
+  for (int k = top - 1; k >= 0; --k) {
+    const SplineSpace& s = layer(k);
+    const SplineSpace& n = layer(k + 1);
+    tu[static_cast<size_t>(k)] =
+        tu[static_cast<size_t>(k + 1)] * refinement_matrix(s.knots_u, s.degree_u, n.knots_u);
+    tv[static_cast<size_t>(k)] =
+        tv[static_cast<size_t>(k + 1)] * refinement_matrix(s.knots_v, s.degree_v, n.knots_v);
+  }
+  std::vector<Eigen::Triplet<double>> t;
+  for (size_t d = 0; d < dofs_.size(); ++d) {
+    const HierarchicalDof& f = dofs_[d];
+    const Eigen::SparseMatrix<double>& a = tu[static_cast<size_t>(f.level)];
+    const Eigen::SparseMatrix<double>& b = tv[static_cast<size_t>(f.level)];
+    for (Eigen::SparseMatrix<double>::InnerIterator x(a, f.i); x; ++x)
+      for (Eigen::SparseMatrix<double>::InnerIterator y(b, f.j); y; ++y)
+        t.emplace_back(fine.index(static_cast<int>(x.row()), static_cast<int>(y.row())),
+                       static_cast<int>(d), x.value() * y.value());
+  }
+  Eigen::SparseMatrix<double> out(fine.size(), dof_count());
+  out.setFromTriplets(t.begin(), t.end());
+  return out;
+}
+
+Eigen::Vector3d HierarchicalSpace::evaluate(const Eigen::MatrixX3d& values, double u,
+                                            double v) const {
+  if (values.rows() != dof_count())
+    throw InvalidInput("evaluate: " + std::to_string(values.rows()) + " values for " +
+                       std::to_string(dof_count()) + " degrees of freedom");
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  for (int k = 0; k < levels(); ++k) {
+    const SplineSpace& s = layer(k);
+    Eigen::MatrixX3d poles = Eigen::MatrixX3d::Zero(s.size(), 3);
+    bool any = false;
+    for (size_t d = 0; d < dofs_.size(); ++d)
+      if (dofs_[d].level == k) {
+        poles.row(s.index(dofs_[d].i, dofs_[d].j)) = values.row(static_cast<Eigen::Index>(d));
+        any = true;
+      }
+    if (any) sum += evaluate_surface(s, poles, u, v, 0).row(0).transpose();
+  }
+  return sum;
+}
+
+}  // namespace varsurf
