@@ -1,0 +1,225 @@
+#include "varsurf/core/hierarchical_solver.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <string>
+#include <tuple>
+
+#include "constrained_solve.hpp"
+#include "sheet_assembly.hpp"
+#include "varsurf/core/errors.hpp"
+#include "varsurf/core/knot_refinement.hpp"
+#include "varsurf/core/knot_vector.hpp"
+
+namespace varsurf {
+
+namespace {
+
+using Sparse = Eigen::SparseMatrix<double>;
+using RowSparse = Eigen::SparseMatrix<double, Eigen::RowMajor>;
+
+// Level-0 poles (n x 3) written on the finest level.
+Eigen::MatrixX3d refine_poles(const Eigen::MatrixX3d& poles, const HierarchicalSpace& h) {
+  const SplineSpace& base = h.layer(0);
+  Sparse tu = Eigen::MatrixXd::Identity(base.nu(), base.nu()).sparseView();
+  Sparse tv = Eigen::MatrixXd::Identity(base.nv(), base.nv()).sparseView();
+  for (int k = 0; k + 1 < h.levels(); ++k) {
+    const SplineSpace& s = h.layer(k);
+    const SplineSpace& n = h.layer(k + 1);
+    tu = Sparse(refinement_matrix(s.knots_u, s.degree_u, n.knots_u) * tu);
+    tv = Sparse(refinement_matrix(s.knots_v, s.degree_v, n.knots_v) * tv);
+  }
+  const SplineSpace& fine = h.finest();
+  Eigen::MatrixX3d out(fine.size(), 3);
+  for (int c = 0; c < 3; ++c) {
+    Eigen::MatrixXd grid(base.nu(), base.nv());
+    for (int i = 0; i < base.nu(); ++i)
+      for (int j = 0; j < base.nv(); ++j) grid(i, j) = poles(base.index(i, j), c);
+    const Eigen::MatrixXd g = Eigen::MatrixXd(tu) * grid * Eigen::MatrixXd(tv).transpose();
+    for (int i = 0; i < fine.nu(); ++i)
+      for (int j = 0; j < fine.nv(); ++j) out(fine.index(i, j), c) = g(i, j);
+  }
+  return out;
+}
+
+// The span (between distinct breakpoints) holding t; the last one for t at the end.
+int span_index(const std::vector<double>& knots, int degree, double t) {
+  const std::vector<double> bp = breakpoints(knots, degree);
+  const int s = static_cast<int>(std::upper_bound(bp.begin(), bp.end(), t) - bp.begin()) - 1;
+  return std::clamp(s, 0, static_cast<int>(bp.size()) - 2);
+}
+
+// The deepest span under (u, v) that is in its level's region and not refined further.
+std::tuple<int, int, int> leaf_at(const HierarchicalSpace& h, double u, double v) {
+  for (int k = 0; k < h.levels(); ++k) {
+    const int su = span_index(h.layer(k).knots_u, h.layer(k).degree_u, u);
+    const int sv = span_index(h.layer(k).knots_v, h.layer(k).degree_v, v);
+    if (!h.refined(k, su, sv)) return {k, su, sv};
+  }
+  return {h.levels() - 1, 0, 0};  // not reached: the last level has nothing refined
+}
+
+bool is_boundary_set(const SplineSpace& space, std::vector<int> fixed) {
+  std::vector<int> boundary = boundary_pole_indices(space);
+  std::sort(fixed.begin(), fixed.end());
+  fixed.erase(std::unique(fixed.begin(), fixed.end()), fixed.end());
+  std::sort(boundary.begin(), boundary.end());
+  return fixed == boundary;
+}
+
+// The problem on the finest level: the same terms, the start (and rest) shape refined exactly.
+SheetProblem finest_problem(const SheetProblem& base, const HierarchicalSpace& h) {
+  SheetProblem fine = base;
+  fine.space = h.finest();
+  fine.initial_poles = refine_poles(base.initial_poles, h);
+  if (base.rest_poles.rows() > 0) fine.rest_poles = refine_poles(base.rest_poles, h);
+  fine.fixed_poles =
+      base.fixed_poles.empty() ? std::vector<int>{} : boundary_pole_indices(fine.space);
+  return fine;
+}
+
+}  // namespace
+
+Eigen::MatrixX3d solve_on_hierarchy(const SheetProblem& base, const HierarchicalSpace& h,
+                                    const SolveOptions& opt, SolveReport& rep) {
+  base.space.validate();
+  if (base.space.knots_u != h.layer(0).knots_u || base.space.knots_v != h.layer(0).knots_v ||
+      base.space.degree_u != h.layer(0).degree_u || base.space.degree_v != h.layer(0).degree_v)
+    throw InvalidInput("the problem's space is not the hierarchy's base");
+  if (base.initial_poles.rows() != base.space.size())
+    throw InvalidInput("initial poles: one per pole of the base space");
+  if (!base.fixed_poles.empty() && !is_boundary_set(base.space, base.fixed_poles))
+    throw InvalidInput(
+        "a locally refined sheet can keep its whole boundary, not other fixed poles "
+        "(frozen regions need uniform refinement)");
+  const SheetProblem fine = finest_problem(base, h);
+  const Quadratic q = coupled_sheet_quadratic(fine, opt);
+  // x = x_s + B3 d: the displacement d lives in the hierarchical space.
+  const Sparse b = h.to_finest();
+  const Sparse b3 = kron_identity3(b);
+  const RowSparse b3r = b3;
+  const Eigen::MatrixXd xs = flatten(fine.initial_poles);
+  Quadratic hq;
+  hq.q = Sparse(b3.transpose() * q.q * b3);
+  hq.f = b3.transpose() * (q.f - q.q * xs);
+  const Eigen::Index m = b3.cols();
+  hq.x0 = Eigen::MatrixXd::Zero(m, 1);
+  // A degree of freedom that moves a fixed (boundary) pole is held at zero: its function is then
+  // one of the boundary row's, and the boundary curve stays.
+  hq.fixed.assign(static_cast<size_t>(m), false);
+  for (int col = 0; col < b3.outerSize(); ++col)
+    for (Sparse::InnerIterator it(b3, col); it; ++it)
+      if (q.fixed[static_cast<size_t>(it.row())] && std::abs(it.value()) > 1e-14)
+        hq.fixed[static_cast<size_t>(col)] = true;
+  for (const ConstraintSamples& block : q.blocks) {
+    if (!block.coupled())
+      throw SolveFailure("hierarchical solve: expected coupled constraint rows");
+    ConstraintSamples out;
+    out.exact = block.exact;
+    out.weight = block.weight;
+    out.rhs.resize(block.rows(), 1);
+    for (int r = 0; r < block.rows(); ++r) {
+      Eigen::SparseVector<double> row(m);
+      double shift = 0.0;
+      const std::vector<int>& cols = block.index[static_cast<size_t>(r)];
+      for (size_t k = 0; k < cols.size(); ++k) {
+        const double a = block.coeff[static_cast<size_t>(r)](static_cast<Eigen::Index>(k));
+        row += a * Eigen::SparseVector<double>(b3r.row(cols[k]).transpose());
+        shift += a * xs(cols[k], 0);
+      }
+      std::vector<int> index;
+      Eigen::VectorXd coeff(row.nonZeros());
+      Eigen::Index n = 0;
+      for (Eigen::SparseVector<double>::InnerIterator it(row); it; ++it, ++n) {
+        index.push_back(static_cast<int>(it.index()));
+        coeff(n) = it.value();
+      }
+      out.index.push_back(std::move(index));
+      out.coeff.push_back(std::move(coeff));
+      out.rhs(r, 0) = block.rhs(r, 0) - shift;
+    }
+    hq.blocks.push_back(std::move(out));
+  }
+  const ConstrainedSolve solver(hq, opt, rep);
+  const Eigen::MatrixXd d = solver.solve(hq.f, solver.reduced_rhs(), rep);
+  return unflatten(xs + b3 * d);
+}
+
+HierarchicalResult solve_hierarchical(const SheetProblem& base, const HierarchicalOptions& ho,
+                                      const SolveOptions& opt) {
+  if (!(ho.tolerance > 0.0) || !std::isfinite(ho.tolerance) || ho.max_depth < 0 ||
+      ho.max_depth > 12 || ho.samples < 2)
+    throw InvalidInput(
+        "hierarchical refinement needs a positive tolerance, a depth of 0..12 and "
+        "at least 2 samples per curve");
+  HierarchicalSpace h(base.space);
+  for (const RefineBox& box : ho.manual) {
+    if (box.level < 0 || box.level >= std::min(h.levels(), ho.max_depth))
+      throw InvalidInput("a manual refinement box names level " + std::to_string(box.level) +
+                         ", not one of the refined levels below the depth limit");
+    h.refine_box(box.level, box.u0, box.u1, box.v0, box.v1);
+  }
+  HierarchicalResult result;
+  HierarchicalReport& rep = result.report;
+  while (true) {
+    check_keep_going(opt);
+    rep.solve = SolveReport();
+    result.poles = solve_on_hierarchy(base, h, opt, rep.solve);
+    result.space = h.finest();
+    // Measure each curve; the leaf spans under the samples that are off are refined.
+    std::set<std::tuple<int, int, int>> to_refine;
+    rep.max_deviation.assign(base.curves.size(), 0.0);
+    for (size_t c = 0; c < base.curves.size(); ++c) {
+      const CurveConstraint& cc = base.curves[c];
+      for (int s = 0; s < ho.samples; ++s) {
+        const double t =
+            cc.preimage.first() + (cc.preimage.last() - cc.preimage.first()) * s / (ho.samples - 1);
+        const Eigen::Vector2d uv = cc.preimage.evaluate(t);
+        const double u = std::clamp(uv(0), result.space.u_first(), result.space.u_last());
+        const double v = std::clamp(uv(1), result.space.v_first(), result.space.v_last());
+        const Eigen::Vector3d p =
+            evaluate_surface(result.space, result.poles, u, v, 0).row(0).transpose();
+        const double dev = (p - cc.target.evaluate(t)).norm();
+        rep.max_deviation[c] = std::max(rep.max_deviation[c], dev);
+        if (dev <= ho.tolerance || !ho.automatic) continue;
+        const auto [k, su, sv] = leaf_at(h, u, v);
+        if (k >= ho.max_depth) continue;
+        // With the span, its neighbours within half a support: finer functions need a patch
+        // their whole support fits in (a lone span holds none).
+        const int r = std::max(1, std::max(h.layer(k).degree_u, h.layer(k).degree_v) / 2);
+        for (int di = -r; di <= r; ++di)
+          for (int dj = -r; dj <= r; ++dj) {
+            const int i = su + di, j = sv + dj;
+            if (i < 0 || j < 0 || i >= h.spans_u(k) || j >= h.spans_v(k)) continue;
+            if (h.in_region(k, i, j)) {
+              if (!h.refined(k, i, j)) to_refine.insert({k, i, j});
+              continue;
+            }
+            // Outside this level's region: the coarser leaf there is refined first.
+            const std::vector<double> bu = breakpoints(h.layer(k).knots_u, h.layer(k).degree_u);
+            const std::vector<double> bv = breakpoints(h.layer(k).knots_v, h.layer(k).degree_v);
+            const auto [lk, li, lj] =
+                leaf_at(h, 0.5 * (bu[static_cast<size_t>(i)] + bu[static_cast<size_t>(i + 1)]),
+                        0.5 * (bv[static_cast<size_t>(j)] + bv[static_cast<size_t>(j + 1)]));
+            if (lk < ho.max_depth) to_refine.insert({lk, li, lj});
+          }
+      }
+    }
+    const double worst = rep.max_deviation.empty() ? 0.0
+                                                   : *std::max_element(rep.max_deviation.begin(),
+                                                                       rep.max_deviation.end());
+    rep.round_error.push_back(worst);
+    rep.round_dofs.push_back(h.dof_count());
+    rep.met = worst <= ho.tolerance;
+    if (rep.met || to_refine.empty()) break;
+    for (const auto& [k, su, sv] : to_refine)
+      if (h.in_region(k, su, sv)) h.refine(k, su, sv);
+  }
+  rep.depth = h.levels() - 1;
+  rep.dofs = h.dof_count();
+  rep.export_poles = h.finest().size();
+  return result;
+}
+
+}  // namespace varsurf
