@@ -12,6 +12,8 @@
    by OCCT projection, independently of either solver), degree, poles and a fairness figure
    (the integral of k1^2 + k2^2 over the face, sampled).
 3. Michalik & Bruderlin's sizes (TSVD / MTSVD) and 4. Du & Qin's sheet sizes.
+6. Local refinement (hierarchical spaces) against uniform refinement: degrees of freedom to meet a
+   tolerance on one interior curve (bench/hierarchical_bench.cpp).
 5. Live dragging in a FreeCAD document (varsurf.drag.PointDrag): a 64 x 64 pole Sheet through 10
    curves with a Point constraint; each move's back-substitution and result face against a fresh
    recompute of the same Sheet in the same process.
@@ -311,6 +313,19 @@ def gui_drag():
     return f"{result['redrawn']:.0f} moves/s (move alone in that process: {result['move_only']:.0f})"
 
 
+def local_refinement():
+    print("\n## 6. Local against uniform refinement: one interior wavy curve, boundary kept\n")
+    bench = REPO / "build" / "bench" / "varsurf_hierarchical_bench"
+    out = subprocess.run([str(bench)], check=True, capture_output=True, text=True)
+    print("| tolerance | depth | hierarchical DOFs (poles) | export poles | uniform poles that meet it | ratio | hierarchical ms | uniform ms |")
+    print("|---|---|---|---|---|---|---|---|")
+    for line in out.stdout.splitlines():
+        r = json.loads(line)
+        ratio = r["uniform_poles"] / r["dofs"] if r["dofs"] else float("nan")
+        print(f"| {r['tolerance']:g} | {r['depth']} | {r['dofs']} | {r['export_poles']} | {r['uniform_poles']} | "
+              f"{ratio:.1f} | {ms(r['hier_seconds'])} | {ms(r['uniform_seconds'])} |")
+
+
 def main():
     quick = "--quick" in sys.argv
     if not BENCH.exists():
@@ -322,6 +337,7 @@ def main():
     michalik_bruderlin()
     du_qin()
     live_drag()
+    local_refinement()
 
 
 def platform_line():
