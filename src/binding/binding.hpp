@@ -11,5 +11,6 @@ void bind_operators(pybind11::module_& m);       // further constraints, externa
 void bind_core_functions(pybind11::module_& m);  // solver and knot helpers
 void bind_occ_bridge(pybind11::module_& m);      // BREP/STEP bridge to FreeCAD
 void bind_model(pybind11::module_& m);           // several sheets and curves as one system
+void bind_hierarchical(pybind11::module_& m);    // locally refined sheets
 
 }  // namespace varsurf::binding

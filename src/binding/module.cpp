@@ -12,4 +12,5 @@ PYBIND11_MODULE(_native, m) {
   varsurf::binding::bind_core_functions(m);
   varsurf::binding::bind_occ_bridge(m);
   varsurf::binding::bind_model(m);
+  varsurf::binding::bind_hierarchical(m);
 }

@@ -14,6 +14,7 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass, field
+from types import SimpleNamespace
 from typing import List, Optional, Sequence
 
 from varsurf import constraints as constraint_specs
@@ -43,6 +44,10 @@ DEFAULT_MAX_SPANS = 64
 SOLVE_MODES = ("Automatic", "Exact", "Penalty", "PenaltyQR", "CG", "TSVD", "MTSVD")
 #: Relative singular value below which constraint rows are numerically dependent.
 DEFAULT_RANK_TOLERANCE = 1e-9
+#: Refinement modes: Uniform doubles the spans everywhere until the curves are met; Local refines
+#: only the spans under the curves that are off (hierarchical layers, Welch & Witkin sec. 3, 4.4).
+REFINEMENTS = ("Uniform", "Local")
+DEFAULT_MAX_DEPTH = 5
 #: The error of a solve stopped by the user (through its progress indicator).
 CANCELLED = "the solve was cancelled; recompute to solve again"
 #: Points per curve at which the result's distance to the curve is measured.
@@ -97,6 +102,11 @@ class SheetOutcome:
     lcurve_residuals: List[float] = field(default_factory=list)  # TSVD/MTSVD: rho_k
     lcurve_norms: List[float] = field(default_factory=list)  # eta_k
     lcurve_corner: int = 0  # the chosen truncation k
+    # Local refinement: levels above the base, degrees of freedom (poles) of the hierarchical
+    # sheet, and whether every curve was met before the depth limit (Uniform: 0, the poles, True).
+    refinement_depth: int = 0
+    degrees_of_freedom: int = 0
+    refinement_met: bool = True
     # The native SheetProblem of the final solve (curves in curve_names order) and its options:
     # what a joint solve of several sheets (varsurf.joint) starts from.
     problem: object = None
@@ -276,6 +286,26 @@ def solve_sheet_from_curves(edges: Sequence, **options) -> SheetOutcome:
     return solve_sheet_on_face(face, edges, **options)
 
 
+def _hierarchy_options(nat, tolerance, max_depth, regions, space):
+    """Native HierarchicalOptions; regions are (level, u0, u1, v0, v1), u and v normalized."""
+    options = nat.HierarchicalOptions()
+    options.tolerance = float(tolerance)
+    if not (isinstance(max_depth, int) and 0 <= max_depth <= 8):
+        raise SheetError(f"MaxDepth must be an integer in 0..8 (got {max_depth})")
+    options.max_depth = max_depth
+    boxes = []
+    ua, ub = space.knots_u[0], space.knots_u[-1]
+    va, vb = space.knots_v[0], space.knots_v[-1]
+    for region in regions:
+        level, u0, u1, v0, v1 = region
+        if not all(math.isfinite(x) for x in (u0, u1, v0, v1)) or not (0 <= u0 < u1 <= 1 and 0 <= v0 < v1 <= 1):
+            raise SheetError(f"a refine region needs 0 <= u0 < u1 <= 1 and 0 <= v0 < v1 <= 1 (got {region})")
+        boxes.append(nat.RefineBox(int(level), ua + (ub - ua) * u0, ua + (ub - ua) * u1,
+                                   va + (vb - va) * v0, va + (vb - va) * v1))
+    options.manual = boxes
+    return options
+
+
 def solve_sheet_on_face(
     face,
     edges: Sequence,
@@ -296,6 +326,9 @@ def solve_sheet_on_face(
     degree: int = SHEET_MIN_DEGREE,
     solve_mode: str = "Automatic",
     keep_going=None,
+    refinement: str = "Uniform",
+    max_depth: int = DEFAULT_MAX_DEPTH,
+    refine_regions: Sequence = (),
 ) -> SheetOutcome:
     """Solve the variational sheet over ``face`` that passes through ``edges``.
 
@@ -413,6 +446,9 @@ def solve_sheet_on_face(
     options.penalty_qr = solve_mode == "PenaltyQR"
     if keep_going is not None:  # asked between iterative steps and refinement levels
         options.keep_going = keep_going
+    if refinement not in REFINEMENTS:
+        raise SheetError(f"Refinement must be one of {', '.join(REFINEMENTS)} (got {refinement!r})")
+    local = None  # the hierarchical report of a Local refinement
     while True:
         if keep_going is not None and not keep_going():
             raise SheetError(CANCELLED)
@@ -438,6 +474,19 @@ def solve_sheet_on_face(
             problem.rest_poles = sheet.poles
         elif rest_surface is not None:
             problem.rest_poles = _rest_poles_in(rest_surface, space, nat, spans, degree)
+        if refinement == "Local":
+            hierarchy = _hierarchy_options(nat, tolerance, max_depth, refine_regions, space)
+            try:
+                solved = nat.solve_hierarchical(problem, hierarchy, options)
+            except nat.InvalidInput as error:
+                raise SheetError(str(error)) from error
+            except nat.Cancelled as error:
+                raise SheetError(CANCELLED) from error
+            local = solved.report
+            space = solved.space
+            result = SimpleNamespace(poles=solved.poles, report=solved.report.solve)
+            conflict, deviations = 0.0, None  # what is left is measured below and reported
+            break
         try:
             result = nat.solve_sheet(problem, options)
         except nat.InvalidInput as error:
@@ -501,6 +550,9 @@ def solve_sheet_on_face(
         lcurve_residuals=[float(x) for x in report.lcurve.residual],
         lcurve_norms=[float(x) for x in report.lcurve.solution_norm],
         lcurve_corner=int(report.lcurve.corner),
+        refinement_depth=int(local.depth) if local is not None else 0,
+        degrees_of_freedom=int(local.dofs) if local is not None else int(space.size()),
+        refinement_met=bool(local.met) if local is not None else True,
         problem=problem,
         options=options,
     )

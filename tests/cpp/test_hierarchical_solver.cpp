@@ -101,6 +101,18 @@ TEST(HierarchicalSolver, RefinesWhereTheCurveIsOffUntilItIsMet) {
   EXPECT_LT((p - Eigen::Vector3d(0.3, 0.7, 0.03)).norm(), 1e-9);
 }
 
+TEST(HierarchicalSolver, AManualRegionAddsDetailWhereNoCurveAsks) {
+  HierarchicalOptions ho;
+  ho.tolerance = 1.0;  // met at once: nothing refined automatically
+  const HierarchicalResult plain = solve_hierarchical(wave_problem(4), ho, exact_options());
+  EXPECT_EQ(plain.report.depth, 0);
+  ho.manual = {{1, 0.0, 0.2, 0.8, 1.0}};  // a corner, down to level 2
+  const HierarchicalResult r = solve_hierarchical(wave_problem(4), ho, exact_options());
+  EXPECT_EQ(r.report.depth, 2);
+  EXPECT_GT(r.report.dofs, plain.report.dofs);
+  EXPECT_LT(r.report.dofs, r.report.export_poles / 2);  // only there
+}
+
 TEST(HierarchicalSolver, RefusesWhatItCannotRepresent) {
   SheetProblem pb = wave_problem(4);
   pb.fixed_poles = {0, 1, 2};  // not the whole boundary
@@ -111,6 +123,8 @@ TEST(HierarchicalSolver, RefusesWhatItCannotRepresent) {
   ho.tolerance = 0.0;
   EXPECT_THROW(solve_hierarchical(wave_problem(2), ho, exact_options()), InvalidInput);
   ho.tolerance = 1e-3;
-  ho.manual = {{3, 0.0, 1.0, 0.0, 1.0}};
+  ho.manual = {{4, 0.0, 1.0, 0.0, 1.0}};  // the depth limit is 4: levels 0..3 can be refined
+  EXPECT_THROW(solve_hierarchical(wave_problem(2), ho, exact_options()), InvalidInput);
+  ho.manual = {{0, 0.6, 0.2, 0.0, 1.0}};  // u0 > u1
   EXPECT_THROW(solve_hierarchical(wave_problem(2), ho, exact_options()), InvalidInput);
 }

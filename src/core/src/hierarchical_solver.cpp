@@ -155,10 +155,24 @@ HierarchicalResult solve_hierarchical(const SheetProblem& base, const Hierarchic
         "at least 2 samples per curve");
   HierarchicalSpace h(base.space);
   for (const RefineBox& box : ho.manual) {
-    if (box.level < 0 || box.level >= std::min(h.levels(), ho.max_depth))
+    if (box.level < 0 || box.level >= ho.max_depth)
       throw InvalidInput("a manual refinement box names level " + std::to_string(box.level) +
-                         ", not one of the refined levels below the depth limit");
-    h.refine_box(box.level, box.u0, box.u1, box.v0, box.v1);
+                         ": refinable levels are 0 to " + std::to_string(ho.max_depth - 1));
+    if (!(box.u0 < box.u1) || !(box.v0 < box.v1))
+      throw InvalidInput("a manual refinement box needs u0 < u1 and v0 < v1");
+    // Level by level down to the box's: the spans under it and, as for automatic refinement, a
+    // ring of neighbours (finer functions need a patch their whole support fits in).
+    for (int level = 0; level <= box.level; ++level) {
+      const SplineSpace& ls = h.layer(level);
+      const int r = std::max(1, std::max(ls.degree_u, ls.degree_v) / 2);
+      const int u0 = span_index(ls.knots_u, ls.degree_u, box.u0) - r;
+      const int u1 = span_index(ls.knots_u, ls.degree_u, box.u1) + r;
+      const int v0 = span_index(ls.knots_v, ls.degree_v, box.v0) - r;
+      const int v1 = span_index(ls.knots_v, ls.degree_v, box.v1) + r;
+      for (int i = std::max(0, u0); i <= std::min(u1, h.spans_u(level) - 1); ++i)
+        for (int j = std::max(0, v0); j <= std::min(v1, h.spans_v(level) - 1); ++j)
+          if (h.in_region(level, i, j)) h.refine(level, i, j);
+    }
   }
   HierarchicalResult result;
   HierarchicalReport& rep = result.report;

@@ -36,6 +36,11 @@ _PROPERTIES = [
     ("FixBoundary", "App::PropertyBool", "Sheet", "Keep the base face's boundary (its boundary poles are held)", False),
     ("Tolerance", "App::PropertyLength", "Sheet", "Distance at which a curve counts as met; the sheet fits the curves this closely and leaves the rest to fairness", False),
     ("SolveMode", "App::PropertyEnumeration", "Solver", "Exact: Lagrange multipliers (KKT). Penalty: penalty with refinement (PenaltyQR: by sparse QR). CG: constraints eliminated, conjugate gradients. TSVD / MTSVD: the L-curve decides how much of the curves is fitted (MTSVD smooths the rest by the energy). Automatic: by size", False),
+    ("Refinement", "App::PropertyEnumeration", "Solver", "Uniform: the spans are doubled everywhere until the curves are met (up to MaxSpans). Local: only the spans under curves that are off are refined, layer by layer (up to MaxDepth); the exported sheet is one B-spline on the finest level", False),
+    ("MaxDepth", "App::PropertyInteger", "Solver", "Local refinement: at most this many levels above MinSpans", False),
+    ("RefineRegions", "App::PropertyFloatList", "Solver", "Local refinement: regions refined by hand, five numbers each: level, u0, u1, v0, v1 (u and v normalized to 0..1)", False),
+    ("RefinementDepth", "App::PropertyInteger", "Result", "Local refinement: the levels reached above the base", True),
+    ("DegreesOfFreedom", "App::PropertyInteger", "Result", "Poles the solve had (Local: the hierarchical sheet's; the exported sheet has PoleCountU x PoleCountV)", True),
     ("SolveModeUsed", "App::PropertyString", "Result", "The solve mode used and why", True),
     ("LCurveResiduals", "App::PropertyFloatList", "Result", "TSVD/MTSVD: constraint residual norm per truncation k (the L-curve's x)", True),
     ("LCurveNorms", "App::PropertyFloatList", "Result", "TSVD/MTSVD: solution change norm per truncation k (the L-curve's y)", True),
@@ -74,6 +79,8 @@ _DEFAULTS = {
     "RestShape": _set_rest_shapes,
     "Tolerance": model.DEFAULT_TOLERANCE,
     "SolveMode": list(model.SOLVE_MODES),
+    "Refinement": list(model.REFINEMENTS),
+    "MaxDepth": model.DEFAULT_MAX_DEPTH,
     "Degree": (model.SHEET_MIN_DEGREE, 2, model.MAX_DEGREE, 1),
     "MinSpans": (model.DEFAULT_MIN_SPANS, 1, 512, 1),
     "MaxSpans": (model.DEFAULT_MAX_SPANS, 1, 512, 1),
@@ -171,6 +178,9 @@ def compute(obj):
         solve_mode=str(obj.SolveMode),
         max_spans=int(obj.MaxSpans),
         names=names,
+        refinement=str(getattr(obj, "Refinement", "Uniform")),
+        max_depth=int(getattr(obj, "MaxDepth", model.DEFAULT_MAX_DEPTH)),
+        refine_regions=_regions(list(getattr(obj, "RefineRegions", []) or [])),
     )
     options["constraints"] = [spec_of(c) for c in (getattr(obj, "Constraints", None) or []) if c.Enabled]
     options["rest"] = _rest_of(obj, face)
@@ -192,6 +202,13 @@ def compute(obj):
         return model.solve_sheet_on_face(face, edges, **options)
     finally:
         watch.stop()
+
+
+def _regions(flat):
+    """RefineRegions' numbers in fives: (level, u0, u1, v0, v1)."""
+    if len(flat) % 5:
+        raise model.SheetError(f"RefineRegions needs five numbers a region (level, u0, u1, v0, v1); got {len(flat)}")
+    return [tuple(flat[k:k + 5]) for k in range(0, len(flat), 5)]
 
 
 def curve_keys(obj):
@@ -256,6 +273,13 @@ class SheetFeature(FeatureProxy):
         obj.ConstraintNames = list(outcome.constraint_names)
         obj.ConstraintResiduals = [float(r) for r in outcome.constraint_residuals]
         obj.ConstraintUnits = list(outcome.constraint_units)
+        if "RefinementDepth" in obj.PropertiesList:
+            obj.RefinementDepth = outcome.refinement_depth
+            obj.DegreesOfFreedom = outcome.degrees_of_freedom
+        if not outcome.refinement_met:
+            FreeCAD.Console.PrintWarning(
+                f"VarSurf: {obj.Label}: local refinement reached MaxDepth {obj.MaxDepth} before every "
+                "curve was within the tolerance\n")
         if not outcome.converged:
             FreeCAD.Console.PrintWarning(
                 f"VarSurf: {obj.Label}: the nonlinear solve (repellers, pressure) did not converge "

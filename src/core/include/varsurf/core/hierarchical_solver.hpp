@@ -12,7 +12,8 @@
 namespace varsurf {
 
 struct RefineBox {
-  int level = 0;  // refine the spans of this level overlapping the box
+  int level = 0;  // refine the spans under the box at every level down to this one (with a ring
+                  // of neighbours): detail down to level + 1 there
   double u0 = 0.0, u1 = 0.0, v0 = 0.0, v1 = 0.0;
 };
 

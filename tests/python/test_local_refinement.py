@@ -1,0 +1,59 @@
+"""Local refinement on a Sheet: spans refined only under the curves that are off (hierarchical
+layers), the exported face one B-spline that meets the curves, fewer degrees of freedom than the
+uniform refinement, manual regions, and bad settings."""
+
+import pytest
+
+from scenes import add_face, add_line_sketch, flat_face
+
+import varsurf
+
+
+@pytest.fixture
+def two_sheets(doc, native):
+    surface = add_face(doc, flat_face(spans=2))
+    rail = add_line_sketch(doc, "Rail", 6.0, (20.0, 15.0), (80.0, 62.0))
+    doc.recompute()
+    sheets = []
+    for name, refinement in (("Uniform", "Uniform"), ("Local", "Local")):
+        s = varsurf.make_sheet((surface, "Face1"), [(rail, "Edge1")], tolerance=1e-3, min_spans=2,
+                               max_spans=64, name=name)
+        s.Refinement = refinement
+        s.MaxDepth = 5
+        sheets.append(s)
+    doc.recompute()
+    return sheets
+
+
+def test_local_refinement_meets_the_curve_with_fewer_poles(two_sheets):
+    uniform, local = two_sheets
+    for s in two_sheets:
+        assert s.isValid() and s.Status.startswith("OK"), s.Status
+        assert max(s.MaxDeviations) <= 1e-3  # measured by OpenCASCADE on the exported face
+    assert local.RefinementDepth >= 2
+    assert local.PoleCountU * local.PoleCountV > local.DegreesOfFreedom  # export vs hierarchy
+    # (the core's test and benchmark 6 measure how much fewer, on curves that need depth)
+    assert local.DegreesOfFreedom < uniform.DegreesOfFreedom, (local.DegreesOfFreedom, uniform.DegreesOfFreedom)
+    assert uniform.RefinementDepth == 0 and uniform.DegreesOfFreedom == uniform.PoleCountU * uniform.PoleCountV
+    face = local.Shape.Faces[0]
+    assert face.isValid() and face.Surface.NbUPoles == local.PoleCountU
+
+
+def test_manual_regions_and_bad_settings(two_sheets, console_errors):
+    _uniform, local = two_sheets
+    doc = local.Document
+    before = local.DegreesOfFreedom
+    local.RefineRegions = [2, 0.0, 0.2, 0.8, 1.0]  # a corner away from the rail, down to level 3
+    doc.recompute()
+    assert local.isValid() and local.DegreesOfFreedom > before
+    local.RefineRegions = [0, 0.0, 0.5]  # not five numbers
+    doc.recompute()
+    assert not local.isValid() and "five numbers" in local.Status
+    local.RefineRegions = [0, 0.6, 0.2, 0.0, 1.0]  # u0 > u1
+    doc.recompute()
+    assert not local.isValid() and "u0 < u1" in local.Status
+    local.RefineRegions = []
+    local.MaxDepth = 0  # no refinement allowed: the curve cannot be met; said, not hidden
+    doc.recompute()
+    assert local.isValid() and local.Status.startswith("Warning:"), local.Status
+    assert "MaxDepth" in console_errors()
