@@ -101,6 +101,35 @@ TEST(HierarchicalSolver, RefinesWhereTheCurveIsOffUntilItIsMet) {
   EXPECT_LT((p - Eigen::Vector3d(0.3, 0.7, 0.03)).norm(), 1e-9);
 }
 
+TEST(HierarchicalSolver, ACurvedPreimageIsMetToo) {
+  // A quarter-circle pre-image (not along any knot line) carrying a wave, two crossing curves'
+  // worth of detail on a 2 x 2-span sheet.
+  SheetProblem pb = wave_problem(2);
+  CurveConstraint& c = pb.curves[0];
+  std::vector<double> breaks;
+  for (int i = 0; i <= 12; ++i) breaks.push_back(i / 12.0);
+  const auto arc = [](double t) {
+    return Eigen::Vector2d(0.5 + 0.35 * std::cos(0.5 * pi * t),
+                           0.15 + 0.35 * std::sin(0.5 * pi * t) + 0.2 * t);
+  };
+  c.preimage = fit_piecewise_curve(breaks, 3, 2, [&](double t) { return Eigen::VectorXd(arc(t)); });
+  c.target = fit_piecewise_curve(breaks, 3, 3, [&](double t) {
+    Eigen::VectorXd p(3);
+    p << arc(t)(0), arc(t)(1), 0.03 * std::sin(4 * pi * t);
+    return p;
+  });
+  HierarchicalOptions ho;
+  ho.tolerance = 1e-5;
+  ho.max_depth = 7;
+  const HierarchicalResult r = solve_hierarchical(pb, ho, exact_options());
+  ASSERT_TRUE(r.report.met) << r.report.round_error.back();
+  for (size_t k = 1; k < r.report.round_error.size(); ++k)
+    EXPECT_LT(r.report.round_error[k], r.report.round_error[k - 1]) << k;
+  EXPECT_LE(incidence_error(r.space, r.poles, c, 1000),
+            1.5e-5);  // between the measured samples too
+  EXPECT_LT(r.report.dofs, r.report.export_poles);
+}
+
 TEST(HierarchicalSolver, AManualRegionAddsDetailWhereNoCurveAsks) {
   HierarchicalOptions ho;
   ho.tolerance = 1.0;  // met at once: nothing refined automatically

@@ -120,3 +120,31 @@ TEST(HierarchicalSpace, ALayerActsOnlyInsideItsRegion) {
   EXPECT_THROW(h.refine(1, 0, 0), InvalidInput);  // not in level 1's region
   EXPECT_THROW(h.refine(0, 6, 0), InvalidInput);  // no such span
 }
+
+TEST(HierarchicalSpace, TheSumIsC2AcrossLayerBorders) {
+  // Random values on a space refined twice over an L-shaped patch: the value and the first and
+  // second derivatives agree on both sides of every layer border (cubic: C^2).
+  HierarchicalSpace h(SplineSpace::uniform(3, 3, 6, 6));
+  h.refine_box(0, 0.2, 0.8, 0.2, 0.5);
+  h.refine_box(0, 0.2, 0.5, 0.5, 0.8);
+  h.refine_box(1, 0.4, 0.6, 0.3, 0.45);
+  ASSERT_EQ(h.levels(), 3);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> r(-1.0, 1.0);
+  const Eigen::MatrixX3d values =
+      Eigen::MatrixX3d::NullaryExpr(h.dof_count(), 3, [&] { return r(rng); });
+  const Eigen::MatrixX3d poles = h.to_finest() * values;
+  const double eps = 1e-10;  // a real jump would be of order one (second derivatives ~ 500)
+  double jump3 = 0.0;
+  // Borders of the level-1 region (u = 1/6, 5/6 lines of level 0's spans) and of level 2's.
+  for (double u : {1.0 / 6.0, 5.0 / 6.0, 2.0 / 6.0 + 1.0 / 12.0})
+    for (double v : {0.3, 0.4, 0.45}) {
+      const Eigen::MatrixXd a = evaluate_surface(h.finest(), poles, u - eps, v, 2);
+      const Eigen::MatrixXd b = evaluate_surface(h.finest(), poles, u + eps, v, 2);
+      EXPECT_LT((a - b).cwiseAbs().maxCoeff(), 1e-5) << u << " " << v;  // C^2: 2 eps x third
+      const Eigen::MatrixXd c = evaluate_surface(h.finest(), poles, u - 1e-3, v, 2);
+      const Eigen::MatrixXd d = evaluate_surface(h.finest(), poles, u + 1e-3, v, 2);
+      jump3 = std::max(jump3, (d.row(3) - c.row(3)).cwiseAbs().maxCoeff() / 2e-3);
+    }
+  EXPECT_GT(jump3, 1e-3);  // and not trivially smooth there: the third derivative is far from zero
+}

@@ -321,8 +321,14 @@ def run(result):
     widgets = task_widgets()
     widgets["degreeSpin"].setValue(4)
     widgets["solveModeCombo"].setCurrentText("Exact")
+    widgets["refinementCombo"].setCurrentText("Local")
+    widgets["updateButton"].click()
+    Gui.updateGui()
+    result["panel_local"] = [sheet.Refinement, widgets["polesValue"].text()]
     press_task_button(QtGui.QDialogButtonBox.Ok)
     result["panel_ok"] = [sheet.Degree, sheet.DegreeU, sheet.SolveMode, sheet.isValid(), doc.UndoNames[:1]]
+    sheet.Refinement = "Uniform"
+    doc.recompute()
 
     # 4e'. rest shape commands: install, then melt; each one undoable step with macro lines
     rest = {}

@@ -155,6 +155,8 @@ def test_sheet_panel_edits_space_mode_and_rest_shape(smoke):
     assert smoke["rest_during_edit"] == "Installed"
     assert smoke["rest_after_cancel"] == "Base" and not smoke["installed_after_cancel"]
     assert smoke["panel_ok"] == [4, 4, "Exact", True, ["Edit VarSurf sheet"]]
+    refinement, poles_text = smoke["panel_local"]
+    assert refinement == "Local" and "local:" in poles_text and "poles solved" in poles_text, poles_text
 
 
 def test_constraint_and_hinge_panels(smoke):

@@ -53,6 +53,10 @@ def test_manual_regions_and_bad_settings(two_sheets, console_errors):
     doc.recompute()
     assert not local.isValid() and "u0 < u1" in local.Status
     local.RefineRegions = []
+    local.AutoRefine = False  # only the regions (none): the base alone, and the warning says so
+    doc.recompute()
+    assert local.RefinementDepth == 0 and local.Status.startswith("Warning:"), local.Status
+    local.AutoRefine = True
     local.MaxDepth = 0  # no refinement allowed: the curve cannot be met; said, not hidden
     doc.recompute()
     assert local.isValid() and local.Status.startswith("Warning:"), local.Status

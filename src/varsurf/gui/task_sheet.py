@@ -9,7 +9,7 @@ from varsurf.gui.task_base import PropertyTaskPanel
 
 TRANSACTION_EDIT = "Edit VarSurf sheet"
 _EDITABLE = ("Stretch", "Bend", "FixBoundary", "Tolerance", "Degree", "MinSpans", "MaxSpans", "SolveMode",
-             "RestShape", "InstalledRest")
+             "RestShape", "InstalledRest", "Refinement", "MaxDepth")
 
 
 class TaskPanelSheet(PropertyTaskPanel):
@@ -35,6 +35,9 @@ class TaskPanelSheet(PropertyTaskPanel):
         self.rest_shape = self.child(QtGui.QComboBox, "restShapeCombo")
         self.install_button = self.child(QtGui.QPushButton, "installButton")
         self.melt_button = self.child(QtGui.QPushButton, "meltButton")
+        self.refinement = self.child(QtGui.QComboBox, "refinementCombo")
+        self.max_depth = self.child(QtGui.QSpinBox, "maxDepthSpin")
+        self.refinement.addItems(list(obj.getEnumerationsOfProperty("Refinement")))
         self.solve_mode.addItems(list(obj.getEnumerationsOfProperty("SolveMode")))
         self.rest_shape.addItems(list(obj.getEnumerationsOfProperty("RestShape")))
         self.table = self.child(QtGui.QTableWidget, "deviationTable")
@@ -70,6 +73,8 @@ class TaskPanelSheet(PropertyTaskPanel):
         self.max_spans.setValue(int(self.obj.MaxSpans))
         self.solve_mode.setCurrentText(str(self.obj.SolveMode))
         self.rest_shape.setCurrentText(str(self.obj.RestShape))
+        self.refinement.setCurrentText(str(self.obj.Refinement))
+        self.max_depth.setValue(int(self.obj.MaxDepth))
 
     def store(self):
         self.obj.Stretch = float(self.stretch.value())
@@ -85,6 +90,8 @@ class TaskPanelSheet(PropertyTaskPanel):
         self.obj.MinSpans = int(self.min_spans.value())
         self.obj.MaxSpans = max(int(self.max_spans.value()), int(self.min_spans.value()))
         self.obj.SolveMode = self.solve_mode.currentText()
+        self.obj.Refinement = self.refinement.currentText()
+        self.obj.MaxDepth = int(self.max_depth.value())
         if self.rest_shape.currentText() != "Installed" or not self.obj.InstalledRest.isNull():
             self.obj.RestShape = self.rest_shape.currentText()
 
@@ -98,9 +105,10 @@ class TaskPanelSheet(PropertyTaskPanel):
             item = QtGui.QTableWidgetItem(f"{dev:.3g} {'°' if unit == 'deg' else unit}")
             item.setTextAlignment(QtCore.Qt.AlignRight | QtCore.Qt.AlignVCenter)
             self.table.setItem(row, 1, item)
-        self.poles_label.setText(
-            f"{obj.PoleCountU} × {obj.PoleCountV}, degree {obj.DegreeU} × {obj.DegreeV}"
-        )
+        text = f"{obj.PoleCountU} × {obj.PoleCountV}, degree {obj.DegreeU} × {obj.DegreeV}"
+        if str(getattr(obj, "Refinement", "Uniform")) == "Local":
+            text += f"; local: {obj.RefinementDepth} levels, {obj.DegreesOfFreedom} poles solved"
+        self.poles_label.setText(text)
         self.time_label.setText(f"{obj.SolveTime * 1000.0:.1f} ms")
         self.rank_label.setText(str(obj.ConstraintRank))
         self.status_label.setText(obj.Status)
