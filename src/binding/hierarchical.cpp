@@ -36,6 +36,7 @@ void bind_hierarchical(py::module_& m) {
       .def_readonly("max_deviation", &HierarchicalReport::max_deviation)
       .def_readonly("round_error", &HierarchicalReport::round_error)
       .def_readonly("round_dofs", &HierarchicalReport::round_dofs)
+      .def_readonly("refined", &HierarchicalReport::refined)
       .def_readonly("solve", &HierarchicalReport::solve);
   py::class_<HierarchicalResult>(m, "HierarchicalResult")
       .def_readonly("space", &HierarchicalResult::space)

@@ -219,3 +219,33 @@ def plot_lcurve(sheet, path: str) -> str:
     figure.tight_layout()
     figure.savefig(path)
     return path
+
+
+#: Points along each side of a refined span's outline.
+SIDE_SAMPLES = 6
+
+
+def refined_outlines(face, spans):
+    """Per refined span of a locally refined sheet (RefinedSpans: level, u0, u1, v0, v1 in fives):
+    its level and the closed 3D polyline of its border on the face, lifted a hair along the normal
+    so a view does not hide it in the sheet."""
+    if len(spans) % 5:
+        raise ValueError("refined spans come in fives: level, u0, u1, v0, v1")
+    lift = 1e-3 * max(face.BoundBox.DiagonalLength, 1.0)
+    out = []
+    for k in range(0, len(spans), 5):
+        level, u0, u1, v0, v1 = int(spans[k]), *spans[k + 1:k + 5]
+        steps = [s / SIDE_SAMPLES for s in range(SIDE_SAMPLES)]
+        uv = ([(u0 + (u1 - u0) * t, v0) for t in steps] + [(u1, v0 + (v1 - v0) * t) for t in steps]
+              + [(u1 - (u1 - u0) * t, v1) for t in steps] + [(u0, v1 - (v1 - v0) * t) for t in steps]
+              + [(u0, v0)])
+        points = []
+        for u, v in uv:
+            p = face.valueAt(u, v)
+            try:
+                p = p + face.normalAt(u, v) * lift
+            except Exception:  # a degenerate point: no normal to lift along
+                pass
+            points.append((p.x, p.y, p.z))
+        out.append((level, points))
+    return out

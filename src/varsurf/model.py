@@ -107,6 +107,7 @@ class SheetOutcome:
     refinement_depth: int = 0
     degrees_of_freedom: int = 0
     refinement_met: bool = True
+    refined_spans: List[tuple] = field(default_factory=list)  # (level, u0, u1, v0, v1) each
     # The native SheetProblem of the final solve (curves in curve_names order) and its options:
     # what a joint solve of several sheets (varsurf.joint) starts from.
     problem: object = None
@@ -555,6 +556,7 @@ def solve_sheet_on_face(
         refinement_depth=int(local.depth) if local is not None else 0,
         degrees_of_freedom=int(local.dofs) if local is not None else int(space.size()),
         refinement_met=bool(local.met) if local is not None else True,
+        refined_spans=[(b.level, b.u0, b.u1, b.v0, b.v1) for b in local.refined] if local is not None else [],
         problem=problem,
         options=options,
     )

@@ -139,6 +139,11 @@ TEST(HierarchicalSolver, AManualRegionAddsDetailWhereNoCurveAsks) {
   const HierarchicalResult r = solve_hierarchical(wave_problem(4), ho, exact_options());
   EXPECT_EQ(r.report.depth, 2);
   EXPECT_GT(r.report.dofs, plain.report.dofs);
+  for (const RefineBox& b : r.report.refined) {  // all in the corner (with its ring)
+    EXPECT_LE(b.u0, 0.5) << b.level;
+    EXPECT_GE(b.v1, 0.5) << b.level;
+  }
+  EXPECT_TRUE(plain.report.refined.empty());
   EXPECT_LT(r.report.dofs, r.report.export_poles / 2);  // only there
 }
 

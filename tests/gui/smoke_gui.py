@@ -382,6 +382,17 @@ def run(result):
     csheet = varsurf.make_sheet((csurface, "Face1"), [(crail, "Edge1")])
     cdoc.recompute()
     every_constraint_command(result, cdoc, csheet, csurface, crail)
+    # local refinement shown on the sheet: the refined spans outlined by level
+    csheet.Refinement, csheet.MinSpans, csheet.Tolerance = "Local", 2, 1e-3
+    cdoc.recompute()
+    for o in cdoc.Objects:  # the sheet alone in the picture
+        if o.ViewObject is not None and o is not csheet:
+            o.ViewObject.Visibility = False
+    plain = snapshot("refinement_off.png")
+    csheet.ViewObject.ShowRefinement = True
+    shown = snapshot("refinement.png")
+    result["refinement_view"] = [csheet.isValid(), csheet.RefinementDepth, csheet.ViewObject.Proxy.refinement.count,
+                                 len(csheet.RefinedSpans) // 5, image_difference(plain, shown)]
 
     # 6. the Solid command on two selected Sheets (the pillow example's, built without it)
     sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(varsurf.__file__)))), "examples"))

@@ -218,3 +218,9 @@ def test_rest_shape_commands(smoke):
     rest = smoke["rest_commands"]
     assert rest["VarSurf_InstallRest"] == [True, "Installed", ["VarSurf install rest shape"], True]
     assert rest["VarSurf_Melt"] == [True, "None", ["VarSurf melt"], True]
+
+
+def test_refined_spans_are_outlined(smoke):
+    valid, depth, drawn, spans, change = smoke["refinement_view"]
+    assert valid and depth >= 1 and drawn == spans > 0
+    assert change > 0.002, change

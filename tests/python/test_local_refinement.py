@@ -61,3 +61,23 @@ def test_manual_regions_and_bad_settings(two_sheets, console_errors):
     doc.recompute()
     assert local.isValid() and local.Status.startswith("Warning:"), local.Status
     assert "MaxDepth" in console_errors()
+
+
+def test_refined_spans_are_reported_and_outlined(two_sheets):
+    import Part
+
+    from varsurf import analysis
+
+    uniform, local = two_sheets
+    spans = list(local.RefinedSpans)
+    assert spans and len(spans) % 5 == 0 and not uniform.RefinedSpans
+    levels = {int(spans[k]) for k in range(0, len(spans), 5)}
+    assert levels == set(range(local.RefinementDepth))  # every level below the deepest refined some
+    face = local.Shape.Faces[0]
+    outlines = analysis.refined_outlines(face, spans)
+    assert len(outlines) == len(spans) // 5
+    for _level, points in outlines:
+        assert points[0] == points[-1]  # closed
+        lift = 1e-3 * face.BoundBox.DiagonalLength
+        for p in points[::5]:
+            assert abs(face.distToShape(Part.Vertex(*p))[0] - lift) < 1e-6 * face.BoundBox.DiagonalLength

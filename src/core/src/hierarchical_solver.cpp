@@ -230,6 +230,15 @@ HierarchicalResult solve_hierarchical(const SheetProblem& base, const Hierarchic
     for (const auto& [k, su, sv] : to_refine)
       if (h.in_region(k, su, sv)) h.refine(k, su, sv);
   }
+  for (int k = 0; k + 1 < h.levels(); ++k) {
+    const std::vector<double> bu = breakpoints(h.layer(k).knots_u, h.layer(k).degree_u);
+    const std::vector<double> bv = breakpoints(h.layer(k).knots_v, h.layer(k).degree_v);
+    for (int i = 0; i < h.spans_u(k); ++i)
+      for (int j = 0; j < h.spans_v(k); ++j)
+        if (h.refined(k, i, j))
+          rep.refined.push_back({k, bu[static_cast<size_t>(i)], bu[static_cast<size_t>(i + 1)],
+                                 bv[static_cast<size_t>(j)], bv[static_cast<size_t>(j + 1)]});
+  }
   rep.depth = h.levels() - 1;
   rep.dofs = h.dof_count();
   rep.export_poles = h.finest().size();

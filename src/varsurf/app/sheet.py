@@ -41,6 +41,7 @@ _PROPERTIES = [
     ("AutoRefine", "App::PropertyBool", "Solver", "Local refinement: refine where the curves are off (off: only RefineRegions)", False),
     ("RefineRegions", "App::PropertyFloatList", "Solver", "Local refinement: regions refined by hand, five numbers each: level, u0, u1, v0, v1 (u and v normalized to 0..1)", False),
     ("RefinementDepth", "App::PropertyInteger", "Result", "Local refinement: the levels reached above the base", True),
+    ("RefinedSpans", "App::PropertyFloatList", "Result", "Local refinement: every refined span, five numbers each: level, u0, u1, v0, v1 (the sheet's parameters)", True),
     ("DegreesOfFreedom", "App::PropertyInteger", "Result", "Poles the solve had (Local: the hierarchical sheet's; the exported sheet has PoleCountU x PoleCountV)", True),
     ("SolveModeUsed", "App::PropertyString", "Result", "The solve mode used and why", True),
     ("LCurveResiduals", "App::PropertyFloatList", "Result", "TSVD/MTSVD: constraint residual norm per truncation k (the L-curve's x)", True),
@@ -157,9 +158,13 @@ def _clear_results(obj, status):
     obj.MaxDeviations = []
     obj.CurveNames = []
     obj.ConstraintRank = 0
-    for name in ("ConstraintNames", "ConstraintResiduals", "ConstraintUnits", "LCurveResiduals", "LCurveNorms"):
+    for name in ("ConstraintNames", "ConstraintResiduals", "ConstraintUnits", "LCurveResiduals", "LCurveNorms",
+                 "RefinedSpans"):
         if name in obj.PropertiesList:
             setattr(obj, name, [])
+    for name in ("RefinementDepth", "DegreesOfFreedom"):
+        if name in obj.PropertiesList:
+            setattr(obj, name, 0)
     if "SolveModeUsed" in obj.PropertiesList:
         obj.SolveModeUsed = ""
         obj.LCurveCorner = 0
@@ -279,6 +284,7 @@ class SheetFeature(FeatureProxy):
         if "RefinementDepth" in obj.PropertiesList:
             obj.RefinementDepth = outcome.refinement_depth
             obj.DegreesOfFreedom = outcome.degrees_of_freedom
+            obj.RefinedSpans = [float(x) for span in outcome.refined_spans for x in span]
         if not outcome.refinement_met:
             FreeCAD.Console.PrintWarning(
                 f"VarSurf: {obj.Label}: local refinement reached MaxDepth {obj.MaxDepth} before every "

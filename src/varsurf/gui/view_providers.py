@@ -107,9 +107,13 @@ class ViewProviderSheet(_EditedInPanel, _ViewProvider):
         super().attach(vobj)
         from varsurf.gui import analysis_overlay
 
+        from varsurf.gui import refinement_overlay
+
         analysis_overlay.add_view_properties(vobj)
+        refinement_overlay.add_view_property(vobj)
         if getattr(self, "overlay", None) is None:  # FreeCAD attaches again when Proxy is set
             self.overlay = analysis_overlay.AnalysisOverlay(vobj)
+            self.refinement = refinement_overlay.RefinementOverlay(vobj)
 
     def updateData(self, obj, prop):
         if prop != "Shape":
@@ -124,11 +128,14 @@ class ViewProviderSheet(_EditedInPanel, _ViewProvider):
             overlay.root.removeAllChildren()  # back when the drag is released and recomputed
         else:
             overlay.update(obj.ViewObject)
+            self.refinement.update(obj.ViewObject)
 
     def onChanged(self, vobj, prop):
         overlay = getattr(self, "overlay", None)
         if prop == "Analysis" and overlay is not None:
             overlay.update(vobj)
+        if prop == "ShowRefinement" and getattr(self, "refinement", None) is not None:
+            self.refinement.update(vobj)
 
     def on_created(self, vobj):
         """Hide the base face's object, as FreeCAD features hide the shapes they consume."""

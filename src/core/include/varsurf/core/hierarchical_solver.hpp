@@ -33,6 +33,7 @@ struct HierarchicalReport {
   std::vector<double> max_deviation;  // per curve, in the final solve
   std::vector<double> round_error;    // largest curve deviation after each solve
   std::vector<int> round_dofs;        // dofs of each solve
+  std::vector<RefineBox> refined;     // every refined span: its level and parameter box
   SolveReport solve;                  // of the last solve
 };
 
