@@ -27,7 +27,9 @@ void bind_hierarchical(py::module_& m) {
       .def_readwrite("max_depth", &HierarchicalOptions::max_depth)
       .def_readwrite("automatic", &HierarchicalOptions::automatic)
       .def_readwrite("manual", &HierarchicalOptions::manual)
-      .def_readwrite("samples", &HierarchicalOptions::samples);
+      .def_readwrite("samples", &HierarchicalOptions::samples)
+      .def_readwrite("influence_level", &HierarchicalOptions::influence_level,
+                     "Levels below this keep the start shape: the edit's region of influence.");
   py::class_<HierarchicalReport>(m, "HierarchicalReport")
       .def_readonly("depth", &HierarchicalReport::depth)
       .def_readonly("dofs", &HierarchicalReport::dofs)

@@ -287,11 +287,14 @@ def solve_sheet_from_curves(edges: Sequence, **options) -> SheetOutcome:
     return solve_sheet_on_face(face, edges, **options)
 
 
-def _hierarchy_options(nat, tolerance, max_depth, regions, space, automatic=True):
+def _hierarchy_options(nat, tolerance, max_depth, regions, space, automatic=True, influence_level=0):
     """Native HierarchicalOptions; regions are (level, u0, u1, v0, v1), u and v normalized."""
     options = nat.HierarchicalOptions()
     options.tolerance = float(tolerance)
     options.automatic = bool(automatic)
+    if not (isinstance(influence_level, int) and 0 <= influence_level <= max_depth):
+        raise SheetError(f"InfluenceLevel must be an integer in 0..MaxDepth ({max_depth}) (got {influence_level})")
+    options.influence_level = influence_level
     if not (isinstance(max_depth, int) and 0 <= max_depth <= 8):
         raise SheetError(f"MaxDepth must be an integer in 0..8 (got {max_depth})")
     options.max_depth = max_depth
@@ -332,6 +335,7 @@ def solve_sheet_on_face(
     max_depth: int = DEFAULT_MAX_DEPTH,
     refine_regions: Sequence = (),
     auto_refine: bool = True,
+    influence_level: int = 0,
 ) -> SheetOutcome:
     """Solve the variational sheet over ``face`` that passes through ``edges``.
 
@@ -478,7 +482,8 @@ def solve_sheet_on_face(
         elif rest_surface is not None:
             problem.rest_poles = _rest_poles_in(rest_surface, space, nat, spans, degree)
         if refinement == "Local":
-            hierarchy = _hierarchy_options(nat, tolerance, max_depth, refine_regions, space, auto_refine)
+            hierarchy = _hierarchy_options(nat, tolerance, max_depth, refine_regions, space, auto_refine,
+                                           influence_level)
             try:
                 solved = nat.solve_hierarchical(problem, hierarchy, options)
             except nat.InvalidInput as error:

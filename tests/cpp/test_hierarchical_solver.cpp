@@ -147,6 +147,31 @@ TEST(HierarchicalSolver, AManualRegionAddsDetailWhereNoCurveAsks) {
   EXPECT_LT(r.report.dofs, r.report.export_poles / 2);  // only there
 }
 
+TEST(HierarchicalSolver, TheInfluenceLevelKeepsAnEditLocal) {
+  // A point pulled up in the middle of a flat sheet with its boundary kept (Boier-Martin et al.
+  // 4.2): with every level free the whole sheet bends; with the coarse levels held, refinement
+  // around the point meets it and the sheet away from it does not move.
+  SheetProblem pb = wave_problem(4);
+  pb.curves.clear();
+  pb.points.push_back({0.5, 0.5, Eigen::Vector3d(0.5, 0.5, 0.3)});
+  HierarchicalOptions ho;
+  ho.tolerance = 1e-6;
+  ho.max_depth = 4;
+  const HierarchicalResult global = solve_hierarchical(pb, ho, exact_options());
+  ho.influence_level = 2;
+  const HierarchicalResult local = solve_hierarchical(pb, ho, exact_options());
+  ASSERT_TRUE(global.report.met && local.report.met);
+  EXPECT_EQ(global.report.depth, 0);
+  EXPECT_GE(local.report.depth, 2);
+  const auto z = [](const HierarchicalResult& r, double u, double v) {
+    return evaluate_surface(r.space, r.poles, u, v, 0)(0, 2);
+  };
+  for (const HierarchicalResult* r : {&global, &local}) EXPECT_NEAR(z(*r, 0.5, 0.5), 0.3, 1e-9);
+  EXPECT_GT(z(global, 0.2, 0.5), 0.01);            // global: far from the point it moves
+  EXPECT_LT(std::abs(z(local, 0.2, 0.5)), 1e-12);  // local: it keeps the start shape there
+  EXPECT_GT(z(local, 0.45, 0.5), 0.01);            // but not right beside the point
+}
+
 TEST(HierarchicalSolver, RefusesWhatItCannotRepresent) {
   SheetProblem pb = wave_problem(4);
   pb.fixed_poles = {0, 1, 2};  // not the whole boundary

@@ -81,3 +81,23 @@ def test_refined_spans_are_reported_and_outlined(two_sheets):
         lift = 1e-3 * face.BoundBox.DiagonalLength
         for p in points[::5]:
             assert abs(face.distToShape(Part.Vertex(*p))[0] - lift) < 1e-6 * face.BoundBox.DiagonalLength
+
+
+def test_influence_level_keeps_a_pull_local(doc, native):
+    """A point pulled up on a flat sheet: with the coarse levels held the sheet moves only near it."""
+    surface = add_face(doc, flat_face(spans=4))
+    doc.recompute()
+    heights = {}
+    for level in (0, 2):
+        s = varsurf.make_sheet((surface, "Face1"), [], tolerance=1e-4, min_spans=4, name=f"Level{level}")
+        s.Refinement, s.MaxDepth, s.InfluenceLevel = "Local", 4, level
+        varsurf.make_constraint(s, "Point", uv=(0.5, 0.5), origin=(50.0, 40.0, 10.0))
+        doc.recompute()
+        assert s.isValid(), s.Status
+        face = s.Shape.Faces[0]
+        heights[level] = [face.valueAt(u, 0.5).z for u in (0.15, 0.5)]
+    assert abs(heights[0][1] - 10.0) < 1e-4 and abs(heights[2][1] - 10.0) < 1e-4
+    assert heights[0][0] > 0.1 and abs(heights[2][0]) < 1e-9
+    s.InfluenceLevel = 9  # beyond MaxDepth
+    doc.recompute()
+    assert not s.isValid() and "InfluenceLevel" in s.Status

@@ -82,7 +82,8 @@ SheetProblem finest_problem(const SheetProblem& base, const HierarchicalSpace& h
 }  // namespace
 
 Eigen::MatrixX3d solve_on_hierarchy(const SheetProblem& base, const HierarchicalSpace& h,
-                                    const SolveOptions& opt, SolveReport& rep) {
+                                    const SolveOptions& opt, SolveReport& rep,
+                                    int influence_level) {
   base.space.validate();
   if (base.space.knots_u != h.layer(0).knots_u || base.space.knots_v != h.layer(0).knots_v ||
       base.space.degree_u != h.layer(0).degree_u || base.space.degree_v != h.layer(0).degree_v)
@@ -108,10 +109,13 @@ Eigen::MatrixX3d solve_on_hierarchy(const SheetProblem& base, const Hierarchical
   // A degree of freedom that moves a fixed (boundary) pole is held at zero: its function is then
   // one of the boundary row's, and the boundary curve stays.
   hq.fixed.assign(static_cast<size_t>(m), false);
-  for (int col = 0; col < b3.outerSize(); ++col)
+  for (int col = 0; col < b3.outerSize(); ++col) {
+    if (h.dofs()[static_cast<size_t>(col / 3)].level < influence_level)
+      hq.fixed[static_cast<size_t>(col)] = true;  // outside the region of influence's levels
     for (Sparse::InnerIterator it(b3, col); it; ++it)
       if (q.fixed[static_cast<size_t>(it.row())] && std::abs(it.value()) > 1e-14)
         hq.fixed[static_cast<size_t>(col)] = true;
+  }
   for (const ConstraintSamples& block : q.blocks) {
     if (!block.coupled())
       throw SolveFailure("hierarchical solve: expected coupled constraint rows");
@@ -149,7 +153,8 @@ Eigen::MatrixX3d solve_on_hierarchy(const SheetProblem& base, const Hierarchical
 HierarchicalResult solve_hierarchical(const SheetProblem& base, const HierarchicalOptions& ho,
                                       const SolveOptions& opt) {
   if (!(ho.tolerance > 0.0) || !std::isfinite(ho.tolerance) || ho.max_depth < 0 ||
-      ho.max_depth > 12 || ho.samples < 2)
+      ho.max_depth > 12 || ho.samples < 2 || ho.influence_level < 0 ||
+      ho.influence_level > ho.max_depth)
     throw InvalidInput(
         "hierarchical refinement needs a positive tolerance, a depth of 0..12 and "
         "at least 2 samples per curve");
@@ -179,11 +184,38 @@ HierarchicalResult solve_hierarchical(const SheetProblem& base, const Hierarchic
   while (true) {
     check_keep_going(opt);
     rep.solve = SolveReport();
-    result.poles = solve_on_hierarchy(base, h, opt, rep.solve);
+    result.poles = solve_on_hierarchy(base, h, opt, rep.solve, ho.influence_level);
     result.space = h.finest();
-    // Measure each curve; the leaf spans under the samples that are off are refined.
+    // Measure each curve (and point); the leaf spans under the samples that are off are refined.
     std::set<std::tuple<int, int, int>> to_refine;
+    const auto mark = [&](double u, double v) {
+      const auto [k, su, sv] = leaf_at(h, u, v);
+      if (k >= ho.max_depth) return;
+      // With the span, its neighbours within half a support: finer functions need a patch
+      // their whole support fits in (a lone span holds none).
+      const int r = std::max(1, std::max(h.layer(k).degree_u, h.layer(k).degree_v) / 2);
+      for (int di = -r; di <= r; ++di)
+        for (int dj = -r; dj <= r; ++dj) {
+          const int i = su + di, j = sv + dj;
+          if (i < 0 || j < 0 || i >= h.spans_u(k) || j >= h.spans_v(k)) continue;
+          if (h.in_region(k, i, j)) {
+            if (!h.refined(k, i, j)) to_refine.insert({k, i, j});
+            continue;
+          }
+          // Outside this level's region: the coarser leaf there is refined first.
+          const std::vector<double> bu = breakpoints(h.layer(k).knots_u, h.layer(k).degree_u);
+          const std::vector<double> bv = breakpoints(h.layer(k).knots_v, h.layer(k).degree_v);
+          const auto [lk, li, lj] =
+              leaf_at(h, 0.5 * (bu[static_cast<size_t>(i)] + bu[static_cast<size_t>(i + 1)]),
+                      0.5 * (bv[static_cast<size_t>(j)] + bv[static_cast<size_t>(j + 1)]));
+          if (lk < ho.max_depth) to_refine.insert({lk, li, lj});
+        }
+    };
+    const auto sheet_at = [&](double u, double v) -> Eigen::Vector3d {
+      return evaluate_surface(result.space, result.poles, u, v, 0).row(0).transpose();
+    };
     rep.max_deviation.assign(base.curves.size(), 0.0);
+    double worst = 0.0;
     for (size_t c = 0; c < base.curves.size(); ++c) {
       const CurveConstraint& cc = base.curves[c];
       for (int s = 0; s < ho.samples; ++s) {
@@ -192,37 +224,17 @@ HierarchicalResult solve_hierarchical(const SheetProblem& base, const Hierarchic
         const Eigen::Vector2d uv = cc.preimage.evaluate(t);
         const double u = std::clamp(uv(0), result.space.u_first(), result.space.u_last());
         const double v = std::clamp(uv(1), result.space.v_first(), result.space.v_last());
-        const Eigen::Vector3d p =
-            evaluate_surface(result.space, result.poles, u, v, 0).row(0).transpose();
-        const double dev = (p - cc.target.evaluate(t)).norm();
+        const double dev = (sheet_at(u, v) - cc.target.evaluate(t)).norm();
         rep.max_deviation[c] = std::max(rep.max_deviation[c], dev);
-        if (dev <= ho.tolerance || !ho.automatic) continue;
-        const auto [k, su, sv] = leaf_at(h, u, v);
-        if (k >= ho.max_depth) continue;
-        // With the span, its neighbours within half a support: finer functions need a patch
-        // their whole support fits in (a lone span holds none).
-        const int r = std::max(1, std::max(h.layer(k).degree_u, h.layer(k).degree_v) / 2);
-        for (int di = -r; di <= r; ++di)
-          for (int dj = -r; dj <= r; ++dj) {
-            const int i = su + di, j = sv + dj;
-            if (i < 0 || j < 0 || i >= h.spans_u(k) || j >= h.spans_v(k)) continue;
-            if (h.in_region(k, i, j)) {
-              if (!h.refined(k, i, j)) to_refine.insert({k, i, j});
-              continue;
-            }
-            // Outside this level's region: the coarser leaf there is refined first.
-            const std::vector<double> bu = breakpoints(h.layer(k).knots_u, h.layer(k).degree_u);
-            const std::vector<double> bv = breakpoints(h.layer(k).knots_v, h.layer(k).degree_v);
-            const auto [lk, li, lj] =
-                leaf_at(h, 0.5 * (bu[static_cast<size_t>(i)] + bu[static_cast<size_t>(i + 1)]),
-                        0.5 * (bv[static_cast<size_t>(j)] + bv[static_cast<size_t>(j + 1)]));
-            if (lk < ho.max_depth) to_refine.insert({lk, li, lj});
-          }
+        if (dev > ho.tolerance && ho.automatic) mark(u, v);
       }
+      worst = std::max(worst, rep.max_deviation[c]);
     }
-    const double worst = rep.max_deviation.empty() ? 0.0
-                                                   : *std::max_element(rep.max_deviation.begin(),
-                                                                       rep.max_deviation.end());
+    for (const PointConstraint& p : base.points) {  // a point frozen out of reach refines too
+      const double dev = (sheet_at(p.u, p.v) - p.target).norm();
+      worst = std::max(worst, dev);
+      if (dev > ho.tolerance && ho.automatic) mark(p.u, p.v);
+    }
     rep.round_error.push_back(worst);
     rep.round_dofs.push_back(h.dof_count());
     rep.met = worst <= ho.tolerance;

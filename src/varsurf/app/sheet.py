@@ -38,6 +38,7 @@ _PROPERTIES = [
     ("SolveMode", "App::PropertyEnumeration", "Solver", "Exact: Lagrange multipliers (KKT). Penalty: penalty with refinement (PenaltyQR: by sparse QR). CG: constraints eliminated, conjugate gradients. TSVD / MTSVD: the L-curve decides how much of the curves is fitted (MTSVD smooths the rest by the energy). Automatic: by size", False),
     ("Refinement", "App::PropertyEnumeration", "Solver", "Uniform: the spans are doubled everywhere until the curves are met (up to MaxSpans). Local: only the spans under curves that are off are refined, layer by layer (up to MaxDepth); the exported sheet is one B-spline on the finest level", False),
     ("MaxDepth", "App::PropertyInteger", "Solver", "Local refinement: at most this many levels above MinSpans", False),
+    ("InfluenceLevel", "App::PropertyInteger", "Solver", "Local refinement: levels coarser than this keep the start shape, so edits stay local (refined around the constraints); 0: the whole sheet may move", False),
     ("AutoRefine", "App::PropertyBool", "Solver", "Local refinement: refine where the curves are off (off: only RefineRegions)", False),
     ("RefineRegions", "App::PropertyFloatList", "Solver", "Local refinement: regions refined by hand, five numbers each: level, u0, u1, v0, v1 (u and v normalized to 0..1)", False),
     ("RefinementDepth", "App::PropertyInteger", "Result", "Local refinement: the levels reached above the base", True),
@@ -189,6 +190,7 @@ def compute(obj):
         max_depth=int(getattr(obj, "MaxDepth", model.DEFAULT_MAX_DEPTH)),
         refine_regions=_regions(list(getattr(obj, "RefineRegions", []) or [])),
         auto_refine=bool(getattr(obj, "AutoRefine", True)),
+        influence_level=int(getattr(obj, "InfluenceLevel", 0)),
     )
     options["constraints"] = [spec_of(c) for c in (getattr(obj, "Constraints", None) or []) if c.Enabled]
     options["rest"] = _rest_of(obj, face)

@@ -23,6 +23,10 @@ struct HierarchicalOptions {
   bool automatic = true;          // refine where curves are off; else only the manual boxes
   std::vector<RefineBox> manual;  // refined before the first solve
   int samples = 400;              // per curve, where its deviation is measured
+  // Region of influence (Boier-Martin et al. sec. 4.2): levels below this keep the start shape,
+  // so an edit moves the sheet only as far as the finer levels reach (refined around the
+  // constraints that need it); 0 lets the whole sheet move.
+  int influence_level = 0;
 };
 
 struct HierarchicalReport {
@@ -48,7 +52,8 @@ struct HierarchicalResult {
 // on level 0; its fixed poles may only be the whole boundary (a kept boundary). InvalidInput as
 // for solve_sheet, and for iterated terms (pressure, repellers, shape attractors).
 Eigen::MatrixX3d solve_on_hierarchy(const SheetProblem& base, const HierarchicalSpace& space,
-                                    const SolveOptions& options, SolveReport& report);
+                                    const SolveOptions& options, SolveReport& report,
+                                    int influence_level = 0);
 
 // Refine and solve until the curves are met (or the depth limit); see HierarchicalOptions.
 HierarchicalResult solve_hierarchical(const SheetProblem& base, const HierarchicalOptions& h,
