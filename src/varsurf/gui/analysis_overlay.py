@@ -7,6 +7,7 @@ import FreeCAD as App
 from pivy import coin
 
 from varsurf import analysis
+from varsurf.gui.coin_lines import add_polyline
 
 PROPERTY = "Analysis"
 RANGE_PROPERTY = "AnalysisRange"
@@ -110,26 +111,7 @@ class AnalysisOverlay:
             return
         top = max((max(c.distances) for c in found if c.distances), default=0.0)
         setattr(vobj, RANGE_PROPERTY, f"0 … {top:.3g} mm")
-        style = coin.SoDrawStyle()
-        style.lineWidth = 6.0
-        self.root.addChild(style)
-        light = coin.SoLightModel()
-        light.model = coin.SoLightModel.BASE_COLOR
-        self.root.addChild(light)
-        binding = coin.SoMaterialBinding()
-        binding.value = coin.SoMaterialBinding.PER_VERTEX
-        self.root.addChild(binding)
         for curve in found:
-            sep = coin.SoSeparator()
-            material = coin.SoMaterial()
-            colors = [analysis.ramp(d, -top, top) for d in curve.distances]
-            material.diffuseColor.setValues(0, len(colors), colors)
-            sep.addChild(material)
-            coords = coin.SoCoordinate3()
-            coords.point.setValues(0, len(curve.points), curve.points)
-            sep.addChild(coords)
-            line = coin.SoLineSet()
-            line.numVertices.setValue(len(curve.points))
-            sep.addChild(line)
-            self.root.addChild(sep)
+            add_polyline(self.root, curve.points, [analysis.ramp(d, -top, top) for d in curve.distances],
+                         6.0, unlit=True)
         self.curves = found

@@ -13,6 +13,7 @@ import FreeCADGui as Gui
 from pivy import coin
 
 from varsurf import drag
+from varsurf.gui.coin_lines import add_polyline
 
 V = App.Vector
 PIN = (0.95, 0.55, 0.05)
@@ -47,18 +48,7 @@ def _material(parent, color):
 
 
 def _line(parent, points, color, width=2.0):
-    sep = coin.SoSeparator()
-    _material(sep, color)
-    style = coin.SoDrawStyle()
-    style.lineWidth = width
-    sep.addChild(style)
-    coords = coin.SoCoordinate3()
-    coords.point.setValues(0, len(points), [tuple(p) for p in points])
-    sep.addChild(coords)
-    line = coin.SoLineSet()
-    line.numVertices.setValue(len(points))
-    sep.addChild(line)
-    parent.addChild(sep)
+    add_polyline(parent, points, color, width)
 
 
 def _arrow(parent, base, direction, length, color):

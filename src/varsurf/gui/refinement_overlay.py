@@ -6,6 +6,7 @@ from __future__ import annotations
 from pivy import coin
 
 from varsurf.analysis import refined_outlines
+from varsurf.gui.coin_lines import add_polyline
 
 PROPERTY = "ShowRefinement"
 #: Outline colors by level (repeating).
@@ -32,22 +33,6 @@ class RefinementOverlay:
         spans = list(getattr(obj, "RefinedSpans", []) or [])
         if not getattr(vobj, PROPERTY, False) or not spans or obj.Shape.isNull() or not obj.Shape.Faces:
             return
-        style = coin.SoDrawStyle()
-        style.lineWidth = 2.0
-        self.root.addChild(style)
-        light = coin.SoLightModel()
-        light.model = coin.SoLightModel.BASE_COLOR
-        self.root.addChild(light)
         for level, points in refined_outlines(obj.Shape.Faces[0], spans):
-            sep = coin.SoSeparator()
-            material = coin.SoMaterial()
-            material.diffuseColor.setValue(*LEVEL_COLORS[level % len(LEVEL_COLORS)])
-            sep.addChild(material)
-            coords = coin.SoCoordinate3()
-            coords.point.setValues(0, len(points), points)
-            sep.addChild(coords)
-            line = coin.SoLineSet()
-            line.numVertices.setValue(len(points))
-            sep.addChild(line)
-            self.root.addChild(sep)
+            add_polyline(self.root, points, LEVEL_COLORS[level % len(LEVEL_COLORS)], 2.0, unlit=True)
             self.count += 1
