@@ -97,6 +97,29 @@ def attach_view_provider(obj, class_name: str):
         on_created(obj.ViewObject)
 
 
+def _model_size(base, curves) -> float:
+    """The diagonal (mm) of what a new sheet is made from: its base face, else its curves."""
+    import Part
+
+    boxes = []
+    try:
+        if base is not None:
+            obj, sub = _normalize_base(base)
+            boxes.append(Part.getShape(obj, sub, needSubElement=True).BoundBox)
+        else:
+            for obj, subs in _normalize_curves(curves):
+                for sub in subs:
+                    boxes.append(Part.getShape(obj, sub, needSubElement=True).BoundBox)
+    except Exception:  # a broken link: the Sheet reports it when it recomputes
+        return 0.0
+    if not boxes:
+        return 0.0
+    box = boxes[0]
+    for other in boxes[1:]:
+        box.add(other)
+    return box.DiagonalLength
+
+
 def make_sheet(
     base,
     curves: Iterable = (),
@@ -123,15 +146,20 @@ def make_sheet(
         automatic refinement used when the curves cannot be met within the tolerance.
     degree: the sheet's smallest degree in u and v (the base is elevated to it).
     solve_mode: one of model.SOLVE_MODES.
-    Omitted values come from the VarSurf preferences (built in: thin plate 0 and 1, tolerance
-    0.01 mm, 16 to 64 spans, degree 3, Automatic).
+    Omitted values come from the VarSurf preferences (built in: thin plate 0 and 1, 16 to 64
+    spans, degree 3, Automatic); without a stored tolerance, 1e-4 of the base's (or curves')
+    size, rounded down to 1, 2 or 5 x 10^k (0.01 mm for a 100 mm part).
     """
     from varsurf.app.sheet import SheetFeature
     from varsurf.preferences import sheet_defaults
 
+    from varsurf import preferences
+
     given = dict(stretch=stretch, bend=bend, tolerance=tolerance, min_spans=min_spans,
                  max_spans=max_spans, degree=degree, solve_mode=solve_mode)
     values = {k: (v if v is not None else sheet_defaults()[k]) for k, v in given.items()}
+    if tolerance is None and not preferences.is_set("Tolerance"):
+        values["tolerance"] = model.tolerance_for_size(_model_size(base, curves))
     if values["solve_mode"] not in model.SOLVE_MODES:
         raise ValueError(f"solve_mode must be one of {', '.join(model.SOLVE_MODES)} (got {values['solve_mode']!r})")
 

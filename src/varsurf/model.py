@@ -28,6 +28,9 @@ DEFAULT_BEND = 1.0
 #: run 1-3x the RMS) and leaves the remaining directions to the energy, so the sheet stays fair
 #: instead of chasing data its space can hold only with wild poles.
 DEFAULT_TOLERANCE = 0.01
+#: A new sheet's tolerance when none is set: this fraction of the model's size, rounded down to
+#: 1, 2 or 5 times a power of ten (0.01 mm for a 100 mm part, 0.1 mm for a 1 m one).
+RELATIVE_TOLERANCE = 1e-4
 FIT_TO_TOLERANCE = 0.25
 #: The base face's knot vectors are refined (knot insertion: the base shape is unchanged) to at
 #: least this many spans per direction; curves off the iso lines need that freedom.
@@ -128,6 +131,16 @@ class SheetOutcome:
         for name, res, unit in zip(self.constraint_names, self.constraint_residuals, self.constraint_units):
             lines.append(f"{name}: residual {res:.3g} {unit}")
         return "\n".join(lines)
+
+
+def tolerance_for_size(size: float) -> float:
+    """RELATIVE_TOLERANCE of `size` (mm), rounded down to 1, 2 or 5 x 10^k; DEFAULT_TOLERANCE for a
+    size that is not a positive finite length."""
+    if not (math.isfinite(size) and size > 0.0):
+        return DEFAULT_TOLERANCE
+    raw = RELATIVE_TOLERANCE * size
+    power = 10.0 ** math.floor(math.log10(raw))
+    return max(m for m in (1.0, 2.0, 5.0) if m * power <= raw * (1 + 1e-12)) * power
 
 
 def _build(cls, *args, **attrs):

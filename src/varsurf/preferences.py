@@ -44,3 +44,10 @@ def sheet_defaults() -> dict:
         "tolerance": get("Tolerance"),
         "solve_mode": model.SOLVE_MODES[get("SolveMode")],
     }
+
+
+def is_set(name: str) -> bool:
+    """Whether the user stored a value for `name` (otherwise a default may depend on the model)."""
+    kind = _ENTRIES[name][0]
+    names = group().GetInts() if kind == "Int" else group().GetFloats()
+    return name in names

@@ -46,3 +46,14 @@ def test_new_sheets_take_the_preferences(doc, native, prefs):
         model.SHEET_MIN_DEGREE, model.DEFAULT_TOLERANCE, "Automatic")
     with pytest.raises(ValueError, match="solve_mode"):
         varsurf.make_sheet((base, "Face1"), solve_mode="Magic")
+
+
+def test_without_a_stored_tolerance_it_follows_the_model_size(doc, native, prefs):
+    small = add_face(doc, flat_face(width=10.0, depth=8.0), "Small")
+    large = add_face(doc, flat_face(width=1000.0, depth=800.0), "Large")
+    usual = add_face(doc, flat_face(), "Usual")  # 100 x 80 mm
+    sizes = {o.Name: float(varsurf.make_sheet((o, "Face1"), name=f"S{o.Name}").Tolerance)
+             for o in (small, usual, large)}
+    assert sizes == {"Small": 0.001, "Usual": 0.01, "Large": 0.1}, sizes
+    assert model.tolerance_for_size(250.0) == 0.02 and model.tolerance_for_size(600.0) == 0.05
+    assert model.tolerance_for_size(float("nan")) == model.DEFAULT_TOLERANCE
