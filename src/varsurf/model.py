@@ -469,9 +469,9 @@ def solve_sheet_on_face(
     if refinement not in REFINEMENTS:
         raise SheetError(f"Refinement must be one of {', '.join(REFINEMENTS)} (got {refinement!r})")
     local = None  # the hierarchical report of a Local refinement
-    while True:
-        if keep_going is not None and not keep_going():
-            raise SheetError(CANCELLED)
+
+    def make_problem(spans):
+        """The base refined to `spans` per direction, its space and the native problem on it."""
         sheet = nat.refine_surface(base, spans, spans, degree)
         space = sheet.space
         terms = constraint_specs.native_terms(placed, space, nat)
@@ -487,13 +487,19 @@ def solve_sheet_on_face(
             fixed_poles=fixed,
         )
         terms.apply(problem)
-        if not math.isfinite(pressure):
-            raise SheetError(f"Pressure must be finite (got {pressure})")
         problem.pressure = float(pressure)
         if rest == "base":
             problem.rest_poles = sheet.poles
         elif rest_surface is not None:
             problem.rest_poles = _rest_poles_in(rest_surface, space, nat, spans, degree)
+        return sheet, space, problem
+
+    if not math.isfinite(pressure):
+        raise SheetError(f"Pressure must be finite (got {pressure})")
+    while True:
+        if keep_going is not None and not keep_going():
+            raise SheetError(CANCELLED)
+        sheet, space, problem = make_problem(spans)
         if refinement == "Local":
             hierarchy = _hierarchy_options(nat, tolerance, max_depth, refine_regions, space, auto_refine,
                                            influence_level)
@@ -504,6 +510,8 @@ def solve_sheet_on_face(
             except nat.Cancelled as error:
                 raise SheetError(CANCELLED) from error
             local = solved.report
+            if local.depth > 0:  # joint solves start from the outcome's problem: the finest level's
+                problem = make_problem(spans * 2 ** local.depth)[2]
             space = solved.space
             result = SimpleNamespace(poles=solved.poles, report=solved.report.solve)
             conflict, deviations = 0.0, None  # what is left is measured below and reported

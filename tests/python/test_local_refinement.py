@@ -101,3 +101,14 @@ def test_influence_level_keeps_a_pull_local(doc, native):
     s.InfluenceLevel = 9  # beyond MaxDepth
     doc.recompute()
     assert not s.isValid() and "InfluenceLevel" in s.Status
+
+
+def test_a_joint_solve_starts_from_the_finest_level(two_sheets):
+    """Solids solve their sheets again from each outcome's problem: for a locally refined sheet,
+    the problem on its finest level (not the coarse base, which cannot meet the curve)."""
+    from varsurf.app import sheet as sheet_feature
+
+    _uniform, local = two_sheets
+    problem = sheet_feature.outcome_of(local).problem
+    assert local.RefinementDepth >= 1
+    assert (problem.space.nu(), problem.space.nv()) == (local.PoleCountU, local.PoleCountV)
