@@ -88,7 +88,11 @@ struct ConstrainedSolve::Impl {
       Eigen::MatrixXd stacked(samples.rows() + n, width);
       stacked.topRows(samples.rows()) = std::sqrt(mu2) * d;
       stacked.bottomRows(n) = s_rhs;
-      return spqr.solve(stacked);
+      // Eigen's SPQR wrapper solves one right-hand side at a time (it asserts on more).
+      Eigen::MatrixXd x(n, width);
+      for (Eigen::Index c = 0; c < width; ++c)
+        x.col(c) = spqr.solve(Eigen::VectorXd(stacked.col(c)));
+      return x;
     }
 #endif
     Eigen::MatrixXd rhs = g;
