@@ -17,6 +17,7 @@ import time
 
 import FreeCAD
 
+from varsurf.api import _exec_line, _ref
 from varsurf.app import sheet as sheet_feature
 from varsurf.model import SheetError, _build, _single_face, native, shape_from_brep
 
@@ -25,15 +26,15 @@ TRANSACTION = "Drag VarSurf point"
 _SAME_TARGET = 1e-9
 
 
-def _ref(obj) -> str:
-    return f"App.getDocument({obj.Document.Name!r}).getObject({obj.Name!r})"
+def _target_lines(constraint, t):
+    """Macro lines that write a Point's dragged target (set_point_target)."""
+    return ["import varsurf.drag",
+            f"varsurf.drag.set_point_target({_ref(constraint)}, App.Vector({t.x!r}, {t.y!r}, {t.z!r}))"]
 
 
 def _finish(doc, lines, do_command=None):
     """Run a drag's closing lines and a recompute inside its open transaction, then commit it
     (abort on failure)."""
-    from varsurf.api import _exec_line
-
     run = do_command or _exec_line
     try:
         for line in lines + [f"App.getDocument({doc.Name!r}).recompute()"]:
@@ -149,11 +150,7 @@ class PointDrag:
     def finish(self, target, do_command=None):
         """Write the target and recompute: one undoable step. do_command (FreeCADGui.doCommand in
         the GUI) runs the macro lines that do it, so a macro records the drag's outcome."""
-        t = FreeCAD.Vector(target)
-        _finish(self.doc, [
-            "import varsurf.drag",
-            f"varsurf.drag.set_point_target({_ref(self.constraint)}, App.Vector({t.x!r}, {t.y!r}, {t.z!r}))",
-        ], do_command)
+        _finish(self.doc, _target_lines(self.constraint, FreeCAD.Vector(target)), do_command)
         if not self.sheet.isValid():
             raise SheetError(f"{self.sheet.Label}: {self.sheet.Status}")
 
@@ -292,5 +289,4 @@ class TargetDrag(RecomputeDrag):
         set_point_target(self.constraint, target)
 
     def _lines(self, t):
-        return ["import varsurf.drag",
-                f"varsurf.drag.set_point_target({_ref(self.constraint)}, App.Vector({t.x!r}, {t.y!r}, {t.z!r}))"]
+        return _target_lines(self.constraint, t)

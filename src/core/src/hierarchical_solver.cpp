@@ -22,14 +22,7 @@ using RowSparse = Eigen::SparseMatrix<double, Eigen::RowMajor>;
 // Level-0 poles (n x 3) written on the finest level.
 Eigen::MatrixX3d refine_poles(const Eigen::MatrixX3d& poles, const HierarchicalSpace& h) {
   const SplineSpace& base = h.layer(0);
-  Sparse tu = Eigen::MatrixXd::Identity(base.nu(), base.nu()).sparseView();
-  Sparse tv = Eigen::MatrixXd::Identity(base.nv(), base.nv()).sparseView();
-  for (int k = 0; k + 1 < h.levels(); ++k) {
-    const SplineSpace& s = h.layer(k);
-    const SplineSpace& n = h.layer(k + 1);
-    tu = Sparse(refinement_matrix(s.knots_u, s.degree_u, n.knots_u) * tu);
-    tv = Sparse(refinement_matrix(s.knots_v, s.degree_v, n.knots_v) * tv);
-  }
+  const Sparse tu = h.level_to_finest_u(0), tv = h.level_to_finest_v(0);
   const SplineSpace& fine = h.finest();
   Eigen::MatrixX3d out(fine.size(), 3);
   for (int c = 0; c < 3; ++c) {

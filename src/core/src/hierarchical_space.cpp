@@ -150,21 +150,28 @@ void HierarchicalSpace::collect_dofs() {
   }
 }
 
+Eigen::SparseMatrix<double> HierarchicalSpace::level_to_finest_u(int level) const {
+  const int n = layer(level).nu();
+  Eigen::SparseMatrix<double> t = Eigen::MatrixXd::Identity(n, n).sparseView();
+  for (int k = level; k + 1 < levels(); ++k)
+    t = refinement_matrix(layer(k).knots_u, layer(k).degree_u, layer(k + 1).knots_u) * t;
+  return t;
+}
+
+Eigen::SparseMatrix<double> HierarchicalSpace::level_to_finest_v(int level) const {
+  const int n = layer(level).nv();
+  Eigen::SparseMatrix<double> t = Eigen::MatrixXd::Identity(n, n).sparseView();
+  for (int k = level; k + 1 < levels(); ++k)
+    t = refinement_matrix(layer(k).knots_v, layer(k).degree_v, layer(k + 1).knots_v) * t;
+  return t;
+}
+
 Eigen::SparseMatrix<double> HierarchicalSpace::to_finest() const {
-  const int top = levels() - 1;
   const SplineSpace& fine = finest();
-  // Each level's basis in the finest one, per direction: the product of one-level refinements.
-  std::vector<Eigen::SparseMatrix<double>> tu(static_cast<size_t>(levels())),
-      tv(static_cast<size_t>(levels()));
-  tu[static_cast<size_t>(top)] = Eigen::MatrixXd::Identity(fine.nu(), fine.nu()).sparseView();
-  tv[static_cast<size_t>(top)] = Eigen::MatrixXd::Identity(fine.nv(), fine.nv()).sparseView();
-  for (int k = top - 1; k >= 0; --k) {
-    const SplineSpace& s = layer(k);
-    const SplineSpace& n = layer(k + 1);
-    tu[static_cast<size_t>(k)] =
-        tu[static_cast<size_t>(k + 1)] * refinement_matrix(s.knots_u, s.degree_u, n.knots_u);
-    tv[static_cast<size_t>(k)] =
-        tv[static_cast<size_t>(k + 1)] * refinement_matrix(s.knots_v, s.degree_v, n.knots_v);
+  std::vector<Eigen::SparseMatrix<double>> tu, tv;
+  for (int k = 0; k < levels(); ++k) {
+    tu.push_back(level_to_finest_u(k));
+    tv.push_back(level_to_finest_v(k));
   }
   std::vector<Eigen::Triplet<double>> t;
   for (size_t d = 0; d < dofs_.size(); ++d) {

@@ -200,10 +200,6 @@ def _selected_sheets():
             if getattr(getattr(s.Object, "Proxy", None), "Type", "") == sheet_feature.TYPE]
 
 
-def _obj_expr(obj):
-    return f"App.getDocument({obj.Document.Name!r}).getObject({obj.Name!r})"
-
-
 class CommandColorMap:
     """Switch the selected Sheets' color map to the next analysis (view property Analysis)."""
 
@@ -228,7 +224,7 @@ class CommandColorMap:
         for sheet in _selected_sheets():
             mode = str(getattr(sheet.ViewObject, "Analysis", "None"))
             following = MODES[(MODES.index(mode) + 1) % len(MODES)] if mode in MODES else MODES[0]
-            Gui.doCommand(f"{_obj_expr(sheet)}.ViewObject.Analysis = {following!r}")
+            Gui.doCommand(f"{api._ref(sheet)}.ViewObject.Analysis = {following!r}")
 
 
 class CommandLCurve:
@@ -255,7 +251,7 @@ class CommandLCurve:
         sheet = _selected_sheets()[0]
         path = os.path.join(tempfile.gettempdir(), f"varsurf-lcurve-{sheet.Document.Name}-{sheet.Name}.png")
         Gui.doCommand("import varsurf.analysis")
-        Gui.doCommand(f"varsurf.analysis.plot_lcurve({_obj_expr(sheet)}, {path!r})")
+        Gui.doCommand(f"varsurf.analysis.plot_lcurve({api._ref(sheet)}, {path!r})")
         App.Console.PrintMessage(
             App.Qt.translate("VarSurf_LCurve", "VarSurf: L-curve of {} written to {}").format(sheet.Label, path) + "\n")
         if _dialogs_allowed():
@@ -285,7 +281,7 @@ class CommandRestShape:
     def Activated(self):
         sheets = _selected_sheets()
         doc = sheets[0].Document
-        lines = ["import varsurf"] + [f"varsurf.{self.function}({_obj_expr(s)})" for s in sheets]
+        lines = ["import varsurf"] + [f"varsurf.{self.function}({api._ref(s)})" for s in sheets]
         lines.append(f"App.getDocument({doc.Name!r}).recompute()")
         try:
             api.run_in_transaction(doc, f"VarSurf {self.function.replace('_', ' ')}", lines, Gui.doCommand)

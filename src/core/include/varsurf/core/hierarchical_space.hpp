@@ -50,6 +50,10 @@ class HierarchicalSpace {
 
   // The finest layer's space (every layer written in it is exact: its knots contain all others).
   const SplineSpace& finest() const { return layers_.back().space; }
+  // A level's basis in the finest one, per direction (finest count x level count): knot
+  // insertion from that level's knots to the finest level's.
+  Eigen::SparseMatrix<double> level_to_finest_u(int level) const;
+  Eigen::SparseMatrix<double> level_to_finest_v(int level) const;
   // finest poles = to_finest() * dof values (finest size x dof_count), per coordinate.
   Eigen::SparseMatrix<double> to_finest() const;
   // The surface at (u, v) summed layer by layer from dof values (dof_count x 3): independent of
