@@ -46,6 +46,11 @@ void bind_core_functions(py::module_& m) {
   py::class_<CurveLoop>(m, "CurveLoop", "2D curves chained into one closed loop.")
       .def_readonly("steps", &CurveLoop::steps)
       .def_readonly("signed_area", &CurveLoop::signed_area);
+  m.def("estimate_solve_bytes", &estimate_solve_bytes, "unknowns"_a, "row_nonzeros"_a,
+        "mode"_a = SolveMode::automatic,
+        "Bytes a solve in `mode` of `unknowns` unknowns, each coupled to `row_nonzeros` others, "
+        "needs at most (what SolveOptions.memory_limit is compared with).");
+
   m.def("chain_loop", &chain_loop, "curves"_a, "gap"_a,
         "Order 2D curves end to start into one closed loop (ends within `gap` join); "
         "InvalidInput if they do not close one.");

@@ -329,6 +329,11 @@ void bind_core_types(py::module_& m) {
       .def_readwrite("max_fit_factor", &SolveOptions::max_fit_factor,
                      "Penalty mode: refine while a sample is farther than this times "
                      "fit_tolerance.")
+      .def_readwrite("time_limit", &SolveOptions::time_limit,
+                     "Seconds the solve may take (0: no limit); past it, ResourceLimit.")
+      .def_readwrite("memory_limit", &SolveOptions::memory_limit,
+                     "Bytes the solve may need by estimate_solve_bytes (0: no limit); larger "
+                     "problems are refused with ResourceLimit before allocating.")
       .def_readwrite("keep_going", &SolveOptions::keep_going,
                      "None, or a callable asked between iterative steps; False stops the solve "
                      "(Cancelled).")

@@ -23,6 +23,10 @@ void bind_errors(py::module_& m) {
   cancelled.attr("__doc__") =
       "The solve stopped because SolveOptions.keep_going returned False. Subclass of "
       "RuntimeError.";
+  auto& limit = py::register_exception<ResourceLimit>(m, "ResourceLimit", PyExc_RuntimeError);
+  limit.attr("__doc__") =
+      "The solve would exceed SolveOptions.max_unknowns, memory_limit or time_limit. Subclass "
+      "of RuntimeError.";
   auto& geometry =
       py::register_exception<occ::GeometryError>(m, "GeometryError", PyExc_RuntimeError);
   geometry.attr("__doc__") =

@@ -278,7 +278,7 @@ TEST(SheetSolver, RejectsBadProblems) {
   pb.fixed_poles.clear();
   SolveOptions opt;
   opt.max_unknowns = 10;
-  EXPECT_THROW(solve_sheet(pb, opt), InvalidInput);
+  EXPECT_THROW(solve_sheet(pb, opt), ResourceLimit);
   opt = SolveOptions();
   opt.rank_tolerance = 0.0;
   pb.points.push_back(PointConstraint());

@@ -12,6 +12,7 @@
 #include <cmath>
 #include <string>
 
+#include "solve_limits.hpp"
 #include "stopwatch.hpp"
 #include "varsurf/core/errors.hpp"
 
@@ -25,6 +26,7 @@ using Sparse = Eigen::SparseMatrix<double>;
 
 void check_keep_going(const SolveOptions& options) {
   if (options.keep_going && !options.keep_going()) throw Cancelled("the solve was cancelled");
+  check_deadline();
 }
 
 const char* to_string(SolveMode mode) {
@@ -177,6 +179,9 @@ ConstrainedSolve::ConstrainedSolve(const Quadratic& pb, const SolveOptions& opt,
   }
   rep.mode = m.mode;
   if (m.n == 0) return;
+  // Row width of one coordinate's energy (a coupled system, width 1, holds three per pole).
+  const long long row = (pb.q.nonZeros() + total - 1) / std::max(total, 1) / (m.width == 1 ? 3 : 1);
+  check_memory(m.n, std::max(row, 1LL), m.mode, opt, "the solve");
 
   auto t = Clock::now();
   if ((m.mode == SolveMode::tsvd || m.mode == SolveMode::mtsvd) &&
@@ -210,6 +215,7 @@ ConstrainedSolve::ConstrainedSolve(const Quadratic& pb, const SolveOptions& opt,
     rep.reduce_seconds = seconds_since(t);
   }
 
+  check_keep_going(opt);  // the reduction can be long; the factorization cannot be interrupted
   t = Clock::now();
   m.x0_free.resize(m.n, m.width);
   for (int i = 0; i < m.n; ++i) m.x0_free.row(i) = pb.x0.row(m.free_cols[static_cast<size_t>(i)]);

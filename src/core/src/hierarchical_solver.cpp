@@ -8,6 +8,7 @@
 
 #include "constrained_solve.hpp"
 #include "sheet_assembly.hpp"
+#include "solve_limits.hpp"
 #include "varsurf/core/errors.hpp"
 #include "varsurf/core/knot_refinement.hpp"
 #include "varsurf/core/knot_vector.hpp"
@@ -77,6 +78,7 @@ SheetProblem finest_problem(const SheetProblem& base, const HierarchicalSpace& h
 Eigen::MatrixX3d solve_on_hierarchy(const SheetProblem& base, const HierarchicalSpace& h,
                                     const SolveOptions& opt, SolveReport& rep,
                                     int influence_level) {
+  const SolveBudget budget(opt);
   base.space.validate();
   if (base.space.knots_u != h.layer(0).knots_u || base.space.knots_v != h.layer(0).knots_v ||
       base.space.degree_u != h.layer(0).degree_u || base.space.degree_v != h.layer(0).degree_v)
@@ -88,6 +90,13 @@ Eigen::MatrixX3d solve_on_hierarchy(const SheetProblem& base, const Hierarchical
         "a locally refined sheet can keep its whole boundary, not other fixed poles "
         "(frozen regions need uniform refinement)");
   const SheetProblem fine = finest_problem(base, h);
+  if (fine.space.size() > opt.max_unknowns)
+    throw ResourceLimit("the refined sheet's finest level has " +
+                        std::to_string(fine.space.size()) + " poles, more than the limit of " +
+                        std::to_string(opt.max_unknowns) + "; lower MaxDepth");
+  check_memory(3LL * fine.space.size(),
+               (2LL * fine.space.degree_u + 1) * (2LL * fine.space.degree_v + 1),
+               SolveMode::penalty, opt, "the refined sheet's finest level");
   const Quadratic q = coupled_sheet_quadratic(fine, opt);
   // x = x_s + B3 d: the displacement d lives in the hierarchical space.
   const Sparse b = h.to_finest();
@@ -145,6 +154,7 @@ Eigen::MatrixX3d solve_on_hierarchy(const SheetProblem& base, const Hierarchical
 
 HierarchicalResult solve_hierarchical(const SheetProblem& base, const HierarchicalOptions& ho,
                                       const SolveOptions& opt) {
+  const SolveBudget budget(opt);
   if (!(ho.tolerance > 0.0) || !std::isfinite(ho.tolerance) || ho.max_depth < 0 ||
       ho.max_depth > 12 || ho.samples < 2 || ho.influence_level < 0 ||
       ho.influence_level > ho.max_depth)

@@ -9,6 +9,7 @@
 #include "constrained_solve.hpp"
 #include "curve_pieces.hpp"
 #include "sheet_assembly.hpp"
+#include "solve_limits.hpp"
 #include "stopwatch.hpp"
 #include "varsurf/core/constraints.hpp"
 #include "varsurf/core/curve_energy.hpp"
@@ -220,9 +221,13 @@ Joint assemble_joint(const ModelProblem& pb, const SolveOptions& opt) {
   Joint j;
   j.lay = layout(pb);
   if (j.lay.total > opt.max_unknowns)
-    throw InvalidInput("the model has " + std::to_string(j.lay.total) +
-                       " unknown coordinates, more than the limit of " +
-                       std::to_string(opt.max_unknowns));
+    throw ResourceLimit("the model has " + std::to_string(j.lay.total) +
+                        " unknown coordinates, more than the limit of " +
+                        std::to_string(opt.max_unknowns));
+  long long row = 1;
+  for (const SheetProblem& sheet : pb.sheets)
+    row = std::max(row, (2LL * sheet.space.degree_u + 1) * (2LL * sheet.space.degree_v + 1));
+  check_memory(j.lay.total, row, SolveMode::penalty, opt, "the model");
   const Eigen::Index n = j.lay.total;
   Quadratic& q = j.quad;
   q.f = Eigen::MatrixXd::Zero(n, 1);
@@ -628,6 +633,7 @@ void solve_hinges(const ModelProblem& pb, const SolveOptions& opt, Joint& joint,
 
 ModelResult solve_model(const ModelProblem& pb, const SolveOptions& opt) {
   const auto start = Clock::now();
+  const SolveBudget budget(opt);
   validate(pb);
   Joint joint = assemble_joint(pb, opt);
   ModelResult result;

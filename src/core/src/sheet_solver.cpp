@@ -7,6 +7,7 @@
 
 #include "constrained_solve.hpp"
 #include "sheet_assembly.hpp"
+#include "solve_limits.hpp"
 #include "stopwatch.hpp"
 #include "varsurf/core/errors.hpp"
 
@@ -19,8 +20,8 @@ using Sparse = Eigen::SparseMatrix<double>;
 void validate_problem(const SheetProblem& pb, const SolveOptions& opt) {
   pb.space.validate();
   if (pb.space.size() > opt.max_unknowns)
-    throw InvalidInput("the sheet has " + std::to_string(pb.space.size()) +
-                       " poles, more than the limit of " + std::to_string(opt.max_unknowns));
+    throw ResourceLimit("the sheet has " + std::to_string(pb.space.size()) +
+                        " poles, more than the limit of " + std::to_string(opt.max_unknowns));
   if (pb.initial_poles.rows() != pb.space.size())
     throw InvalidInput("initial poles: expected " + std::to_string(pb.space.size()) +
                        " rows, got " + std::to_string(pb.initial_poles.rows()));
@@ -209,8 +210,21 @@ bool has_coupled_constraints(const SheetProblem& pb) {
          !pb.ribbons.empty();
 }
 
+// Before anything large is allocated: the solve's size, 3 unknowns a pole if it couples x, y, z.
+void check_sheet_memory(const SheetProblem& pb, const SolveOptions& opt) {
+  const bool coupled =
+      opt.force_coupled || has_coupled_constraints(pb) || !pb.directors.empty() ||
+      !pb.repellers.empty() || !pb.shape_attractors.empty() || pb.pressure != 0.0 ||
+      std::any_of(pb.attractors.begin(), pb.attractors.end(),
+                  [](const Attractor& a) { return a.kind != AttractorKind::point; });
+  const long long width = coupled ? 3 : 1;
+  const long long row = (2LL * pb.space.degree_u + 1) * (2LL * pb.space.degree_v + 1);
+  check_memory(width * pb.space.size(), row, SolveMode::penalty, opt, "the sheet");
+}
+
 Assembled assemble(const SheetProblem& pb, const SolveOptions& opt, SolveReport& rep,
                    const CurveSampler& curve_sampler = nullptr) {
+  check_sheet_memory(pb, opt);
   const SplineSpace& sp = pb.space;
   const int poles = sp.size();
   Assembled out;
@@ -288,6 +302,7 @@ Quadratic coupled_sheet_quadratic(const SheetProblem& pb, const SolveOptions& op
 
 SolveResult solve_sheet(const SheetProblem& pb, const SolveOptions& opt) {
   const auto start = Clock::now();
+  const SolveBudget budget(opt);
   validate_problem(pb, opt);
   SolveResult result;
   SolveReport& rep = result.report;
@@ -315,6 +330,7 @@ struct PreparedSheet::State {
 
 PreparedSheet::PreparedSheet(const SheetProblem& pb, const SolveOptions& opt) : state_(new State) {
   const auto start = Clock::now();
+  const SolveBudget budget(opt);
   validate_problem(pb, opt);
   State& st = *state_;
   st.problem = pb;
@@ -459,6 +475,7 @@ SolveResult PreparedSheet::update(const SheetProblem& moved) {
 SolveResult PreparedSheet::change(const SheetProblem& changed) {
   const auto start = Clock::now();
   State& st = *state_;
+  const SolveBudget budget(st.options);
   validate_problem(changed, st.options);
   check_same_setup(st.problem, changed);
   SolveReport rep;

@@ -22,4 +22,10 @@ struct Cancelled : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// The solve would exceed SolveOptions::time_limit or memory_limit (or max_unknowns): refused or
+// stopped with a message saying which limit and what to change.
+struct ResourceLimit : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
 }  // namespace varsurf

@@ -63,8 +63,12 @@ enum class SolveMode {
 const char* to_string(SolveMode mode);
 
 struct SolveOptions;
-// Throws Cancelled when options.keep_going says stop.
+// Throws Cancelled when options.keep_going says stop, ResourceLimit past options.time_limit.
 void check_keep_going(const SolveOptions& options);
+
+// Bytes a solve in `mode` of `unknowns` unknowns, each coupled to `row_nonzeros` others in the
+// energy, needs at most (assembly and sparse factorization; measured, see solve_limits.cpp).
+double estimate_solve_bytes(long long unknowns, long long row_nonzeros, SolveMode mode);
 
 struct SolveOptions {
   SolveMode mode = SolveMode::automatic;
@@ -83,7 +87,13 @@ struct SolveOptions {
   // Refinement sweeps against the unshifted system; they also remove the regularization's bias
   // from every direction the problem determines.
   int refinement_steps = 6;
-  int max_unknowns = 2000000;  // refuse larger problems with a clear message
+  int max_unknowns = 2000000;  // refuse larger problems with a clear message (ResourceLimit)
+  // Wall-clock seconds one solve (with its inner solves: refinement rounds, hinge iterations) may
+  // take; checked between its steps, past it the solve stops with ResourceLimit. 0: no limit.
+  double time_limit = 0.0;
+  // Bytes the solve may need by estimate_solve_bytes; larger problems are refused with
+  // ResourceLimit before anything large is allocated. 0: no limit.
+  double memory_limit = 0.0;
   // Solve the coupled 3n system even when every term is separable (the separable solve is
   // cheaper and gives the same poles).
   bool force_coupled = false;
