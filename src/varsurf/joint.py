@@ -152,7 +152,7 @@ def solve_joint(sheets: Sequence[JointSheet], variational: Dict[str, Variational
     options.keep_going = keep_going
     try:
         result = nat.solve_model(model_problem, options)
-    except nat.InvalidInput as error:
+    except (nat.InvalidInput, nat.ResourceLimit) as error:
         raise SheetError(_named(str(error), labels, list(index), hinges)) from error
     except nat.Cancelled as error:
         from varsurf.model import CANCELLED

@@ -53,6 +53,20 @@ REFINEMENTS = ("Uniform", "Local")
 DEFAULT_MAX_DEPTH = 5
 #: The error of a solve stopped by the user (through its progress indicator).
 CANCELLED = "the solve was cancelled; recompute to solve again"
+
+# Resource limits of one sheet's solve (all its refinement rounds): past the time, or beyond the
+# memory estimate, the solve stops with a message instead of hanging FreeCAD or exhausting memory.
+DEFAULT_TIME_LIMIT = 600.0  # seconds
+
+
+def default_memory_limit() -> float:
+    """Half the machine's physical memory, in bytes (the rest is FreeCAD's and the system's)."""
+    import os
+
+    try:
+        return 0.5 * os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
+    except (ValueError, OSError, AttributeError):
+        return 4e9
 #: Points per curve at which the result's distance to the curve is measured.
 DEVIATION_SAMPLES = 200
 
@@ -349,6 +363,8 @@ def solve_sheet_on_face(
     refine_regions: Sequence = (),
     auto_refine: bool = True,
     influence_level: int = 0,
+    time_limit: Optional[float] = None,
+    memory_limit: Optional[float] = None,
 ) -> SheetOutcome:
     """Solve the variational sheet over ``face`` that passes through ``edges``.
 
@@ -413,8 +429,15 @@ def solve_sheet_on_face(
 
     try:
         base = nat.surface_from_face_brep(face.exportBrepToString())
-    except nat.InvalidInput as error:
+    except (nat.InvalidInput, nat.GeometryError) as error:
         raise SheetError(f"the base face cannot be used: {error}") from error
+    extent = face.BoundBox.DiagonalLength
+    if not (math.isfinite(extent) and extent > 0.0) or face.Area < 1e-6 * extent ** 2:
+        raise SheetError(f"the base face is degenerate: {face.Area:.3g} mm² over a {extent:.3g} mm extent "
+                         "(collapsed to a line or a point); pick a face that has an area")
+    if tolerance >= extent:
+        raise SheetError(f"Tolerance {tolerance:.3g} mm is not smaller than the model ({extent:.3g} mm across): "
+                         "every curve would count as met; give a tolerance well below the model's size")
 
     curve_constraints = []
     targets = []
@@ -466,6 +489,25 @@ def solve_sheet_on_face(
     options.penalty_qr = solve_mode == "PenaltyQR"
     if keep_going is not None:  # asked between iterative steps and refinement levels
         options.keep_going = keep_going
+    time_limit = DEFAULT_TIME_LIMIT if time_limit is None else float(time_limit)
+    memory_limit = default_memory_limit() if memory_limit is None else float(memory_limit)
+    if not (time_limit > 0.0 and memory_limit > 0.0):  # NaN too
+        raise SheetError(f"the time and memory limits must be positive (got {time_limit} s, {memory_limit} bytes)")
+    options.memory_limit = memory_limit
+    deadline = time.monotonic() + time_limit
+
+    def run(solve, *args):
+        """A native solve on the rest of the time budget; its refusals as SheetErrors."""
+        options.time_limit = deadline - time.monotonic()
+        if options.time_limit <= 0.0:
+            raise SheetError(f"the solve took longer than its time limit of {time_limit:.3g} s; "
+                             "raise the limit in the preferences, or use fewer spans or a looser tolerance")
+        try:
+            return solve(*args)
+        except (nat.InvalidInput, nat.ResourceLimit) as error:
+            raise SheetError(str(error)) from error
+        except nat.Cancelled as error:
+            raise SheetError(CANCELLED) from error
     if refinement not in REFINEMENTS:
         raise SheetError(f"Refinement must be one of {', '.join(REFINEMENTS)} (got {refinement!r})")
     local = None  # the hierarchical report of a Local refinement
@@ -503,12 +545,7 @@ def solve_sheet_on_face(
         if refinement == "Local":
             hierarchy = _hierarchy_options(nat, tolerance, max_depth, refine_regions, space, auto_refine,
                                            influence_level)
-            try:
-                solved = nat.solve_hierarchical(problem, hierarchy, options)
-            except nat.InvalidInput as error:
-                raise SheetError(str(error)) from error
-            except nat.Cancelled as error:
-                raise SheetError(CANCELLED) from error
+            solved = run(nat.solve_hierarchical, problem, hierarchy, options)
             local = solved.report
             if local.depth > 0:  # joint solves start from the outcome's problem: the finest level's
                 problem = make_problem(spans * 2 ** local.depth)[2]
@@ -516,12 +553,7 @@ def solve_sheet_on_face(
             result = SimpleNamespace(poles=solved.poles, report=solved.report.solve)
             conflict, deviations = 0.0, None  # what is left is measured below and reported
             break
-        try:
-            result = nat.solve_sheet(problem, options)
-        except nat.InvalidInput as error:
-            raise SheetError(str(error)) from error
-        except nat.Cancelled as error:
-            raise SheetError(CANCELLED) from error
+        result = run(nat.solve_sheet, problem, options)
         if not result.report.converged:
             raise SheetError(
                 f"the nonlinear terms (pressure, repellers, shape attractors) did not settle in "
@@ -544,11 +576,17 @@ def solve_sheet_on_face(
     if conflict > tolerance:
         deviations = [float(nat.max_deviation(surface, c, DEVIATION_SAMPLES)) for c in targets]
         worst = [f"{n} ({d:.3g} mm)" for n, d in zip(names, deviations) if d > tolerance]
+        for p in placed:  # point-like constraints contradict too (two targets at one place)
+            unit = constraint_specs.KINDS[p.spec.kind][1]
+            off = float(constraint_specs.residual(p, surface, base))
+            if unit == "mm" and off > tolerance:
+                worst.append(f"{p.spec.name} ({off:.3g} mm)")
         raise SheetError(
-            f"the curves cannot all be met: they contradict each other by {conflict:.3g} mm "
-            f"(RMS) even with {spans} spans per direction. Curves off by more than the tolerance: "
+            f"the curves and constraints cannot all be met: they contradict each other by {conflict:.3g} mm "
+            f"(RMS) even with {spans} spans per direction. Off by more than the tolerance: "
             f"{', '.join(worst) or 'none individually'}. Curves that cross must meet in space; "
-            "curves close to a kept boundary must reach it smoothly (or turn FixBoundary off)."
+            "curves close to a kept boundary must reach it smoothly (or turn FixBoundary off); "
+            "points must not ask one place of the sheet to be in two."
         )
     shape = _single_face(shape_from_brep(nat.face_brep(surface)))
     if deviations is None:
@@ -556,6 +594,7 @@ def solve_sheet_on_face(
     residuals = [float(constraint_specs.residual(p, surface, base)) for p in placed]
     report = result.report
     options.keep_going = None  # the outcome's options serve later solves (joint, drag)
+    options.time_limit = time_limit  # each later solve gets the whole limit again
     return SheetOutcome(
         shape=shape,
         surface=surface,

@@ -20,6 +20,9 @@ _ENTRIES = {
     "Bend": ("Float", model.DEFAULT_BEND, lambda v: math.isfinite(v) and v >= 0.0),
     "Tolerance": ("Float", model.DEFAULT_TOLERANCE, lambda v: math.isfinite(v) and v > 0.0),
     "SolveMode": ("Int", 0, lambda v: 0 <= v < len(model.SOLVE_MODES)),  # a combo box's index
+    # Resource limits of one solve: seconds, and megabytes (0: half the physical memory).
+    "SolveTimeLimit": ("Float", model.DEFAULT_TIME_LIMIT, lambda v: math.isfinite(v) and v > 0.0),
+    "SolveMemoryLimit": ("Int", 0, lambda v: v >= 0),
 }
 
 
@@ -44,6 +47,13 @@ def sheet_defaults() -> dict:
         "tolerance": get("Tolerance"),
         "solve_mode": model.SOLVE_MODES[get("SolveMode")],
     }
+
+
+def solve_limits() -> dict:
+    """The time and memory limits of a solve (solve_sheet_on_face's keywords)."""
+    megabytes = get("SolveMemoryLimit")
+    return {"time_limit": get("SolveTimeLimit"),
+            "memory_limit": megabytes * 1e6 if megabytes > 0 else model.default_memory_limit()}
 
 
 def is_set(name: str) -> bool:

@@ -307,7 +307,7 @@ TEST(SurfaceFromFace, BSplineFaceIsSegmentedToItsBounds) {
 
 TEST(SurfaceFromFace, RejectsDegenerateInput) {
   EXPECT_THROW(occ::surface_from_face(TopoDS_Face()), InvalidInput);
-  BRepBuilderAPI_MakeFace unbounded(gp_Pln(gp::XOY()));
+  BRepBuilderAPI_MakeFace unbounded{gp_Pln(gp::XOY())};
   ASSERT_TRUE(unbounded.IsDone());
   EXPECT_THROW(occ::surface_from_face(unbounded.Face()), InvalidInput);
 }

@@ -412,6 +412,24 @@ PreImage project_curve(const BSplineSurface& base, const BSplineCurve& target,
   }
   samples.add(t1);
 
+  // A target along the sheet's normal projects to (nearly) one point: no pre-image can carry it.
+  double target_length = 0.0, image_length = 0.0;
+  for (auto it = samples.points().begin(); std::next(it) != samples.points().end(); ++it) {
+    const auto next = std::next(it);
+    target_length += (target.evaluate(next->first) - target.evaluate(it->first)).norm();
+    image_length += (base.evaluate(next->second.uv(0), next->second.uv(1)) -
+                     base.evaluate(it->second.uv(0), it->second.uv(1)))
+                        .norm();
+  }
+  if (target_length > 0.0 && image_length < 1e-3 * target_length) {
+    std::ostringstream msg;
+    msg << "the target curve runs along the sheet's normal: its " << target_length
+        << " long path projects onto " << image_length
+        << " of the sheet, so no sheet over this face can contain it (tilt the curve or pick "
+           "another base face)";
+    throw InvalidInput(msg.str());
+  }
+
   // A pre-image that jumps between neighbouring samples is refined until it is smooth or the jump
   // proves to be a discontinuity (seam of a closed sheet, a fold, a ridge of equal distances).
   const Eigen::Vector2d lo(base.space.u_first(), base.space.v_first());

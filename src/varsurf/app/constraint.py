@@ -11,7 +11,7 @@ from __future__ import annotations
 import FreeCAD
 
 from varsurf import constraints
-from varsurf.app.feature import FeatureProxy
+from varsurf.app.feature import FeatureProxy, value
 
 TYPE = "VarSurf::Constraint"
 
@@ -106,19 +106,19 @@ def spec_of(obj) -> constraints.ConstraintSpec:
     # A Point's target is its vertex; Origin stands in only when asked to (UseOrigin), so a
     # deleted vertex is an error rather than a silent pull toward (0, 0, 0).
     if obj.UseOrigin or (location is None and str(obj.Kind) != "Point"):
-        origin = (obj.Origin.x, obj.Origin.y, obj.Origin.z)
+        origin = tuple(value(obj, "Origin"))
     spec = constraints.ConstraintSpec(
         kind=str(obj.Kind),
         name=obj.Label,
         location=location,
         uv=None if location is not None else (float(obj.U), float(obj.V)),
-        vector=(obj.Vector.x, obj.Vector.y, obj.Vector.z),
+        vector=tuple(value(obj, "Vector")),
         origin=origin,
         region=(float(obj.RegionU0), float(obj.RegionU1), float(obj.RegionV0), float(obj.RegionV1)),
         weight=float(obj.Weight),
         edge=_sub_shape(obj, "Curve", ("Edge",)),
         reference=_sub_shape(obj, "Reference", ("Face", "Edge")),
-        angle=float(obj.Angle),
+        angle=float(value(obj, "Angle")),
         region_loop=_loop_shape(obj),
     )
     spec.validate()
@@ -135,6 +135,8 @@ class ConstraintFeature(FeatureProxy):
 
     def onDocumentRestored(self, obj):
         super().onDocumentRestored(obj)
+        if self.state_problem() is not None:
+            return
         # Files from before a kind was added list fewer kinds: offer them all, keep the choice.
         if list(obj.getEnumerationsOfProperty("Kind")) != list(constraints.KINDS):
             kind = str(obj.Kind)

@@ -8,7 +8,7 @@ and holds each hinge's angle all along the curve; it reports the angles reached.
 from __future__ import annotations
 
 from varsurf import model
-from varsurf.app.feature import FeatureProxy
+from varsurf.app.feature import FeatureProxy, value
 
 TYPE = "VarSurf::Hinge"
 DEFAULT_ANGLE = 180.0
@@ -43,7 +43,8 @@ def spec_of(obj):
     sheets = list(obj.Sheets or [])
     if len(sheets) != 2:
         raise model.SheetError(f"{obj.Label}: a hinge needs exactly two Sheets (has {len(sheets)})")
-    angle = float(obj.Angle.Value if hasattr(obj.Angle, "Value") else obj.Angle)
+    angle = value(obj, "Angle")
+    angle = float(angle.Value if hasattr(angle, "Value") else angle)
     return HingeSpec(name=obj.Label, key=curve_key(obj), sheet_a=sheets[0].Label,
                      sheet_b=sheets[1].Label, angle=angle)
 

@@ -11,7 +11,7 @@ from __future__ import annotations
 import FreeCAD
 
 from varsurf import model
-from varsurf.app.feature import FeatureProxy
+from varsurf.app.feature import FeatureProxy, value
 from varsurf.app.constraint import spec_of
 
 TYPE = "VarSurf::Sheet"
@@ -96,8 +96,8 @@ def _restore_constraints(obj):
     # The bounds of a dynamic FloatConstraint are not written to the file; set them again.
     for name in ("Stretch", "Bend"):
         if name in obj.PropertiesList:
-            value = float(getattr(obj, name))
-            setattr(obj, name, (max(value, 0.0), 0.0, _FLOAT_MAX, 0.1))
+            number = float(getattr(obj, name))
+            setattr(obj, name, (max(number, 0.0), 0.0, _FLOAT_MAX, 0.1))
     for name in ("MinSpans", "MaxSpans"):
         if name in obj.PropertiesList:
             setattr(obj, name, (min(max(int(getattr(obj, name)), 1), 512), 1, 512, 1))
@@ -118,6 +118,7 @@ def resolve_inputs(obj):
         base_subs = [s for s in base_subs if s]
         if len(base_subs) != 1 or not base_subs[0].startswith("Face"):
             raise model.SheetError(f"Base must reference exactly one face of {base_obj.Label}")
+        _check_not_cyclic(obj, base_obj)
         face = _element(Part, base_obj, base_subs[0])
     edges, names = [], []
     for link_obj, subs in obj.Curves:
@@ -127,6 +128,7 @@ def resolve_inputs(obj):
             name = f"{link_obj.Label}:{sub}"
             if not sub.startswith("Edge"):
                 raise model.SheetError(f"{name} is not an edge")
+            _check_not_cyclic(obj, link_obj)
             edges.append(_element(Part, link_obj, sub))
             names.append(name)
     return face, edges, names
@@ -143,6 +145,21 @@ def _rest_of(obj, face):
             raise model.SheetError("RestShape is Installed but no rest shape was installed")
         return shape.Faces[0]
     return None
+
+
+def _check_not_cyclic(obj, link_obj):
+    """A link to the sheet itself, or to anything built from it, would make the sheet follow its
+    own last result: refuse it (FreeCAD accepts such links in a PropertyLinkSubList)."""
+    # FreeCAD's OutListRecursive raises on the cycle itself; walk the OutLists instead.
+    seen, stack = set(), [link_obj]
+    while stack:
+        current = stack.pop()
+        if current is obj:
+            raise model.SheetError(f"cyclic dependency: {link_obj.Label} is built from {obj.Label} itself; "
+                                   "link curves and faces that do not depend on the sheet")
+        if current.Name not in seen:
+            seen.add(current.Name)
+            stack.extend(current.OutList)
 
 
 def _element(Part, link_obj, sub):
@@ -180,7 +197,7 @@ def compute(obj):
         stretch=float(obj.Stretch),
         bend=float(obj.Bend),
         fix_boundary=bool(obj.FixBoundary),
-        tolerance=float(obj.Tolerance),
+        tolerance=float(value(obj, "Tolerance")),
         min_spans=int(obj.MinSpans),
         degree=int(getattr(obj, "Degree", model.SHEET_MIN_DEGREE)),
         solve_mode=str(obj.SolveMode),
@@ -202,8 +219,9 @@ def compute(obj):
     options["exact_curves"] = exact
     options["stretch_tensor"] = list(getattr(obj, "StretchTensor", []) or [])
     options["bend_tensor"] = list(getattr(obj, "BendTensor", []) or [])
-    from varsurf import progress
+    from varsurf import preferences, progress
 
+    options.update(preferences.solve_limits())
     watch = progress.for_solve(obj.Label)
     options["keep_going"] = watch
     try:
@@ -247,6 +265,8 @@ class SheetFeature(FeatureProxy):
 
     def onDocumentRestored(self, obj):
         super().onDocumentRestored(obj)
+        if self.state_problem() is not None:
+            return
         # Files from before a mode was added list fewer modes: offer them all, keep the choice.
         if list(obj.getEnumerationsOfProperty("SolveMode")) != list(model.SOLVE_MODES):
             mode = str(obj.SolveMode)
@@ -302,9 +322,9 @@ class SheetFeature(FeatureProxy):
             f"{'' if n == 1 else 's'}, max deviation {outcome.max_deviation:.3g} mm"
         )
         off = [f"{name} ({dev:.3g} mm)" for name, dev in zip(outcome.curve_names, outcome.max_deviations)
-               if dev > float(obj.Tolerance)]
+               if dev > float(value(obj, "Tolerance"))]
         if off:  # met in the RMS the solve fits to, but farther somewhere: say so, in the result too
             obj.Status = obj.Status.replace("OK:", "Warning:", 1) + f"; beyond the tolerance: {', '.join(off)}"
             FreeCAD.Console.PrintWarning(
-                f"VarSurf: {obj.Label}: curves farther than the tolerance {float(obj.Tolerance):.3g} mm somewhere: "
+                f"VarSurf: {obj.Label}: curves farther than the tolerance {float(value(obj, 'Tolerance')):.3g} mm somewhere: "
                 f"{', '.join(off)} (operators pulling the sheet off its curves, or too few spans: see MaxSpans)\n")

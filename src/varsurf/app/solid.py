@@ -16,7 +16,7 @@ from varsurf import assembly, joint, model
 from varsurf.app import hinge as hinge_feature
 from varsurf.app import sheet as sheet_feature
 from varsurf.app import space_curve as space_curve_feature
-from varsurf.app.feature import FeatureProxy
+from varsurf.app.feature import FeatureProxy, value
 
 TYPE = "VarSurf::Solid"
 
@@ -124,7 +124,7 @@ class SolidFeature(FeatureProxy):
         try:
             inputs = _solve_together(obj, join_inputs(obj))
             try:
-                outcome = assembly.build_solid(inputs, float(obj.Tolerance))
+                outcome = assembly.build_solid(inputs, float(value(obj, "Tolerance")))
             except assembly.JoinGapError as error:
                 raise model.SheetError(f"{error}{_hinge_blame(obj)}") from error
             if not outcome.valid:
