@@ -1,5 +1,5 @@
 """The memory estimate a solve is refused by (SolveOptions.memory_limit) bounds the memory solves
-really take: measured as the peak resident memory of a fresh process over one solve."""
+really take: measured as the growth of a fresh process's peak resident memory over one solve."""
 
 import subprocess
 import sys
@@ -10,8 +10,15 @@ import pytest
 REPO = Path(__file__).resolve().parents[2]
 
 MEASURE = r'''
-import resource, sys
+import sys
 sys.path.insert(0, sys.argv[1])
+
+
+def peak():  # this process's resident high-water mark (ru_maxrss would keep the parent's over exec)
+    with open("/proc/self/status") as status:
+        return next(int(line.split()[1]) * 1024 for line in status if line.startswith("VmHWM:"))
+
+
 from varsurf import _native as nat
 spans, coupled, fit = int(sys.argv[2]), sys.argv[3] == "1", float(sys.argv[4])
 sheet = nat.refine_surface(nat.BSplineSurface(space=nat.SplineSpace.uniform(3, 3, 1, 1),
@@ -30,9 +37,9 @@ pb = nat.SheetProblem(space=sheet.space, initial_poles=sheet.poles, curves=curve
 o = nat.SolveOptions()
 o.fit_tolerance = fit
 o.force_coupled = coupled
-before = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024
+before = peak()
 report = nat.solve_sheet(pb, o).report
-after = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024
+after = peak()
 n = sheet.space.size() * (3 if coupled else 1)
 print(report.mode.name, after - before, nat.estimate_solve_bytes(n, 49, report.mode))
 '''

@@ -59,13 +59,13 @@ double estimate_solve_bytes(long long unknowns, long long row_nonzeros, SolveMod
   if (n <= 0.0) return 0.0;
   // Sparse factors of a 2D problem grow as n log n (nested dissection), with the energy's row
   // width r (per coordinate: a coupled solve's 3 coordinates a pole add to n, not to r). Peak
-  // memory measured over solve_sheet on bicubic sheets (r = 49), separable and coupled, of 64^2
-  // to 256^2 poles: the exact mode's KKT LU took 2700-2950 bytes per n log2 n, the penalty
-  // mode's Cholesky 170-270. The factors below bound both from above; automatic may
-  // pick the exact mode, so it counts as exact.
-  const bool lu =
-      mode == SolveMode::exact || mode == SolveMode::mtsvd || mode == SolveMode::automatic;
-  const double per_entry = lu ? 64.0 : 8.0;
+  // resident memory measured over solve_sheet on bicubic sheets (r = 49), separable and coupled,
+  // of 64^2 to 256^2 poles: the exact mode's KKT LU took 2400-2950 bytes per n log2 n, the
+  // penalty mode's Cholesky 410-470. The factors below bound both with a margin of 1.4 to 1.9;
+  // automatic may pick the exact mode, so it counts as exact.
+  const bool lu = mode == SolveMode::exact || mode == SolveMode::mtsvd ||
+                  mode == SolveMode::automatic;
+  const double per_entry = lu ? 80.0 : 16.0;
   return per_entry * r * n * std::log2(n + 2.0) + 512.0 * n;
 }
 

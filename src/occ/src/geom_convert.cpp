@@ -1,6 +1,5 @@
 #include "varsurf/occ/geom_convert.hpp"
 
-#include <BRepBuilderAPI_NurbsConvert.hxx>
 #include <BRepTools.hxx>
 #include <BRep_Tool.hxx>
 #include <GCPnts_AbscissaPoint.hxx>
@@ -15,8 +14,6 @@
 #include <TColgp_Array1OfPnt.hxx>
 #include <TColgp_Array1OfPnt2d.hxx>
 #include <TColgp_Array2OfPnt.hxx>
-#include <TopExp_Explorer.hxx>
-#include <TopoDS.hxx>
 
 #include <algorithm>
 #include <cmath>
@@ -278,14 +275,13 @@ BSplineSurface surface_from_face(const TopoDS_Face& face) {
 
     Handle(Geom_BSplineSurface) basis = bspline_under(geom);
     if (basis.IsNull()) {
-      BRepBuilderAPI_NurbsConvert convert(f, Standard_True);
-      if (!convert.IsDone()) throw GeometryError("face: conversion to NURBS failed");
-      TopExp_Explorer ex(convert.Shape(), TopAbs_FACE);
-      if (!ex.More()) throw GeometryError("face: conversion to NURBS produced no face");
-      f = TopoDS::Face(ex.Current());
-      basis = bspline_under(BRep_Tool::Surface(f));
+      // Only the surface over the face's UV box is needed, not the face: converting the trimmed
+      // surface skips BRepBuilderAPI_NurbsConvert's re-projection of every pcurve, which took
+      // up to 12 s on a sphere face cut near its pole (found by the OCCT bridge fuzzer).
+      basis = GeomConvert::SurfaceToBSplineSurface(
+          new Geom_RectangularTrimmedSurface(geom, u1, u2, v1, v2));
       if (basis.IsNull()) throw GeometryError("face: conversion to NURBS gave no B-spline surface");
-      BRepTools::UVBounds(f, u1, u2, v1, v2);
+      basis->Bounds(u1, u2, v1, v2);
     }
     Handle(Geom_BSplineSurface) s = Handle(Geom_BSplineSurface)::DownCast(basis->Copy());
     restrict_to(s, u1, u2, v1, v2);
