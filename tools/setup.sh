@@ -10,6 +10,7 @@ PACKAGES=(
   pybind11-dev python3-pybind11 python3-dev python3-numpy python3-pytest
   libgtest-dev libgmock-dev libbenchmark-dev
   freecad python3-matplotlib libgl1-mesa-dri xvfb xauth clang-format
+  clang libclang-rt-14-dev
 )
 
 missing=()
