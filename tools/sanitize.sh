@@ -43,7 +43,7 @@ fuzz occ_bridge -detect_leaks=0 & occ=$!
 for harness in core_solver occ_bridge; do
   if [ "$harness" = core_solver ]; then pid=$core; else pid=$occ; fi
   if wait "$pid"; then
-    echo "fuzz_$harness: $(grep -E '^#[0-9]+ +DONE' "build-san/fuzz_$harness.log" | tail -1)"
+    echo "fuzz_$harness: $(grep -E '^#[0-9]+[[:space:]]+DONE' "build-san/fuzz_$harness.log" | tail -1)"
   else
     echo "fuzz_$harness FAILED:"
     tail -60 "build-san/fuzz_$harness.log"

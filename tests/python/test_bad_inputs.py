@@ -107,6 +107,24 @@ def case_closed_face(sc):
     return sc.sheet, ["Pole:Edge1", "normal"], fix
 
 
+def case_huge_face(sc):
+    # 100 km across: the default tolerance follows the size, so the sheet solves (no overflow)
+    huge = scenes.flat_face(width=1e8, depth=8e7)
+    repair = sc.use_base(huge)
+    rail = sc.curve("Far", Part.LineSegment(V(1e7, 4e7, 5e5), V(9e7, 4e7, 5e5)).toShape())
+    restore = sc.set(Tolerance=1e4)
+    sc.sheet.Curves = [(rail, "Edge1")]
+    sc.doc.recompute()
+    assert sc.sheet.isValid() and max(sc.sheet.MaxDeviations) < 1e4, sc.sheet.Status
+
+    def fix():
+        repair()
+        restore()
+        sc.sheet.Curves = [(sc.ridge, "Edge1")]
+    fix()
+    return None, ["accepted"], None
+
+
 def case_curve_crossing_out(sc):
     return sc.sheet, ["BadCurve:Edge1", "beyond the base face"], sc.use_curve(
         Part.LineSegment(V(50, 40, 1), V(150, 40, 3)).toShape())
@@ -347,5 +365,6 @@ def test_the_catalogue_lists_every_case_and_names_real_tests():
             continue
         path, _, test = ref.partition("::")
         source = (CATALOGUE.parent.parent / path).read_text()
-        assert re.search(rf"^def {re.escape(test)}\(", source, flags=re.M), ref
+        pattern = rf"^TEST\(\w+, {re.escape(test)}\)" if path.endswith(".cpp") else rf"^def {re.escape(test)}\("
+        assert re.search(pattern, source, flags=re.M), ref
     assert named_cases == set(CASES), named_cases ^ set(CASES)
