@@ -17,7 +17,9 @@ class VersionedState:
     TYPE = "VarSurf::Object"
 
     def dumps(self):
-        return {"type": self.TYPE, "version": STATE_VERSION}
+        # An object read from a newer (or unreadable) file keeps that mark when saved here, so a
+        # later session does not take it for its own format.
+        return {"type": self.TYPE, "version": getattr(self, "state_version", STATE_VERSION)}
 
     def loads(self, state):
         self.Type = self.TYPE  # the class's own, whatever the file says

@@ -161,8 +161,16 @@ def test_a_file_from_a_newer_version_keeps_its_data_and_says_so(doc, native, tmp
         assert sheet.Stretch == stretch
         # the base and sketch are not VarSurf's and recompute as usual
         assert again.getObject("Ridge").isValid()
+        # saved here, the object keeps its newer mark (a later session must not take it as its own)
+        again.save()
     finally:
         FreeCAD.closeDocument(again.Name)
+    third = FreeCAD.openDocument(path)
+    try:
+        assert third.getObject("Sheet").Proxy.state_version == 99
+        assert max_gap(geometry(third.getObject("Sheet")), saved) < 1e-12
+    finally:
+        FreeCAD.closeDocument(third.Name)
 
 
 def _run_without_varsurf(tmp_path, code):
