@@ -297,7 +297,8 @@ def run(result):
     entries = {}
     for kind, name in ((QtGui.QSpinBox, "degreeSpin"), (QtGui.QSpinBox, "minSpansSpin"),
                        (QtGui.QDoubleSpinBox, "bendSpin"), (QtGui.QDoubleSpinBox, "toleranceSpin"),
-                       (QtGui.QComboBox, "solveModeCombo")):
+                       (QtGui.QComboBox, "solveModeCombo"), (QtGui.QDoubleSpinBox, "timeLimitSpin"),
+                       (QtGui.QSpinBox, "memoryLimitSpin")):
         widget = page.findChild(kind, name)
         entries[name] = bytes(widget.property("prefEntry")).decode() if widget is not None else None
     result["preference_entries"] = entries

@@ -143,7 +143,11 @@ def test_color_maps_and_the_l_curve(smoke):
 
 def test_preferences_page_binds_the_defaults(smoke):
     assert smoke["preference_entries"] == {"degreeSpin": "Degree", "minSpansSpin": "MinSpans", "bendSpin": "Bend",
-                                           "toleranceSpin": "Tolerance", "solveModeCombo": "SolveMode"}
+                                           "toleranceSpin": "Tolerance", "solveModeCombo": "SolveMode",
+                                           "timeLimitSpin": "SolveTimeLimit", "memoryLimitSpin": "SolveMemoryLimit"}
+    from varsurf import preferences
+
+    assert {"SolveTimeLimit", "SolveMemoryLimit"} <= set(preferences._ENTRIES)  # read back by the solve
     from varsurf import model
 
     assert smoke["preference_modes"] == list(model.SOLVE_MODES)  # the stored index means a mode
