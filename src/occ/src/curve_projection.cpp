@@ -414,12 +414,17 @@ PreImage project_curve(const BSplineSurface& base, const BSplineCurve& target,
 
   // A target along the sheet's normal projects to (nearly) one point: no pre-image can carry it.
   double target_length = 0.0, image_length = 0.0;
-  for (auto it = samples.points().begin(); std::next(it) != samples.points().end(); ++it) {
-    const auto next = std::next(it);
-    target_length += (target.evaluate(next->first) - target.evaluate(it->first)).norm();
-    image_length += (base.evaluate(next->second.uv(0), next->second.uv(1)) -
-                     base.evaluate(it->second.uv(0), it->second.uv(1)))
-                        .norm();
+  Eigen::VectorXd last_target;
+  Eigen::Vector3d last_image;
+  for (const auto& [t, s] : samples.points()) {
+    const Eigen::VectorXd on_target = target.evaluate(t);
+    const Eigen::Vector3d on_sheet = base.evaluate(s.uv(0), s.uv(1));
+    if (last_target.size() > 0) {
+      target_length += (on_target - last_target).norm();
+      image_length += (on_sheet - last_image).norm();
+    }
+    last_target = on_target;
+    last_image = on_sheet;
   }
   if (target_length > 0.0 && image_length < 1e-3 * target_length) {
     std::ostringstream msg;
