@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <string>
+#include <utility>
 
 #include "test_support.hpp"
 #include "varsurf/core/errors.hpp"
@@ -42,6 +43,13 @@ std::string message_of(const SheetProblem& pb, const SolveOptions& opt) {
   return "";
 }
 
+// The ResourceLimit message of a solve and how long the solve took before it.
+std::pair<std::string, double> timed_message(const SheetProblem& pb, const SolveOptions& opt) {
+  const auto start = std::chrono::steady_clock::now();
+  std::string m = message_of(pb, opt);
+  return {m, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()};
+}
+
 }  // namespace
 
 TEST(SolveLimits, EstimateGrowsAsNLogNAndTheExactModeNeedsMost) {
@@ -69,10 +77,7 @@ TEST(SolveLimits, MemoryBeyondTheLimitIsRefusedBeforeAllocating) {
   const SheetProblem pb = pinned_sheet(256);  // 67081 poles
   SolveOptions opt;
   opt.memory_limit = 50e6;
-  const auto start = std::chrono::steady_clock::now();
-  const std::string m = message_of(pb, opt);
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const auto [m, seconds] = timed_message(pb, opt);
   EXPECT_NE(m.find("memory limit of 50 MB"), std::string::npos) << m;
   EXPECT_NE(m.find("MaxSpans"), std::string::npos) << m;  // says what to do
   // Refused at the estimate, not after assembling: far quicker than the solve (~1 s).
@@ -95,10 +100,7 @@ TEST(SolveLimits, ALongSolveStopsAtItsTimeLimit) {
   opt.max_iterations = 100000;
   opt.nonlinear_tolerance = 1e-300;  // never converges by itself
   opt.time_limit = 0.3;
-  const auto start = std::chrono::steady_clock::now();
-  const std::string m = message_of(pb, opt);
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const auto [m, seconds] = timed_message(pb, opt);
   EXPECT_NE(m.find("time limit of 0.3 s"), std::string::npos) << m;
   EXPECT_GT(seconds, 0.3);
   EXPECT_LT(seconds, 3.0);  // one step past the deadline at most

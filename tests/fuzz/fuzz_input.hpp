@@ -91,8 +91,4 @@ inline BSplineCurve curve(FuzzedDataProvider& in, int dim, double lo, double hi)
   return c;
 }
 
-inline bool all_finite(const Eigen::MatrixXd& m) {
-  return m.allFinite();
-}
-
 }  // namespace varsurf::fuzz

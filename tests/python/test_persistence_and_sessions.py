@@ -19,6 +19,7 @@ from varsurf import api, joints_api
 from varsurf.persistence import STATE_VERSION
 
 import scenes
+from scenes import Sel
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "examples"))
 import hinge_pair  # noqa: E402
@@ -26,7 +27,6 @@ import hinge_pair  # noqa: E402
 V = FreeCAD.Vector
 REPO = Path(__file__).resolve().parents[2]
 FREECAD_LIB = "/usr/lib/freecad-python3/lib"
-KINDS_WITH_VERTEX = ("Point",)
 
 
 def geometry(obj):
@@ -308,8 +308,6 @@ def _constraint_picks(kind, sheet, pin, o):
     assert kind not in constraints.CURVE_KINDS and kind not in constraints.SHAPE_KINDS, kind
     return [Sel(sheet, "Face1")]
 
-
-from scenes import Sel  # noqa: E402
 
 
 def _commands(doc, surface, rail, pin, sheet, o):

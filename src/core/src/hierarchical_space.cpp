@@ -150,20 +150,30 @@ void HierarchicalSpace::collect_dofs() {
   }
 }
 
-Eigen::SparseMatrix<double> HierarchicalSpace::level_to_finest_u(int level) const {
-  const int n = layer(level).nu();
-  Eigen::SparseMatrix<double> t = Eigen::MatrixXd::Identity(n, n).sparseView();
-  for (int k = level; k + 1 < levels(); ++k)
-    t = refinement_matrix(layer(k).knots_u, layer(k).degree_u, layer(k + 1).knots_u) * t;
+namespace {
+
+// Knot insertion from `level` to the finest level along one direction, chained level by level.
+Eigen::SparseMatrix<double> chain_to_finest(const HierarchicalSpace& h, int level, bool along_u) {
+  auto knots = [&](int k) -> const std::vector<double>& {
+    return along_u ? h.layer(k).knots_u : h.layer(k).knots_v;
+  };
+  const int degree = along_u ? h.layer(level).degree_u : h.layer(level).degree_v;
+  const int n = along_u ? h.layer(level).nu() : h.layer(level).nv();
+  Eigen::SparseMatrix<double> t(n, n);
+  t.setIdentity();
+  for (int k = level; k + 1 < h.levels(); ++k)
+    t = refinement_matrix(knots(k), degree, knots(k + 1)) * t;
   return t;
 }
 
+}  // namespace
+
+Eigen::SparseMatrix<double> HierarchicalSpace::level_to_finest_u(int level) const {
+  return chain_to_finest(*this, level, true);
+}
+
 Eigen::SparseMatrix<double> HierarchicalSpace::level_to_finest_v(int level) const {
-  const int n = layer(level).nv();
-  Eigen::SparseMatrix<double> t = Eigen::MatrixXd::Identity(n, n).sparseView();
-  for (int k = level; k + 1 < levels(); ++k)
-    t = refinement_matrix(layer(k).knots_v, layer(k).degree_v, layer(k + 1).knots_v) * t;
-  return t;
+  return chain_to_finest(*this, level, false);
 }
 
 Eigen::SparseMatrix<double> HierarchicalSpace::to_finest() const {
