@@ -117,6 +117,14 @@ void restrict_to(const Handle(Geom_BSplineSurface) & s, double u1, double u2, do
   make_clamped(s);
 }
 
+// Whether [u1, u2] x [v1, v2] spans a whole period of `s` in both directions.
+bool covers_both_periods(const Handle(Geom_Surface) & s, double u1, double u2, double v1,
+                         double v2) {
+  const double tol = Precision::PConfusion();
+  return s->IsUPeriodic() && s->IsVPeriodic() && u2 - u1 >= s->UPeriod() - tol &&
+         v2 - v1 >= s->VPeriod() - tol;
+}
+
 }  // namespace
 
 Handle(Geom_BSplineSurface) to_geom(const BSplineSurface& surface) {
@@ -277,9 +285,13 @@ BSplineSurface surface_from_face(const TopoDS_Face& face) {
     if (basis.IsNull()) {
       // Only the surface over the face's UV box is needed, not the face: converting the trimmed
       // surface skips BRepBuilderAPI_NurbsConvert's re-projection of every pcurve, which took
-      // up to 12 s on a sphere face cut near its pole (found by the OCCT bridge fuzzer).
+      // up to 12 s on a sphere face cut near its pole (found by the OCCT bridge fuzzer). A box
+      // over whole periods both ways (a full torus) is the whole surface, and OCCT's trimmed
+      // torus conversion refuses it (Standard_DomainError): the untrimmed surface converts to
+      // a doubly periodic B-spline, which restrict_to opens at the surface's own seams.
+      const bool whole = covers_both_periods(geom, u1, u2, v1, v2);
       basis = GeomConvert::SurfaceToBSplineSurface(
-          new Geom_RectangularTrimmedSurface(geom, u1, u2, v1, v2));
+          whole ? geom : new Geom_RectangularTrimmedSurface(geom, u1, u2, v1, v2));
       if (basis.IsNull()) throw GeometryError("face: conversion to NURBS gave no B-spline surface");
       basis->Bounds(u1, u2, v1, v2);
     }
