@@ -39,7 +39,8 @@ void bind_hierarchical(py::module_& m) {
       .def_readonly("round_error", &HierarchicalReport::round_error)
       .def_readonly("round_dofs", &HierarchicalReport::round_dofs)
       .def_readonly("refined", &HierarchicalReport::refined)
-      .def_readonly("solve", &HierarchicalReport::solve);
+      .def_readonly("solve", &HierarchicalReport::solve)
+      .def_readonly("total_seconds", &HierarchicalReport::total_seconds);
   py::class_<HierarchicalResult>(m, "HierarchicalResult")
       .def_readonly("space", &HierarchicalResult::space)
       .def_readonly("poles", &HierarchicalResult::poles)

@@ -112,3 +112,41 @@ def test_a_joint_solve_starts_from_the_finest_level(two_sheets):
     problem = sheet_feature.outcome_of(local).problem
     assert local.RefinementDepth >= 1
     assert (problem.space.nu(), problem.space.nv()) == (local.PoleCountU, local.PoleCountV)
+
+
+def _unknowns_and_poles(sheet):
+    """(unknowns, poles, free poles) as SolveModeUsed states them for a locally refined sheet."""
+    import re
+
+    found = re.search(r"locally refined: (\d+) poles on \d+ levels?, (\d+) of them free, .*\((\d+) unknowns\)$",
+                      sheet.SolveModeUsed)
+    assert found, sheet.SolveModeUsed
+    poles, free, unknowns = (int(g) for g in found.groups())
+    return unknowns, poles, free
+
+
+def test_solve_time_and_unknowns_are_those_of_the_hierarchical_solve(two_sheets):
+    """SolveTime is the hierarchical solve's time (every round), within the recompute's measured
+    wall time and most of it; the unknowns reported are the x, y and z of the free poles, which
+    are all of DegreesOfFreedom when the boundary is free."""
+    import time
+
+    from varsurf.app import sheet as sheet_feature
+
+    _uniform, local = two_sheets
+    doc = local.Document
+    for fix in (True, False):
+        local.FixBoundary = fix
+        start = time.perf_counter()
+        doc.recompute()
+        wall = time.perf_counter() - start
+        assert local.isValid() and local.RefinementDepth >= (1 if fix else 0), local.Status
+        # The solve is most of a local recompute (projection and measurement take the rest).
+        assert 0.2 * wall <= local.SolveTime <= wall, (local.SolveTime, wall)
+        unknowns, poles, free = _unknowns_and_poles(local)
+        assert poles == local.DegreesOfFreedom
+        assert unknowns == 3 * free == sheet_feature.outcome_of(local).unknowns
+        if fix:
+            assert free < poles  # the boundary's poles are held
+        else:
+            assert free == poles

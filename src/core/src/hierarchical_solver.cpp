@@ -9,6 +9,7 @@
 #include "constrained_solve.hpp"
 #include "sheet_assembly.hpp"
 #include "solve_limits.hpp"
+#include "stopwatch.hpp"
 #include "varsurf/core/errors.hpp"
 #include "varsurf/core/knot_refinement.hpp"
 #include "varsurf/core/knot_vector.hpp"
@@ -78,6 +79,7 @@ SheetProblem finest_problem(const SheetProblem& base, const HierarchicalSpace& h
 Eigen::MatrixX3d solve_on_hierarchy(const SheetProblem& base, const HierarchicalSpace& h,
                                     const SolveOptions& opt, SolveReport& rep,
                                     int influence_level) {
+  const auto start = Clock::now();
   const SolveBudget budget(opt);
   base.space.validate();
   if (base.space.knots_u != h.layer(0).knots_u || base.space.knots_v != h.layer(0).knots_v ||
@@ -149,11 +151,13 @@ Eigen::MatrixX3d solve_on_hierarchy(const SheetProblem& base, const Hierarchical
   }
   const ConstrainedSolve solver(hq, opt, rep);
   const Eigen::MatrixXd d = solver.solve(hq.f, solver.reduced_rhs(), rep);
+  rep.total_seconds = seconds_since(start);  // as solve_sheet's: assembly, reduction, solve
   return unflatten(xs + b3 * d);
 }
 
 HierarchicalResult solve_hierarchical(const SheetProblem& base, const HierarchicalOptions& ho,
                                       const SolveOptions& opt) {
+  const auto start = Clock::now();
   const SolveBudget budget(opt);
   if (!(ho.tolerance > 0.0) || !std::isfinite(ho.tolerance) || ho.max_depth < 0 ||
       ho.max_depth > 12 || ho.samples < 2 || ho.influence_level < 0 ||
@@ -257,6 +261,7 @@ HierarchicalResult solve_hierarchical(const SheetProblem& base, const Hierarchic
   rep.depth = h.levels() - 1;
   rep.dofs = h.dof_count();
   rep.export_poles = h.finest().size();
+  rep.total_seconds = seconds_since(start);
   return result;
 }
 

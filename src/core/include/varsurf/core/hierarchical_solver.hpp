@@ -39,6 +39,7 @@ struct HierarchicalReport {
   std::vector<int> round_dofs;        // dofs of each solve
   std::vector<RefineBox> refined;     // every refined span: its level and parameter box
   SolveReport solve;                  // of the last solve
+  double total_seconds = 0.0;         // every round: solves, measurements and refinement
 };
 
 struct HierarchicalResult {
