@@ -21,6 +21,7 @@
 #include "varsurf/occ/single_shape.hpp"
 #include "varsurf/occ/step_io.hpp"
 #include "varsurf/occ/surface_refinement.hpp"
+#include "varsurf/occ/trimmed_face.hpp"
 
 namespace py = pybind11;
 using namespace pybind11::literals;
@@ -95,6 +96,50 @@ void bind_occ_bridge(py::module_& m) {
       "surface"_a, "loop"_a, "tolerance"_a = 1e-6,
       "BREP of the sheet's face inside a closed loop of 2D (u, v) curves chained end to start "
       "(edges built from the pre-images, 3D curves derived).");
+
+  py::enum_<occ::TrimPlace>(m, "TrimPlace", "Where a (u, v) of a sheet lies on its base face.")
+      .value("inside", occ::TrimPlace::inside)
+      .value("over_hole", occ::TrimPlace::over_hole)
+      .value("outside", occ::TrimPlace::outside);
+
+  py::class_<occ::TrimHit>(m, "TrimHit", "Result of BaseTrim.place / place_curve.")
+      .def(py::init<>())
+      .def_readonly("place", &occ::TrimHit::place)
+      .def_readonly("parameter", &occ::TrimHit::parameter,
+                    "Curve parameter of the sample farthest outside.")
+      .def_readonly("distance", &occ::TrimHit::distance,
+                    "Distance (mm) from that sample to the base face's boundary.");
+
+  py::class_<occ::BaseTrim, std::shared_ptr<occ::BaseTrim>>(
+      m, "BaseTrim",
+      "A base face's trim (its wires: outer boundary and holes) and orientation, for the sheet "
+      "made on it.")
+      .def(py::init([](const std::string& brep) {
+             return std::make_shared<occ::BaseTrim>(occ::only_face(occ::read_brep(brep)));
+           }),
+           "face_brep"_a)
+      .def_property_readonly("natural", &occ::BaseTrim::natural,
+                             "The face covers its whole parameter rectangle.")
+      .def_property_readonly("same_parameters", &occ::BaseTrim::same_parameters,
+                             "The NURBS conversion kept the face's own parameters.")
+      .def_property_readonly("normal_sign", &occ::BaseTrim::normal_sign,
+                             "+1 if the sheet's Su x Sv is the face's outward normal, else -1.")
+      .def(
+          "face_brep",
+          [](const occ::BaseTrim& t, const BSplineSurface& sheet) {
+            return occ::write_brep(t.face(sheet));
+          },
+          "sheet"_a,
+          "BREP of the sheet's face bounded and oriented like the base face (its natural face "
+          "when the base is natural).")
+      .def("place", py::overload_cast<double, double, double>(&occ::BaseTrim::place, py::const_),
+           "u"_a, "v"_a, "tolerance"_a,
+           "Where the sheet's (u, v) lies on the base face (outside by at most `tolerance` mm "
+           "counts as inside).")
+      .def("place_curve",
+           py::overload_cast<const BSplineCurve&, double, int>(&occ::BaseTrim::place, py::const_),
+           "preimage"_a, "tolerance"_a, "samples"_a = 0,
+           "The sample of a 2D pre-image farthest outside the base face, or inside.");
 
   py::class_<occ::ShellResult>(m, "ShellResult", "Result of sew_faces_brep.")
       .def_property_readonly("brep",

@@ -234,6 +234,40 @@ def _spans(space) -> int:
     return min(len(set(space.knots_u)) - 1, len(set(space.knots_v)) - 1)
 
 
+def _refuse_outside_trim(trim, preimages, placed, tolerance):
+    """SheetError naming the first curve or constraint whose pre-image leaves the base face's
+    trimmed domain (over a hole, outside a disc): the sheet keeps the base face's trim, so a curve
+    there would shape a part of the sheet that is not kept. Farther than `tolerance` (mm) from the
+    face's boundary counts as leaving it.
+
+    preimages: [(name, 2D pre-image)] of the curves; placed: the placed constraint specs."""
+    if trim.natural:  # the projection already refuses anything beyond the parameter rectangle
+        return
+    nat = native()
+
+    def refuse(name, hit):
+        where = ("over a hole of the base face" if hit.place == nat.TrimPlace.over_hole
+                 else "outside the base face's boundary")
+        raise SheetError(f"{name} lies {where} (up to {hit.distance:.3g} mm from its edges): the sheet "
+                         "keeps its base face's trim; move it onto the face, or pick a base face that "
+                         "covers it")
+
+    for name, preimage in preimages:
+        hit = trim.place_curve(preimage, tolerance)
+        if hit.place != nat.TrimPlace.inside:
+            refuse(name, hit)
+    for p in placed:
+        curves = [c.preimage for c in (p.ribbon, p.curve) if c is not None]
+        for preimage in curves:
+            hit = trim.place_curve(preimage, tolerance)
+            if hit.place != nat.TrimPlace.inside:
+                refuse(p.spec.name, hit)
+        if p.spec.kind in constraint_specs.POINT_KINDS:
+            hit = trim.place(p.u, p.v, tolerance)
+            if hit.place != nat.TrimPlace.inside:
+                refuse(p.spec.name, hit)
+
+
 def _single_face(shape):
     faces = shape.Faces
     if len(faces) != 1:
@@ -441,6 +475,7 @@ def solve_sheet_on_face(
 
     try:
         base = nat.surface_from_face_brep(face.exportBrepToString())
+        trim = nat.BaseTrim(face.exportBrepToString())  # the face's wires and orientation
     except (nat.InvalidInput, nat.GeometryError) as error:
         raise SheetError(f"the base face cannot be used: {error}") from error
     extent = face.BoundBox.DiagonalLength
@@ -481,6 +516,7 @@ def solve_sheet_on_face(
         raise SheetError(str(error)) from error
     except (nat.InvalidInput, nat.GeometryError) as error:
         raise SheetError(f"a constraint's location cannot be placed on the base face: {error}") from error
+    _refuse_outside_trim(trim, [(n, c.preimage) for n, c in zip(names, curve_constraints)], placed, tolerance)
 
     rest_surface = None
     if rest is not None and not (isinstance(rest, str) and rest == "base"):
@@ -541,7 +577,8 @@ def solve_sheet_on_face(
             fixed_poles=fixed,
         )
         terms.apply(problem)
-        problem.pressure = float(pressure)
+        # The core inflates along Su x Sv; a Reversed base face's outward normal is the opposite.
+        problem.pressure = float(pressure) * trim.normal_sign
         if rest == "base":
             problem.rest_poles = sheet.poles
         elif rest_surface is not None:
@@ -600,7 +637,10 @@ def solve_sheet_on_face(
             "curves close to a kept boundary must reach it smoothly (or turn FixBoundary off); "
             "points must not ask one place of the sheet to be in two."
         )
-    shape = _single_face(shape_from_brep(nat.face_brep(surface)))
+    try:  # bounded and oriented like the base face
+        shape = _single_face(shape_from_brep(trim.face_brep(surface)))
+    except (nat.InvalidInput, nat.GeometryError) as error:
+        raise SheetError(f"the sheet cannot be bounded like its base face: {error}") from error
     if deviations is None:
         deviations = [float(nat.max_deviation(surface, c, DEVIATION_SAMPLES)) for c in targets]
     residuals = [float(constraint_specs.residual(p, surface, base)) for p in placed]

@@ -1,0 +1,422 @@
+#include "varsurf/occ/trimmed_face.hpp"
+
+#include <BRepBndLib.hxx>
+#include <BRepBuilderAPI_MakeVertex.hxx>
+#include <BRepExtrema_DistShapeShape.hxx>
+#include <BRepLib.hxx>
+#include <BRepLib_CheckCurveOnSurface.hxx>
+#include <BRepTools.hxx>
+#include <BRepTopAdaptor_FClass2d.hxx>
+#include <BRep_Builder.hxx>
+#include <BRep_Tool.hxx>
+#include <Bnd_Box.hxx>
+#include <Geom2dAPI_Interpolate.hxx>
+#include <Geom2d_BSplineCurve.hxx>
+#include <Geom2d_Curve.hxx>
+#include <Geom2d_Line.hxx>
+#include <GeomAPI_ProjectPointOnSurf.hxx>
+#include <Precision.hxx>
+#include <ShapeFix_Face.hxx>
+#include <TColStd_HArray1OfReal.hxx>
+#include <TColgp_HArray1OfPnt2d.hxx>
+#include <TopExp.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopTools_DataMapOfShapeShape.hxx>
+#include <TopoDS.hxx>
+#include <TopoDS_Edge.hxx>
+#include <TopoDS_Iterator.hxx>
+#include <TopoDS_Vertex.hxx>
+#include <TopoDS_Wire.hxx>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "varsurf/core/errors.hpp"
+#include "varsurf/occ/face_builder.hpp"
+#include "varsurf/occ/geom_convert.hpp"
+#include "varsurf/occ/occ_error.hpp"
+#include "varsurf/occ/shape_check.hpp"
+
+namespace varsurf::occ {
+
+namespace {
+
+struct Box {
+  double u1, u2, v1, v2;
+  double span() const { return std::max(u2 - u1, v2 - v1); }
+};
+
+Box bounds_of(const Handle(Geom_Surface) & s) {
+  Box b{};
+  s->Bounds(b.u1, b.u2, b.v1, b.v2);
+  return b;
+}
+
+// (u, v) of `s` nearest to p, starting from (u, v): Gauss-Newton (the point lies on the surface,
+// so it converges quadratically), with OCCT's global projection when it stalls (at a pole or
+// far from the start). Returns the distance left.
+double invert(const Handle(Geom_Surface) & s, const Box& box, const gp_Pnt& p, double& u,
+              double& v) {
+  auto clamp = [](double x, double lo, double hi) { return std::min(std::max(x, lo), hi); };
+  u = clamp(u, box.u1, box.u2);
+  v = clamp(v, box.v1, box.v2);
+  for (int it = 0; it < 40; ++it) {
+    gp_Pnt q;
+    gp_Vec su, sv;
+    s->D1(u, v, q, su, sv);
+    const gp_Vec r(q, p);
+    const double a11 = su.Dot(su), a12 = su.Dot(sv), a22 = sv.Dot(sv);
+    const double det = a11 * a22 - a12 * a12;
+    if (!(det > 1e-20 * a11 * a22)) break;  // singular (a pole): leave it to the projection
+    const double du = (a22 * su.Dot(r) - a12 * sv.Dot(r)) / det;
+    const double dv = (a11 * sv.Dot(r) - a12 * su.Dot(r)) / det;
+    u = clamp(u + du, box.u1, box.u2);
+    v = clamp(v + dv, box.v1, box.v2);
+    if (std::abs(du) + std::abs(dv) < 1e-15 * box.span()) break;
+  }
+  double d = s->Value(u, v).Distance(p);
+  if (d > 1e-9 * (1.0 + p.XYZ().Modulus())) {
+    GeomAPI_ProjectPointOnSurf projection(p, s, box.u1, box.u2, box.v1, box.v2);
+    if (projection.NbPoints() > 0 && projection.LowerDistance() < d) {
+      projection.LowerDistanceParameters(u, v);
+      d = projection.LowerDistance();
+    }
+  }
+  return d;
+}
+
+// An edge's pcurve on the sheet with the range it is used on.
+struct Pcurve {
+  Handle(Geom2d_Curve) curve;
+  double first = 0.0, last = 0.0;
+};
+
+}  // namespace
+
+BaseTrim::BaseTrim(const TopoDS_Face& base) {
+  if (base.IsNull()) throw InvalidInput("face is null");
+  nurbs_ = to_geom(surface_from_face(base));
+  guarded("reading the base face's boundary", [&] {
+    orientation_ = base.Orientation();
+    base_ = TopoDS::Face(base.Oriented(TopAbs_FORWARD));
+    surface_ = BRep_Tool::Surface(base_);
+    Bnd_Box box;
+    BRepBndLib::Add(base_, box);
+    if (!box.IsVoid()) size_ = std::max(std::sqrt(box.SquareExtent()), Precision::Confusion());
+
+    double u1, u2, v1, v2;
+    BRepTools::UVBounds(base_, u1, u2, v1, v2);
+    const Box sheet = bounds_of(nurbs_);
+    // The conversion kept the parameters when the two surfaces agree point for point.
+    identity_ = true;
+    for (int i = 0; i <= 6 && identity_; ++i) {
+      for (int j = 0; j <= 6 && identity_; ++j) {
+        const double u = u1 + (u2 - u1) * i / 6, v = v1 + (v2 - v1) * j / 6;
+        identity_ = u >= sheet.u1 && u <= sheet.u2 && v >= sheet.v1 && v <= sheet.v2 &&
+                    surface_->Value(u, v).Distance(nurbs_->Value(u, v)) <= 1e-9 * size_;
+      }
+    }
+
+    BRep_Builder builder;
+    builder.MakeCompound(edges_);
+    int wires = 0;
+    for (TopExp_Explorer ex(base_, TopAbs_WIRE); ex.More(); ex.Next()) ++wires;
+    for (TopExp_Explorer ex(base_, TopAbs_EDGE); ex.More(); ex.Next())
+      builder.Add(edges_, ex.Current());
+
+    // Natural: one wire, all of it on the sheet's parameter rectangle.
+    const double ptol = 1e-7 * sheet.span();
+    natural_ = wires == 1;
+    for (TopExp_Explorer ex(base_, TopAbs_EDGE); ex.More() && natural_; ex.Next()) {
+      double f, l;
+      Handle(Geom2d_Curve) c = BRep_Tool::CurveOnSurface(TopoDS::Edge(ex.Current()), base_, f, l);
+      if (c.IsNull()) throw GeometryError("the base face has an edge without a curve on it");
+      for (int k = 0; k <= 8 && natural_; ++k) {
+        const gp_Pnt2d p = c->Value(f + (l - f) * k / 8);
+        double su = p.X(), sv = p.Y();
+        to_sheet(p.X(), p.Y(), su, sv);
+        natural_ = std::abs(su - sheet.u1) <= ptol || std::abs(su - sheet.u2) <= ptol ||
+                   std::abs(sv - sheet.v1) <= ptol || std::abs(sv - sheet.v2) <= ptol;
+      }
+    }
+
+    const double uv_tol = 1e-9 * std::max(u2 - u1, v2 - v1);
+    whole_ = std::make_unique<BRepTopAdaptor_FClass2d>(base_, uv_tol);
+    TopoDS_Face outer = TopoDS::Face(base_.EmptyCopied());
+    builder.Add(outer, BRepTools::OuterWire(base_));
+    outer_ = std::make_unique<BRepTopAdaptor_FClass2d>(outer, uv_tol);
+
+    // The sheet's normal against the face's outward one, where the surface is least degenerate.
+    double best = -1.0, dot = 1.0;
+    for (int i = 1; i <= 7; ++i) {
+      for (int j = 1; j <= 7; ++j) {
+        const double u = u1 + (u2 - u1) * i / 8, v = v1 + (v2 - v1) * j / 8;
+        gp_Pnt p, q;
+        gp_Vec su, sv, tu, tv;
+        surface_->D1(u, v, p, su, sv);
+        double a = u, b = v;
+        to_sheet(u, v, a, b);
+        nurbs_->D1(a, b, q, tu, tv);
+        const gp_Vec n = su.Crossed(sv), m = tu.Crossed(tv);
+        const double weight = n.Magnitude() * m.Magnitude();
+        const bool in = whole_->Perform(gp_Pnt2d(u, v)) == TopAbs_IN;
+        if (weight > best * (in ? 1.0 : 4.0)) {  // inside the face preferred
+          best = weight;
+          dot = n.Dot(m);
+        }
+      }
+    }
+    normal_sign_ = (dot >= 0.0) == (orientation_ != TopAbs_REVERSED) ? 1 : -1;
+  });
+}
+
+BaseTrim::~BaseTrim() = default;
+
+void BaseTrim::to_sheet(double u, double v, double& su, double& sv) const {
+  if (identity_) {
+    su = u;
+    sv = v;
+    return;
+  }
+  invert(nurbs_, bounds_of(nurbs_), surface_->Value(u, v), su, sv);
+}
+
+void BaseTrim::to_base(double su, double sv, double& u, double& v) const {
+  if (identity_) {
+    u = su;
+    v = sv;
+    return;
+  }
+  Box box{};
+  BRepTools::UVBounds(base_, box.u1, box.u2, box.v1, box.v2);
+  invert(surface_, box, nurbs_->Value(su, sv), u, v);
+}
+
+TopoDS_Face BaseTrim::face(const BSplineSurface& sheet) const {
+  const Handle(Geom_BSplineSurface) geom = to_geom(sheet);
+  const Box a = bounds_of(geom), b = bounds_of(nurbs_);
+  const double tol = 1e-9 * b.span();
+  if (std::abs(a.u1 - b.u1) > tol || std::abs(a.u2 - b.u2) > tol || std::abs(a.v1 - b.v1) > tol ||
+      std::abs(a.v2 - b.v2) > tol)
+    throw InvalidInput("the sheet does not share its base face's parameter domain");
+  if (natural_) {
+    TopoDS_Face out = make_face(sheet);
+    out.Orientation(orientation_);
+    return out;
+  }
+  return guarded("bounding the sheet by its base face's boundary", [&] { return bounded(geom); });
+}
+
+namespace {
+
+// The pcurve c on [f, l] of the base, carried to the sheet's parameters by `map`. An isoline
+// stays an exact line (parametrized by its varying coordinate); any other curve is
+// interpolated through mapped points, doubling them until the midpoints are met within
+// `accuracy` (mm on the sheet).
+template <class Map>
+Pcurve mapped(const Handle(Geom2d_Curve) & c, double f, double l, const Map& map,
+              const Handle(Geom_BSplineSurface) & sheet, double accuracy) {
+  const Box box = bounds_of(sheet);
+  const double ptol = 1e-10 * box.span();
+  for (int n = 32;; n *= 2) {
+    std::vector<gp_Pnt2d> pts(static_cast<size_t>(n) + 1);
+    double su = c->Value(f).X(), sv = c->Value(f).Y();
+    for (int k = 0; k <= n; ++k) {
+      const gp_Pnt2d p = c->Value(f + (l - f) * k / n);
+      map(p, su, sv);  // starts from the previous point's image
+      pts[static_cast<size_t>(k)] = gp_Pnt2d(su, sv);
+    }
+    double umin = pts[0].X(), umax = umin, vmin = pts[0].Y(), vmax = vmin;
+    for (const gp_Pnt2d& p : pts) {
+      umin = std::min(umin, p.X());
+      umax = std::max(umax, p.X());
+      vmin = std::min(vmin, p.Y());
+      vmax = std::max(vmax, p.Y());
+    }
+    for (int axis = 0; axis < 2; ++axis) {
+      const bool iso = axis == 0 ? umax - umin <= ptol : vmax - vmin <= ptol;
+      if (!iso) continue;
+      const double fixed = axis == 0 ? pts[0].X() : pts[0].Y();
+      const double a = axis == 0 ? pts.front().Y() : pts.front().X();
+      const double z = axis == 0 ? pts.back().Y() : pts.back().X();
+      if (!(std::abs(z - a) > ptol)) continue;
+      const double dir = z > a ? 1.0 : -1.0;
+      Handle(Geom2d_Line) line = axis == 0
+                                     ? new Geom2d_Line(gp_Pnt2d(fixed, 0.0), gp_Dir2d(0.0, dir))
+                                     : new Geom2d_Line(gp_Pnt2d(0.0, fixed), gp_Dir2d(dir, 0.0));
+      return Pcurve{line, dir * a, dir * z};
+    }
+    Handle(TColgp_HArray1OfPnt2d) points = new TColgp_HArray1OfPnt2d(1, n + 1);
+    Handle(TColStd_HArray1OfReal) params = new TColStd_HArray1OfReal(1, n + 1);
+    for (int k = 0; k <= n; ++k) {
+      points->SetValue(k + 1, pts[static_cast<size_t>(k)]);
+      params->SetValue(k + 1, f + (l - f) * k / n);
+    }
+    Geom2dAPI_Interpolate interpolate(points, params, Standard_False, ptol);
+    interpolate.Perform();
+    if (!interpolate.IsDone())
+      throw GeometryError("an edge of the base face could not be carried over to the sheet");
+    const Handle(Geom2d_BSplineCurve)& curve = interpolate.Curve();
+    double worst = 0.0;
+    for (int k = 0; k < n; ++k) {
+      const gp_Pnt2d p = c->Value(f + (l - f) * (k + 0.5) / n);
+      double mu = pts[static_cast<size_t>(k)].X(), mv = pts[static_cast<size_t>(k)].Y();
+      map(p, mu, mv);
+      const gp_Pnt2d q = curve->Value(f + (l - f) * (k + 0.5) / n);
+      worst = std::max(worst, sheet->Value(mu, mv).Distance(sheet->Value(q.X(), q.Y())));
+    }
+    if (worst <= accuracy || n >= 1024) return Pcurve{Handle(Geom2d_Curve)(curve.get()), f, l};
+  }
+}
+
+}  // namespace
+
+TopoDS_Face BaseTrim::bounded(const Handle(Geom_BSplineSurface) & sheet) const {
+  BRep_Builder builder;
+  const double tol = Precision::Confusion();
+  const double accuracy = std::min(1e-8 * size_, 0.1 * tol);
+  auto map = [this](const gp_Pnt2d& p, double& su, double& sv) {
+    if (identity_) {
+      su = p.X();
+      sv = p.Y();
+    } else {
+      invert(nurbs_, bounds_of(nurbs_), surface_->Value(p.X(), p.Y()), su, sv);
+    }
+  };
+  auto carried = [&](const TopoDS_Edge& edge) -> Pcurve {
+    double f, l;
+    Handle(Geom2d_Curve) c = BRep_Tool::CurveOnSurface(edge, base_, f, l);
+    if (c.IsNull()) throw GeometryError("the base face has an edge without a curve on it");
+    if (identity_) return Pcurve{c, f, l};
+    return mapped(c, f, l, map, sheet, accuracy);
+  };
+
+  TopoDS_Face out;
+  builder.MakeFace(out, sheet, tol);
+  TopTools_DataMapOfShapeShape edges, vertices;
+  auto vertex_at = [&](const TopoDS_Vertex& old, const gp_Pnt2d& uv) -> TopoDS_Vertex {
+    if (vertices.IsBound(old)) return TopoDS::Vertex(vertices(old));
+    TopoDS_Vertex fresh;
+    builder.MakeVertex(fresh, sheet->Value(uv.X(), uv.Y()), tol);
+    vertices.Bind(old, fresh);
+    return fresh;
+  };
+  auto new_edge = [&](const TopoDS_Edge& old) -> TopoDS_Edge {
+    const TopoDS_Edge fwd = TopoDS::Edge(old.Oriented(TopAbs_FORWARD));
+    Pcurve one = carried(fwd);
+    TopoDS_Edge e;
+    builder.MakeEdge(e);
+    if (BRep_Tool::IsClosed(fwd, base_)) {  // a seam: one pcurve on each side
+      Pcurve two = carried(TopoDS::Edge(old.Oriented(TopAbs_REVERSED)));
+      if (std::abs(two.first - one.first) > 1e-12 * (1.0 + std::abs(one.first)) ||
+          std::abs(two.last - one.last) > 1e-12 * (1.0 + std::abs(one.last)))
+        throw GeometryError("a seam of the base face maps to two different ranges on the sheet");
+      builder.UpdateEdge(e, one.curve, two.curve, sheet, TopLoc_Location(), tol);
+    } else {
+      builder.UpdateEdge(e, one.curve, sheet, TopLoc_Location(), tol);
+    }
+    builder.Range(e, one.first, one.last);
+    if (BRep_Tool::Degenerated(fwd)) {
+      // Still a point on the sheet unless the solve opened it up (a free boundary at a pole).
+      double spread = 0.0;
+      const gp_Pnt2d a = one.curve->Value(one.first);
+      for (int k = 1; k <= 16; ++k) {
+        const gp_Pnt2d q = one.curve->Value(one.first + (one.last - one.first) * k / 16);
+        spread = std::max(spread, sheet->Value(a.X(), a.Y()).Distance(sheet->Value(q.X(), q.Y())));
+      }
+      builder.Degenerated(e, spread <= tol);
+    }
+    TopoDS_Vertex v1, v2;
+    TopExp::Vertices(fwd, v1, v2);
+    if (!v1.IsNull())
+      builder.Add(e, vertex_at(v1, one.curve->Value(one.first)).Oriented(TopAbs_FORWARD));
+    if (!v2.IsNull())
+      builder.Add(e, vertex_at(v2, one.curve->Value(one.last)).Oriented(TopAbs_REVERSED));
+    return e;
+  };
+
+  // Orientations are copied as stored (relative to their parents); locations are composed so
+  // that each edge finds its pcurve on the base face.
+  for (TopoDS_Iterator w(base_, Standard_False, Standard_True); w.More(); w.Next()) {
+    if (w.Value().ShapeType() != TopAbs_WIRE) continue;
+    TopoDS_Wire wire;
+    builder.MakeWire(wire);
+    for (TopoDS_Iterator it(w.Value(), Standard_False, Standard_True); it.More(); it.Next()) {
+      const TopoDS_Edge old = TopoDS::Edge(it.Value());
+      if (!edges.IsBound(old)) edges.Bind(old, new_edge(old));
+      builder.Add(wire, edges(old).Oriented(old.Orientation()));
+    }
+    wire.Closed(w.Value().Closed());
+    builder.Add(out, wire.Oriented(w.Value().Orientation()));
+  }
+
+  BRepLib::BuildCurves3d(out, std::min(1e-9 * size_, 1e-7), GeomAbs_C1, 14, 64);
+  // Each edge's tolerance from the measured distance between its 3D curve and its pcurve on the
+  // sheet (what OCCT's BOP check measures), vertices' from their edges.
+  for (TopExp_Explorer ex(out, TopAbs_EDGE); ex.More(); ex.Next()) {
+    const TopoDS_Edge& e = TopoDS::Edge(ex.Current());
+    if (BRep_Tool::Degenerated(e)) continue;
+    BRepLib_CheckCurveOnSurface measure(e, out);
+    measure.Perform();
+    if (!measure.IsDone())
+      throw GeometryError("the sheet's boundary edges could not be measured against it");
+    builder.UpdateEdge(e, std::max(1.5 * measure.MaxDistance(), tol));
+    builder.SameParameter(e, Standard_True);
+    builder.SameRange(e, Standard_True);
+  }
+  BRepLib::UpdateTolerances(out, Standard_False);
+
+  ShapeCheck check = check_shape(out);
+  if (!check.valid) {
+    ShapeFix_Face fix(out);
+    fix.SetPrecision(tol);
+    fix.Perform();
+    out = fix.Face();
+    check = check_shape(out);
+    if (!check.valid)
+      throw GeometryError("the sheet bounded by its base face's boundary is not valid: " +
+                          check.message);
+  }
+  out.Orientation(orientation_);
+  return out;
+}
+
+TrimHit BaseTrim::place(double su, double sv, double tolerance) const {
+  return guarded("placing a point on the base face", [&] {
+    TrimHit hit;
+    if (!(tolerance >= 0.0) || !std::isfinite(su) || !std::isfinite(sv))
+      throw InvalidInput("placing on the base face: (u, v) and the tolerance must be finite");
+    double u = su, v = sv;
+    to_base(su, sv, u, v);
+    if (whole_->Perform(gp_Pnt2d(u, v)) != TopAbs_OUT) return hit;
+    BRepExtrema_DistShapeShape distance(BRepBuilderAPI_MakeVertex(surface_->Value(u, v)).Vertex(),
+                                        edges_);
+    if (!distance.IsDone()) throw GeometryError("placing on the base face: no distance");
+    hit.distance = distance.Value();
+    if (hit.distance <= tolerance) return hit;
+    hit.place =
+        outer_->Perform(gp_Pnt2d(u, v)) == TopAbs_OUT ? TrimPlace::outside : TrimPlace::over_hole;
+    return hit;
+  });
+}
+
+TrimHit BaseTrim::place(const BSplineCurve& preimage, double tolerance, int samples) const {
+  preimage.validate("pre-image");
+  if (preimage.dim() != 2) throw InvalidInput("placing on the base face: the pre-image is not 2D");
+  const int n = samples > 0 ? samples : std::max(64, 8 * static_cast<int>(preimage.knots.size()));
+  TrimHit worst;
+  for (int k = 0; k <= n; ++k) {
+    const double t = preimage.first() + (preimage.last() - preimage.first()) * k / n;
+    const Eigen::VectorXd p = preimage.evaluate(t);
+    TrimHit hit = place(p(0), p(1), tolerance);
+    if (hit.place != TrimPlace::inside && hit.distance > worst.distance) {
+      hit.parameter = t;
+      worst = hit;
+    }
+  }
+  return worst;
+}
+
+}  // namespace varsurf::occ

@@ -1,0 +1,172 @@
+"""A Sheet keeps its base face's trim and orientation.
+
+Base faces built the way a FreeCAD user builds them: the top of a box with a cylinder cut out (a
+plate with a hole), a disc (Part.Face of a circle's wire), the top of a box with a chamfered
+corner, a fillet face (a cylinder patch, trimmed where the fillets meet), and the six faces of a
+Part box (three of them Reversed). With no curves the sheet is its base face: same area (to
+1e-6), within 1e-9 of the model's size of it both ways (OCCT's distToShape from points sampled on
+each onto the other), and check(True) passes. Curves over the hole or outside the disc are
+refused with a message naming them. Pressure > 0 inflates every face of a box outward.
+"""
+
+import math
+import random
+
+import pytest
+
+import FreeCAD
+import Part
+from FreeCAD import Vector
+
+import varsurf
+from varsurf import model
+from varsurf.constraints import ConstraintSpec
+
+
+def plate_top():
+    """Top face (z = 40) of a 100 x 80 x 40 box minus a cylinder of radius 10 at its middle."""
+    plate = Part.makeBox(100, 80, 40).cut(Part.makeCylinder(10, 60, Vector(50, 40, -10)))
+    return next(f for f in plate.Faces if abs(f.CenterOfMass.z - 40) < 1e-9 and len(f.Wires) == 2)
+
+
+def disc():
+    return Part.Face(Part.Wire(Part.makeCircle(30, Vector(0, 0, 0), Vector(0, 0, 1))))
+
+
+def chamfered_top():
+    """Top of a 60 x 60 x 20 box whose vertical edge at (60, 60) is chamfered by 5 mm."""
+    box = Part.makeBox(60, 60, 20)
+    edge = next(e for e in box.Edges if e.CenterOfMass.isEqual(Vector(60, 60, 10), 1e-9))
+    solid = box.makeChamfer(5, [edge])
+    return next(f for f in solid.Faces if abs(f.CenterOfMass.z - 20) < 1e-9)
+
+
+def fillet_face():
+    """One of the four fillets (radius 8) along the top edges of a 60 x 60 x 20 box: a cylinder
+    patch cut by the neighbouring fillets' mitres."""
+    box = Part.makeBox(60, 60, 20)
+    solid = box.makeFillet(8, [e for e in box.Edges if abs(e.CenterOfMass.z - 20) < 1e-9])
+    return next(f for f in solid.Faces if f.Surface.TypeId == "Part::GeomCylinder")
+
+
+SCENES = {
+    "plate with a hole": plate_top,
+    "disc": disc,
+    "chamfered top": chamfered_top,
+    "fillet face": fillet_face,
+}
+
+
+def _inside_points(face, count, seed):
+    """Points of `face` (inside its trim), sampled at random over its parameter range."""
+    rng = random.Random(seed)
+    u0, u1, v0, v1 = face.ParameterRange
+    points = []
+    while len(points) < count:
+        u, v = u0 + (u1 - u0) * rng.random(), v0 + (v1 - v0) * rng.random()
+        if face.isPartOfDomain(u, v):
+            points.append(face.valueAt(u, v))
+    return points
+
+
+def _farthest(points, shape):
+    return max(Part.Vertex(p).distToShape(shape)[0] for p in points)
+
+
+@pytest.mark.parametrize("scene", list(SCENES))
+def test_sheet_without_curves_is_its_trimmed_base_face(scene):
+    base = SCENES[scene]()
+    outcome = model.solve_sheet_on_face(base, [], rest="base")  # the Sheet feature's default
+    result = outcome.shape
+    size = base.BoundBox.DiagonalLength
+    # The untrimmed sheet filled the hole (8,000 instead of 7,686 mm²), squared the disc and
+    # overhung the chamfer (by 21 mm) and the fillet (by 4.9 mm).
+    assert result.Area == pytest.approx(base.Area, rel=1e-6)
+    assert result.check(True) is None  # raises on any BRepCheck or BOP problem
+    assert result.distToShape(base)[0] <= 1e-9 * size
+    assert _farthest(_inside_points(result, 40, 1), base) <= 1e-9 * size
+    assert _farthest(_inside_points(base, 40, 2), result) <= 1e-9 * size
+    # Both boundaries coincide: every vertex of the base is a vertex of the result.
+    assert _farthest([v.Point for v in base.Vertexes], Part.Compound(result.Vertexes)) <= 1e-7 * size
+    assert len(result.Wires) == len(base.Wires)
+
+
+def test_curves_over_the_hole_are_refused_and_others_met():
+    base = plate_top()
+    across = Part.makeLine(Vector(20, 40, 45), Vector(80, 40, 45))  # crosses the hole
+    with pytest.raises(model.SheetError, match=r"Sketch:Edge2 lies over a hole of the base face"):
+        model.solve_sheet_on_face(base, [across], names=["Sketch:Edge2"])
+    beside = Part.makeLine(Vector(20, 20, 43), Vector(80, 20, 43))  # on the plate, beside it
+    outcome = model.solve_sheet_on_face(base, [beside], names=["Sketch:Edge1"])
+    assert outcome.max_deviation < 0.01
+    assert outcome.shape.distToShape(beside)[0] < 0.01
+    assert len(outcome.shape.Wires) == 2  # still holed
+    assert outcome.shape.check(True) is None
+    # A point constraint over the hole is refused too.
+    point = ConstraintSpec(kind="Point", name="Lift", location=(50.0, 43.0, 45.0))
+    with pytest.raises(model.SheetError, match=r"Lift lies over a hole of the base face"):
+        model.solve_sheet_on_face(base, [], constraints=[point])
+
+
+def test_curves_outside_the_disc_are_refused():
+    base = disc()
+    corner = Part.makeLine(Vector(20, 24, 2), Vector(28, 28, 2))  # in the square, not the disc
+    with pytest.raises(model.SheetError, match=r"Sketch:Edge1 lies outside the base face's boundary"):
+        model.solve_sheet_on_face(base, [corner], names=["Sketch:Edge1"])
+    inside = Part.makeLine(Vector(-10, -10, 3), Vector(10, 10, 3))
+    outcome = model.solve_sheet_on_face(base, [inside])
+    assert outcome.max_deviation < 0.01
+    assert outcome.shape.check(True) is None
+    # Its boundary is still the circle in plan (the sheet is z over the disc's plane).
+    rim = [p for e in outcome.shape.Edges for p in e.discretize(50)]
+    assert max(abs(math.hypot(p.x, p.y) - 30.0) for p in rim) < 1e-6
+
+
+def test_a_curve_within_the_tolerance_of_the_holes_edge_is_accepted():
+    """A curve 0.005 mm inside the hole, at tolerance 0.01 mm, lies on the face's boundary."""
+    base = plate_top()
+    arc = Part.Edge(Part.ArcOfCircle(Part.Circle(Vector(50, 40, 40), Vector(0, 0, 1), 10.0 - 0.005),
+                                     0.2, 1.2))
+    outcome = model.solve_sheet_on_face(base, [arc], tolerance=0.01, names=["Arc"])
+    assert outcome.max_deviation <= 0.01
+    deeper = Part.Edge(Part.ArcOfCircle(Part.Circle(Vector(50, 40, 40), Vector(0, 0, 1), 10.0 - 0.05),
+                                        0.2, 1.2))
+    with pytest.raises(model.SheetError, match=r"Arc lies over a hole of the base face \(up to 0.05 mm"):
+        model.solve_sheet_on_face(base, [deeper], tolerance=0.01, names=["Arc"])
+
+
+@pytest.mark.parametrize("index", range(6))
+def test_pressure_inflates_every_box_face_outward(index):
+    """Faces 1, 3 and 5 of a Part box are Reversed: their sheets used to flip inward."""
+    box = Part.makeBox(100, 80, 40)
+    base = box.Faces[index]
+    centre = base.CenterOfMass
+    outward = base.normalAt(*base.Surface.parameter(centre))
+    inward_point = box.BoundBox.Center
+    assert (centre - inward_point).dot(outward) > 0  # the face's normal is the box's outward one
+    outcome = model.solve_sheet_on_face(base, [], pressure=0.001, stretch=1.0)
+    result = outcome.shape
+    assert result.Orientation == base.Orientation
+    uv = result.Surface.parameter(centre)
+    moved = result.valueAt(*uv) - centre
+    assert moved.dot(outward) > 0.05  # inflated outward (0.09 to 0.29 mm here)
+    assert moved.dot(outward) == pytest.approx(moved.Length, rel=1e-6)
+    assert result.normalAt(*uv).dot(outward) > 0.999
+
+
+def test_sheet_feature_on_a_cut_box_keeps_the_hole(doc):
+    """Through the document, the way the GUI makes it: a Sheet on the top of Part Box - Cylinder."""
+    box = doc.addObject("Part::Box", "Box")
+    box.Length, box.Width, box.Height = 100, 80, 40
+    cylinder = doc.addObject("Part::Cylinder", "Cylinder")
+    cylinder.Radius, cylinder.Height = 10, 60
+    cylinder.Placement.Base = FreeCAD.Vector(50, 40, -10)
+    cut = doc.addObject("Part::Cut", "Cut")
+    cut.Base, cut.Tool = box, cylinder
+    doc.recompute()
+    name = next(f"Face{i + 1}" for i, f in enumerate(cut.Shape.Faces)
+                if abs(f.CenterOfMass.z - 40) < 1e-9 and len(f.Wires) == 2)
+    sheet = varsurf.make_sheet((cut, name), [])
+    doc.recompute()
+    assert sheet.Status.startswith("OK"), sheet.Status
+    assert sheet.Shape.Area == pytest.approx(100 * 80 - math.pi * 100, rel=1e-6)
