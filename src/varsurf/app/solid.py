@@ -23,7 +23,8 @@ TYPE = "VarSurf::Solid"
 # name, type, group, tooltip, output?
 _PROPERTIES = [
     ("Sheets", "App::PropertyLinkList", "Solid", "The Sheets to join; each is trimmed to the curves it shares with the others", False),
-    ("Tolerance", "App::PropertyLength", "Solid", "How far a sheet may pass from a join curve (at least the sheets' own Tolerance); the shared edges' tolerances come from the measured deviation", False),
+    ("Tolerance", "App::PropertyLength", "Solid", "How far a sheet may pass from a join curve; give at least the sheets' own Tolerance (they meet their curves only that closely). The shared edges' tolerances come from the measured deviation", False),
+    ("ToleranceFromSheets", "App::PropertyBool", "Solid", "Tolerance follows the Sheets: twice the largest of their Tolerance, so a model of any size is joined as closely as its sheets meet their curves. Typing a Tolerance turns this off", False),
     ("Closed", "App::PropertyBool", "Result", "True if the sheets close into a solid", True),
     ("MaxEdgeTolerance", "App::PropertyFloat", "Result", "Worst edge/vertex tolerance after sewing (mm)", True),
     ("SeamGaps", "App::PropertyFloatList", "Result", "Per join curve: the largest distance from a sheet to it (mm)", True),
@@ -35,7 +36,10 @@ _PROPERTIES = [
     ("JointSolve", "App::PropertyString", "Result", "How the sheets were solved together (hinges, variational curves), or empty when each sheet's own solve stands", True),
     ("Status", "App::PropertyString", "Result", "OK, or what went wrong", True),
 ]
-DEFAULT_TOLERANCE = 2 * model.DEFAULT_TOLERANCE
+#: A Solid following its sheets joins them within this multiple of their largest Tolerance: a
+#: sheet meets its curves within its own, and the join measures the distance again (projection).
+SHEETS_TOLERANCE_FACTOR = 2.0
+DEFAULT_TOLERANCE = SHEETS_TOLERANCE_FACTOR * model.DEFAULT_TOLERANCE
 #: A hinge farther than this from its angle anywhere along its curve is warned about (degrees).
 HINGE_ANGLE_TOLERANCE = 0.05
 
@@ -112,21 +116,140 @@ def _hinge_blame(obj):
             "leave it at the hinge's angle)")
 
 
+def _in_error(sheet) -> bool:
+    """Whether a Sheet failed its last recompute."""
+    return not sheet.isValid() or str(getattr(sheet, "Status", "")).startswith("Error")
+
+
+def sheets_error(obj) -> str:
+    """What is wrong while some of the Solid's Sheets are in error (their last result is stale),
+    else an empty string."""
+    broken = [s for s in (obj.Sheets or []) if _in_error(s)]
+    if not broken:
+        return ""
+    reasons = []
+    for s in broken:
+        status = str(getattr(s, "Status", ""))
+        reason = status[len("Error: "):] if status.startswith("Error: ") else s.getStatusString()
+        reasons.append(f"{s.Label} is in error ({reason})")
+    return "; ".join(reasons) + f": repair {'it' if len(broken) == 1 else 'them'} and the Solid follows"
+
+
+def sheets_tolerance(obj) -> float:
+    """SHEETS_TOLERANCE_FACTOR times the largest Tolerance of the Solid's Sheets."""
+    tolerances = [float(value(s, "Tolerance")) for s in (obj.Sheets or []) if "Tolerance" in s.PropertiesList]
+    return SHEETS_TOLERANCE_FACTOR * max(tolerances) if tolerances else DEFAULT_TOLERANCE
+
+
+_writing_tolerance = False  # the Solid itself is setting Tolerance (not the user)
+
+
+def _tolerance(obj) -> float:
+    """The tolerance the Solid joins with: its sheets' (written to Tolerance) while it follows
+    them, else its own Tolerance."""
+    global _writing_tolerance
+    if not bool(getattr(obj, "ToleranceFromSheets", False)):
+        return float(value(obj, "Tolerance"))
+    tolerance = sheets_tolerance(obj)
+    if abs(float(value(obj, "Tolerance")) - tolerance) > 1e-12 * tolerance:
+        _writing_tolerance = True
+        try:
+            obj.Tolerance = tolerance
+        finally:
+            _writing_tolerance = False
+    return tolerance
+
+
+def _tolerance_hint(obj, tolerance) -> str:
+    """A Solid's Tolerance below its sheets' own: say so, with what to do."""
+    own = sheets_tolerance(obj) / SHEETS_TOLERANCE_FACTOR
+    if tolerance >= own:
+        return ""
+    return (f" (the Solid's Tolerance is below its sheets' own, up to {own:.3g} mm: raise it, or turn "
+            "ToleranceFromSheets on)")
+
+
+def is_solid(obj) -> bool:
+    return getattr(getattr(obj, "Proxy", None), "Type", None) == TYPE
+
+
+class _SheetErrorWatch:
+    """FreeCAD skips what depends on an object whose recompute failed and leaves it marked up to
+    date, so a Solid would go on showing OK over a Sheet in error. After each recompute of a
+    document, each Solid over a Sheet in error is recomputed on its own: it fails too, naming the
+    sheet, and is recomputed with the sheet once that is repaired."""
+
+    busy = False
+
+    def slotRecomputedDocument(self, doc):
+        if self.busy:
+            return
+        self.busy = True
+        try:
+            for obj in list(doc.Objects):
+                if not is_solid(obj) or obj.Proxy.state_problem() is not None:
+                    continue
+                problem = sheets_error(obj)
+                if problem and str(getattr(obj, "Status", "")) != f"Error: {problem}":
+                    obj.recompute()
+        finally:
+            self.busy = False
+
+
+_WATCH = None
+
+
+def _watch_sheets():
+    """Install the document observer that keeps Solids in step with their Sheets' errors."""
+    global _WATCH
+    if _WATCH is None:
+        _WATCH = _SheetErrorWatch()
+        FreeCAD.addDocumentObserver(_WATCH)
+
+
 class SolidFeature(FeatureProxy):
     """Proxy of a VarSurf Solid (Part::FeaturePython)."""
 
     Type = TYPE
     TYPE = TYPE
     PROPERTIES = _PROPERTIES
-    DEFAULTS = {"Tolerance": DEFAULT_TOLERANCE}
+    DEFAULTS = {"Tolerance": DEFAULT_TOLERANCE, "ToleranceFromSheets": True}
+
+    def __init__(self, obj):
+        super().__init__(obj)
+        _watch_sheets()
+
+    def onDocumentRestored(self, obj):
+        older = "ToleranceFromSheets" not in obj.PropertiesList
+        super().onDocumentRestored(obj)
+        if self.state_problem() is not None:
+            return
+        if older:  # files from before Solids followed their sheets keep their Tolerance
+            obj.ToleranceFromSheets = False
+        _watch_sheets()
+
+    def onChanged(self, obj, prop):
+        # A Tolerance typed by the user (not written by the Solid, a file being read or undo/redo)
+        # stops the Solid following its sheets.
+        if prop != "Tolerance" or _writing_tolerance or "ToleranceFromSheets" not in obj.PropertiesList:
+            return
+        doc = obj.Document
+        if doc is None or doc.Restoring or doc.Transacting or "Restore" in obj.State:
+            return
+        if obj.ToleranceFromSheets:
+            obj.ToleranceFromSheets = False
 
     def execute(self, obj):
         try:
+            problem = sheets_error(obj)
+            if problem:  # their last results are stale: nothing is joined
+                raise model.SheetError(problem)
             inputs = _solve_together(obj, join_inputs(obj))
+            tolerance = _tolerance(obj)
             try:
-                outcome = assembly.build_solid(inputs, float(value(obj, "Tolerance")))
+                outcome = assembly.build_solid(inputs, tolerance)
             except assembly.JoinGapError as error:
-                raise model.SheetError(f"{error}{_hinge_blame(obj)}") from error
+                raise model.SheetError(f"{error}{_hinge_blame(obj)}{_tolerance_hint(obj, tolerance)}") from error
             if not outcome.valid:
                 raise model.SheetError("the sewn shape is not valid")
         except Exception as error:
