@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "varsurf/core/errors.hpp"
@@ -60,8 +61,17 @@ Eigen::Vector2d clamp_to_domain(const SplineSpace& space, const Eigen::Vector2d&
         << "] x [" << space.v_first() << ", " << space.v_last() << "]";
     throw InvalidInput(msg.str());
   }
-  return {std::clamp(uv(0), space.u_first(), space.u_last()),
-          std::clamp(uv(1), space.v_first(), space.v_last())};
+  // A pre-image along the boundary has its poles exactly on it, but their sum evaluates an ulp or
+  // so inside the upper bound; there, the sample's weights on interior poles would be ~1e-15 and
+  // the solve would fit the data's rounding with them, throwing those poles far.
+  auto onto = [](double x, double lo, double hi) {
+    const double snap = 1e-12 * (hi - lo) + 16.0 * std::numeric_limits<double>::epsilon() *
+                                                std::max(std::abs(lo), std::abs(hi));
+    x = std::clamp(x, lo, hi);
+    return x - lo <= snap ? lo : (hi - x <= snap ? hi : x);
+  };
+  return {onto(uv(0), space.u_first(), space.u_last()),
+          onto(uv(1), space.v_first(), space.v_last())};
 }
 
 std::vector<double> curve_pieces(const SplineSpace& space, const BSplineCurve& pre,

@@ -19,6 +19,7 @@
 #include "varsurf/core/knot_vector.hpp"
 #include "varsurf/occ/geom_convert.hpp"
 #include "varsurf/occ/occ_error.hpp"
+#include "varsurf/occ/sheet_domain.hpp"
 
 namespace varsurf::occ {
 
@@ -33,14 +34,15 @@ struct Sample {
 // then a few bounded Newton steps on |S(u, v) - P|^2 with the core's exact evaluator.
 class Projector {
  public:
-  Projector(const BSplineSurface& base, const BSplineCurve& target, double tolerance)
+  Projector(const BSplineSurface& base, const SheetDomain& domain, const BSplineCurve& target,
+            double tolerance)
       : base_(base),
+        domain_(domain),
         target_(target),
         tolerance_(tolerance),
-        lo_(base.space.u_first(), base.space.v_first()),
-        hi_(base.space.u_last(), base.space.v_last()),
-        scale_(std::max(
-            1.0, (base.poles.colwise().maxCoeff() - base.poles.colwise().minCoeff()).norm())),
+        lo_(domain.lo()),
+        hi_(domain.hi()),
+        scale_(domain.model_size()),
         analysis_(to_geom(base)) {}
 
   // `neighbour` is an already projected sample at parameter `neighbour_t` (or null).
@@ -54,7 +56,18 @@ class Projector {
     if (neighbour) {
       Eigen::Vector2d uv = *previous;
       polish(p, uv);
-      const double d = (surface(uv, 0).row(0).transpose() - p).norm();
+      double d = (surface(uv, 0).row(0).transpose() - p).norm();
+      // From a closed sheet's seam the curve may continue on either side of it.
+      for (int c = 0; c < 2; ++c) {
+        if (!domain_.on_seam(*previous, c)) continue;
+        Eigen::Vector2d other = domain_.across_seam(*previous, c);
+        polish(p, other);
+        const double d_other = (surface(other, 0).row(0).transpose() - p).norm();
+        if (d_other < d) {
+          uv = other;
+          d = d_other;
+        }
+      }
       const double step = (p - target_.evaluate(neighbour_t)).norm();
       // Newly on the domain's edge, the global search decides (a closed sheet continues on the
       // other side of its seam).
@@ -81,7 +94,9 @@ class Projector {
   }
 
  private:
-  Sample accept(double t, const Eigen::Vector3d& p, const Eigen::Vector2d& uv) {
+  // A sample on the boundary is placed exactly on it: see SheetDomain.
+  Sample accept(double t, const Eigen::Vector3d& p, const Eigen::Vector2d& projected) {
+    const Eigen::Vector2d uv = domain_.snapped(projected);
     check_inside(t, p, uv);
     return {uv, (surface(uv, 0).row(0).transpose() - p).norm()};
   }
@@ -160,6 +175,8 @@ class Projector {
     if (d.norm() <= tolerance_) return;
     const Eigen::Vector2d near = 1e-7 * (hi_ - lo_);
     for (int c = 0; c < 2; ++c) {
+      // Beyond a closed sheet's seam lies the sheet's other side: a crossing shows as a jump.
+      if (domain_.closed(c)) continue;
       for (int side = 0; side < 2; ++side) {
         const bool at = side == 0 ? uv(c) <= lo_(c) + near(c) : uv(c) >= hi_(c) - near(c);
         if (!at) continue;
@@ -184,6 +201,7 @@ class Projector {
   }
 
   const BSplineSurface& base_;
+  const SheetDomain& domain_;
   const BSplineCurve& target_;
   double tolerance_;
   Eigen::Vector2d lo_, hi_;
@@ -247,7 +265,8 @@ BSplineCurve fit(const std::map<double, Sample>& samples, int degree,
 // Samples of the pre-image, ordered by t; new ones start from their left neighbour's (u, v).
 class Samples {
  public:
-  explicit Samples(Projector& projector) : projector_(projector) {}
+  Samples(Projector& projector, const SheetDomain& domain)
+      : projector_(projector), domain_(domain) {}
 
   const Sample& add(double t) {
     auto it = points_.lower_bound(t);
@@ -262,7 +281,10 @@ class Samples {
       throw InvalidInput("projection: the pre-image needs too many samples (does it settle?)");
     const Sample s = neighbour ? projector_.project(t, &neighbour->second, neighbour->first)
                                : projector_.project(t, nullptr, 0.0);
-    return points_.emplace_hint(it, t, s)->second;
+    const auto added = points_.emplace_hint(it, t, s);
+    for (int c = 0; c < 2; ++c)
+      if (domain_.closed(c)) settle_seam(added, c);
+    return added->second;
   }
   const std::map<double, Sample>& points() const { return points_; }
   size_t count_in(double a, double b) const {
@@ -270,7 +292,40 @@ class Samples {
   }
 
  private:
+  using Iterator = std::map<double, Sample>::iterator;
+
+  // A sample on a closed sheet's seam is on both of its sides; it takes the side of the nearest
+  // sample off the seam (to its left, else to its right), so that the pre-image runs from the
+  // seam into the sheet instead of jumping across it. A curve that only touches the seam at its
+  // start learns its side from its second sample.
+  void settle_seam(Iterator added, int c) {
+    auto place = [&](Iterator seam, const Sample& anchor) {
+      const double lo = domain_.lo()(c), hi = domain_.hi()(c);
+      seam->second.uv(c) = anchor.uv(c) - lo < hi - anchor.uv(c) ? lo : hi;
+    };
+    auto on_seam = [&](Iterator k) { return domain_.on_seam(k->second.uv, c); };
+    if (on_seam(added)) {
+      for (Iterator k = added; k != points_.begin();) {
+        if (!on_seam(--k)) return place(added, k->second);
+      }
+      for (Iterator k = std::next(added); k != points_.end(); ++k) {
+        if (!on_seam(k)) return place(added, k->second);
+      }
+      return;
+    }
+    // Seam samples at either end of the curve with no anchor on their far side follow this one.
+    Iterator k = added;
+    while (k != points_.begin() && on_seam(std::prev(k))) --k;
+    if (k == points_.begin())
+      for (; k != added; ++k) place(k, added->second);
+    k = std::next(added);
+    while (k != points_.end() && on_seam(k)) ++k;
+    if (k == points_.end())
+      for (Iterator j = std::next(added); j != points_.end(); ++j) place(j, added->second);
+  }
+
   Projector& projector_;
+  const SheetDomain& domain_;
   std::map<double, Sample> points_;
 };
 
@@ -403,8 +458,9 @@ PreImage project_curve(const BSplineSurface& base, const BSplineCurve& target,
                          ? options.samples
                          : std::max(options.min_samples, options.samples_per_span * spans);
   const int per_span = std::max(degree + 1, (wanted + spans - 1) / spans);
-  Projector projector(base, target, options.tolerance);
-  Samples samples(projector);
+  const SheetDomain domain(base);
+  Projector projector(base, domain, target, options.tolerance);
+  Samples samples(projector, domain);
   for (int s = 0; s < spans; ++s) {
     for (int i = 0; i < per_span; ++i) {
       samples.add(target_breaks[s] + (target_breaks[s + 1] - target_breaks[s]) * i / per_span);
@@ -415,7 +471,7 @@ PreImage project_curve(const BSplineSurface& base, const BSplineCurve& target,
   // A target along the sheet's normal projects to (nearly) one point: no pre-image can carry it.
   double target_length = 0.0, image_length = 0.0;
   Eigen::VectorXd last_target;
-  Eigen::Vector3d last_image;
+  Eigen::Vector3d last_image = Eigen::Vector3d::Zero();
   for (const auto& [t, s] : samples.points()) {
     const Eigen::VectorXd on_target = target.evaluate(t);
     const Eigen::Vector3d on_sheet = base.evaluate(s.uv(0), s.uv(1));
@@ -467,7 +523,17 @@ PreImage project_curve(const BSplineSurface& base, const BSplineCurve& target,
 
   // Fit, then refine the knot vector where the fit misses the samples; stop at the tolerance, at
   // max_poles, or when refining no longer pays (the samples' own noise).
+  // The fit may pass beyond the domain where the pre-image runs along or touches the boundary;
+  // the solver clamps it back (a fit error like any other) but refuses an excursion beyond 1e-7
+  // of the domain: one beyond `reach` counts as a miss of the fit, so those spans are refined.
+  // (Clipping the poles instead bends the fit: a convex pre-image touching the boundary has its
+  // control polygon beyond it; clipped, it was 0.007 mm off a circle touching a plane's side.)
   const double fit_tol = options.fit_tolerance * width.maxCoeff();
+  const Eigen::Vector2d reach = 1e-8 * width;
+  auto excursion = [&](const Eigen::Vector2d& uv) {
+    const Eigen::Vector2d out = (lo - uv).cwiseMax(uv - hi).cwiseMax(0.0);
+    return out.cwiseQuotient(reach).maxCoeff();
+  };
   const int per_knot_span = 2 * (degree + 1);
   BSplineCurve curve;
   double best = std::numeric_limits<double>::infinity();
@@ -482,7 +548,8 @@ PreImage project_curve(const BSplineSurface& base, const BSplineCurve& target,
       const int span =
           std::clamp(static_cast<int>(std::upper_bound(kb.begin(), kb.end(), t) - kb.begin()) - 1,
                      0, static_cast<int>(kb.size()) - 2);
-      const double e = (trial.evaluate(t) - s.uv).norm();
+      const Eigen::Vector2d at = trial.evaluate(t);
+      const double e = std::max((at - s.uv).norm(), fit_tol * excursion(at));
       span_error[span] = std::max(span_error[span], e);
       worst = std::max(worst, e);
     }
@@ -500,10 +567,22 @@ PreImage project_curve(const BSplineSurface& base, const BSplineCurve& target,
     for (double t : inserts) breaks.add(t, degree - 1);
   }
 
-  // Poles inside the domain keep the whole curve inside (convex hull); clipping only removes the
-  // fit's overshoot near the boundary.
-  for (int i = 0; i < curve.pole_count(); ++i)
-    curve.poles.row(i) = curve.poles.row(i).transpose().cwiseMax(lo).cwiseMin(hi).transpose();
+  // Poles within the snap margin of a bound go onto it: where the samples run along the
+  // boundary, the fit's rounding would otherwise leave the pre-image a hair off it (see
+  // SheetDomain). If refinement stopped short of keeping the fit within reach of the domain,
+  // clipping the poles keeps the curve in it (convex hull) at the cost of a larger fit error.
+  bool beyond = false;
+  for (const auto& [t, s] : samples.points()) beyond = beyond || excursion(curve.evaluate(t)) > 1.0;
+  const Eigen::Vector2d margin = SheetDomain::snap_margin * width;
+  for (int i = 0; i < curve.pole_count(); ++i) {
+    Eigen::Vector2d pole = curve.poles.row(i).transpose();
+    if (beyond) pole = pole.cwiseMax(lo).cwiseMin(hi);
+    for (int c = 0; c < 2; ++c) {
+      if (std::abs(pole(c) - lo(c)) <= margin(c)) pole(c) = lo(c);
+      if (std::abs(pole(c) - hi(c)) <= margin(c)) pole(c) = hi(c);
+    }
+    curve.poles.row(i) = pole.transpose();
+  }
 
   PreImage out;
   out.curve = curve;

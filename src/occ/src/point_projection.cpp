@@ -6,6 +6,7 @@
 #include "varsurf/core/errors.hpp"
 #include "varsurf/occ/geom_convert.hpp"
 #include "varsurf/occ/occ_error.hpp"
+#include "varsurf/occ/sheet_domain.hpp"
 
 namespace varsurf::occ {
 
@@ -16,11 +17,14 @@ PointOnSheet project_point(const BSplineSurface& sheet, const Eigen::Vector3d& p
     Handle(Geom_BSplineSurface) geom = to_geom(sheet);
     ShapeAnalysis_Surface analysis(geom);
     const gp_Pnt p(point.x(), point.y(), point.z());
-    const gp_Pnt2d uv = analysis.ValueOfUV(p, 1e-9);
+    const gp_Pnt2d found = analysis.ValueOfUV(p, 1e-9);
+    // A point on the boundary (a corner vertex, a point on a boundary edge) is placed exactly on
+    // it, so that a constraint there weighs only the boundary poles (see SheetDomain).
+    const Eigen::Vector2d uv = SheetDomain(sheet).snapped({found.X(), found.Y()});
     PointOnSheet out;
-    out.u = uv.X();
-    out.v = uv.Y();
-    out.distance = analysis.Gap();
+    out.u = uv(0);
+    out.v = uv(1);
+    out.distance = (sheet.evaluate(uv(0), uv(1)) - point).norm();
     return out;
   });
 }

@@ -23,6 +23,9 @@ struct ProjectionOptions {
   int max_poles = 1000;  // refinement stops here and reports the fit error it reached
 };
 
+// A target on the sheet's boundary (its own edges, a seam) has its pre-image exactly on the
+// domain's side (see SheetDomain); one touching the boundary may pass beyond it by up to 1e-8 of
+// the domain, which the solver clamps.
 struct PreImage {
   BSplineCurve curve;         // 2D, parameter range exactly that of the target
   double max_distance = 0.0;  // max |D(t_k) - S(uv_k)|: how far the target is from the sheet

@@ -1,0 +1,286 @@
+// Curves on the base face's own boundary: their pre-images are the boundary exactly (not a
+// rounding error inside it), closed faces' seams are entered from the right side, and a sheet
+// through its base's boundary edges, with the boundary kept and the base as rest shape, is the
+// base. The faces and edges are built as a modeller builds them: primitives and their own edges.
+#include <gtest/gtest.h>
+#include <BRepAdaptor_Surface.hxx>
+#include <BRepBuilderAPI_MakeEdge.hxx>
+#include <BRepBuilderAPI_MakeFace.hxx>
+#include <BRepPrimAPI_MakeBox.hxx>
+#include <BRepPrimAPI_MakeCylinder.hxx>
+#include <BRep_Tool.hxx>
+#include <GeomAPI_PointsToBSplineSurface.hxx>
+#include <GeomAPI_ProjectPointOnSurf.hxx>
+#include <GeomAbs_SurfaceType.hxx>
+#include <Geom_BSplineCurve.hxx>
+#include <TColgp_Array1OfPnt.hxx>
+#include <TColgp_Array2OfPnt.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopoDS.hxx>
+#include <gp_Pln.hxx>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "varsurf/core/errors.hpp"
+#include "varsurf/core/sheet_solver.hpp"
+#include "varsurf/core/spline_space.hpp"
+#include "varsurf/occ/curve_projection.hpp"
+#include "varsurf/occ/geom_convert.hpp"
+#include "varsurf/occ/point_projection.hpp"
+#include "varsurf/occ/sheet_domain.hpp"
+#include "varsurf/occ/surface_refinement.hpp"
+
+namespace varsurf {
+namespace {
+
+std::vector<TopoDS_Edge> edges_of(const TopoDS_Shape& shape) {
+  std::vector<TopoDS_Edge> out;
+  for (TopExp_Explorer ex(shape, TopAbs_EDGE); ex.More(); ex.Next()) {
+    const TopoDS_Edge e = TopoDS::Edge(ex.Current());
+    bool seen = false;
+    for (const TopoDS_Edge& o : out) seen = seen || o.IsSame(e);
+    if (!seen && !BRep_Tool::Degenerated(e)) out.push_back(e);
+  }
+  return out;
+}
+
+TopoDS_Face face_of(const TopoDS_Shape& shape, GeomAbs_SurfaceType type, double min_z = -1e300) {
+  for (TopExp_Explorer ex(shape, TopAbs_FACE); ex.More(); ex.Next()) {
+    const TopoDS_Face f = TopoDS::Face(ex.Current());
+    BRepAdaptor_Surface a(f);
+    if (a.GetType() != type) continue;
+    const double u = 0.5 * (a.FirstUParameter() + a.LastUParameter());
+    const double v = 0.5 * (a.FirstVParameter() + a.LastVParameter());
+    if (a.Value(u, v).Z() >= min_z) return f;
+  }
+  return {};
+}
+
+// 0 when the pre-image lies exactly on a bound of the domain in some direction (every pole's
+// coordinate equal to the bound), else the smallest distance of a pole's coordinate to a bound.
+double off_boundary(const BSplineSurface& base, const BSplineCurve& pre) {
+  const Eigen::Vector2d lo(base.space.u_first(), base.space.v_first());
+  const Eigen::Vector2d hi(base.space.u_last(), base.space.v_last());
+  double best = INFINITY;
+  for (int c = 0; c < 2; ++c) {
+    for (double bound : {lo(c), hi(c)}) {
+      double worst = 0.0;
+      for (int i = 0; i < pre.pole_count(); ++i)
+        worst = std::max(worst, std::abs(pre.poles(i, c) - bound));
+      best = std::min(best, worst);
+    }
+  }
+  return best;
+}
+
+// Max distance between the target and the sheet at the pre-image, at 1000 parameters.
+double incidence(const BSplineSurface& base, const occ::PreImage& pre, const BSplineCurve& target) {
+  double worst = 0.0;
+  for (int k = 0; k <= 1000; ++k) {
+    const double t = target.first() + (target.last() - target.first()) * k / 1000.0;
+    const Eigen::Vector2d uv = pre.curve.evaluate(t);
+    worst =
+        std::max(worst, (base.evaluate(uv(0), uv(1)) - Eigen::Vector3d(target.evaluate(t))).norm());
+  }
+  return worst;
+}
+
+// Sheet on `base` (refined to 16 spans, cubic) through `curves`, boundary kept, base as rest
+// shape: the largest pole displacement from the base.
+double sheet_moves(const BSplineSurface& base, const std::vector<BSplineCurve>& curves) {
+  const BSplineSurface sheet = occ::refine_surface(base, 16, 16, 3);
+  SheetProblem pb;
+  pb.space = sheet.space;
+  pb.initial_poles = sheet.poles;
+  pb.rest_poles = sheet.poles;
+  pb.energy = ThinPlateWeights::isotropic(0.0, 1.0);
+  pb.fixed_poles = boundary_pole_indices(sheet.space);
+  for (const BSplineCurve& target : curves)
+    pb.curves.push_back({occ::project_curve(base, target).curve, target, 1.0});
+  SolveOptions opt;
+  opt.fit_tolerance = 0.25 * 0.01;
+  const SolveResult r = solve_sheet(pb, opt);
+  return (r.poles - sheet.poles).rowwise().norm().maxCoeff();
+}
+
+TopoDS_Face interpolated_face() {
+  TColgp_Array2OfPnt grid(1, 8, 1, 8);
+  for (int i = 1; i <= 8; ++i)
+    for (int j = 1; j <= 8; ++j)
+      grid(i, j) = gp_Pnt(10.0 * (i - 1), 10.0 * (j - 1),
+                          3.0 * ((i - 4) * (i - 4) - (j - 4) * (j - 4)) / 9.0);
+  GeomAPI_PointsToBSplineSurface fit;
+  fit.Interpolate(grid);
+  return BRepBuilderAPI_MakeFace(fit.Surface(), 1e-7).Face();
+}
+
+TEST(SheetDomain, FindsTheSeamOfAClosedFaceOnly) {
+  const TopoDS_Shape cylinder = BRepPrimAPI_MakeCylinder(20.0, 50.0).Shape();
+  const BSplineSurface lateral = occ::surface_from_face(face_of(cylinder, GeomAbs_Cylinder));
+  const occ::SheetDomain closed(lateral);
+  EXPECT_TRUE(closed.closed(0));
+  EXPECT_FALSE(closed.closed(1));
+  const BSplineSurface plane = occ::surface_from_face(
+      BRepBuilderAPI_MakeFace(gp_Pln(gp::XOY()), 0.0, 100.0, 0.0, 60.0).Face());
+  const occ::SheetDomain open(plane);
+  EXPECT_FALSE(open.closed(0));
+  EXPECT_FALSE(open.closed(1));
+  // On the boundary within rounding: exactly on it; a visible distance inside: untouched.
+  EXPECT_EQ(open.snapped({100.0 - 1e-13, 30.0}), Eigen::Vector2d(100.0, 30.0));
+  EXPECT_EQ(open.snapped({3e-15, 1e-12}), Eigen::Vector2d(0.0, 0.0));
+  EXPECT_EQ(open.snapped({1e-3, 30.0}), Eigen::Vector2d(1e-3, 30.0));
+  EXPECT_EQ(open.snapped({-1.0, 61.0}), Eigen::Vector2d(0.0, 60.0));
+}
+
+// Part.makePlane(100, 60): each of its four edges is a side of the domain exactly.
+TEST(BoundaryCurves, PlaneEdgesProjectOntoTheDomainsSides) {
+  const TopoDS_Face face = BRepBuilderAPI_MakeFace(gp_Pln(gp::XOY()), 0.0, 100.0, 0.0, 60.0).Face();
+  const BSplineSurface base = occ::surface_from_face(face);
+  std::vector<BSplineCurve> curves;
+  for (const TopoDS_Edge& e : edges_of(face)) {
+    const BSplineCurve target = occ::curve_from_edge(e);
+    const occ::PreImage pre = occ::project_curve(base, target);
+    EXPECT_EQ(off_boundary(base, pre.curve), 0.0);
+    EXPECT_LT(pre.max_distance, 1e-12);
+    EXPECT_LT(incidence(base, pre, target), 1e-12);
+    curves.push_back(target);
+  }
+  ASSERT_EQ(curves.size(), 4u);
+  EXPECT_LT(sheet_moves(base, {curves[0]}), 1e-12);
+  EXPECT_LT(sheet_moves(base, curves), 1e-12);
+}
+
+// A Part box's top face (a plane placed at z = 40) through its own four edges.
+TEST(BoundaryCurves, BoxTopFaceThroughItsOwnEdgesIsTheFace) {
+  const TopoDS_Shape box = BRepPrimAPI_MakeBox(100.0, 60.0, 40.0).Shape();
+  const TopoDS_Face top = face_of(box, GeomAbs_Plane, 39.0);
+  ASSERT_FALSE(top.IsNull());
+  const BSplineSurface base = occ::surface_from_face(top);
+  std::vector<BSplineCurve> curves;
+  for (const TopoDS_Edge& e : edges_of(top)) {
+    curves.push_back(occ::curve_from_edge(e));
+    const occ::PreImage pre = occ::project_curve(base, curves.back());
+    EXPECT_EQ(off_boundary(base, pre.curve), 0.0);
+    EXPECT_LT(incidence(base, pre, curves.back()), 1e-12);
+  }
+  EXPECT_LT(sheet_moves(base, curves), 1e-12);
+}
+
+// An interpolated bicubic face (70 x 70 mm) through its own boundary edges.
+TEST(BoundaryCurves, InterpolatedBSplineFaceThroughItsOwnEdgesIsTheFace) {
+  const TopoDS_Face face = interpolated_face();
+  const BSplineSurface base = occ::surface_from_face(face);
+  std::vector<BSplineCurve> curves;
+  for (const TopoDS_Edge& e : edges_of(face)) {
+    curves.push_back(occ::curve_from_edge(e));
+    const occ::PreImage pre = occ::project_curve(base, curves.back());
+    EXPECT_EQ(off_boundary(base, pre.curve), 0.0);
+    EXPECT_LT(incidence(base, pre, curves.back()), 1e-9);
+  }
+  ASSERT_EQ(curves.size(), 4u);
+  EXPECT_LT(sheet_moves(base, curves), 1e-9);
+}
+
+// A cylinder's lateral face through its own two circles: each starts on the seam and goes once
+// around, so its pre-image runs from one side of the seam to the other.
+TEST(BoundaryCurves, CylinderCirclesRunFromSeamToSeam) {
+  const TopoDS_Shape cylinder = BRepPrimAPI_MakeCylinder(20.0, 50.0).Shape();
+  const TopoDS_Face lateral = face_of(cylinder, GeomAbs_Cylinder);
+  const BSplineSurface base = occ::surface_from_face(lateral);
+  std::vector<BSplineCurve> circles;
+  for (const TopoDS_Edge& e : edges_of(lateral)) {
+    double first, last;
+    if (BRep_Tool::Curve(e, first, last)->DynamicType()->Name() != std::string("Geom_Circle"))
+      continue;
+    circles.push_back(occ::curve_from_edge(e));
+    const occ::PreImage pre = occ::project_curve(base, circles.back());
+    EXPECT_EQ(off_boundary(base, pre.curve), 0.0);
+    EXPECT_LT(incidence(base, pre, circles.back()), 1e-9);
+    const double u0 = pre.curve.evaluate(pre.curve.first())(0);
+    const double u1 = pre.curve.evaluate(pre.curve.last())(0);
+    EXPECT_NEAR(std::abs(u1 - u0), 2 * M_PI, 1e-12);
+  }
+  ASSERT_EQ(circles.size(), 2u);
+  EXPECT_LT(sheet_moves(base, circles), 1e-9);
+}
+
+// The cylinder's seam line lies on both sides of its domain: the pre-image keeps to one.
+TEST(BoundaryCurves, SeamLineStaysOnOneSide) {
+  const TopoDS_Shape cylinder = BRepPrimAPI_MakeCylinder(20.0, 50.0).Shape();
+  const TopoDS_Face lateral = face_of(cylinder, GeomAbs_Cylinder);
+  const BSplineSurface base = occ::surface_from_face(lateral);
+  int lines = 0;
+  for (const TopoDS_Edge& e : edges_of(lateral)) {
+    double first, last;
+    if (BRep_Tool::Curve(e, first, last)->DynamicType()->Name() != std::string("Geom_Line"))
+      continue;
+    ++lines;
+    const BSplineCurve target = occ::curve_from_edge(e);
+    const occ::PreImage pre = occ::project_curve(base, target);
+    EXPECT_EQ(off_boundary(base, pre.curve), 0.0);
+    EXPECT_LT(incidence(base, pre, target), 1e-12);
+    EXPECT_LT(sheet_moves(base, {target}), 1e-9);
+  }
+  EXPECT_EQ(lines, 1);
+}
+
+// A line along the side v = 0 that turns into the face: exactly on the side while along it.
+TEST(BoundaryCurves, CurvePartlyAlongTheBoundary) {
+  const TopoDS_Face face = BRepBuilderAPI_MakeFace(gp_Pln(gp::XOY()), 0.0, 100.0, 0.0, 60.0).Face();
+  const BSplineSurface base = occ::surface_from_face(face);
+  TColgp_Array1OfPnt poles(1, 3);
+  poles(1) = gp_Pnt(10, 0, 0);
+  poles(2) = gp_Pnt(50, 0, 0);
+  poles(3) = gp_Pnt(70, 30, 0);
+  TColStd_Array1OfReal knots(1, 3);
+  TColStd_Array1OfInteger mults(1, 3);
+  knots(1) = 0.0, knots(2) = 1.0, knots(3) = 2.0;
+  mults(1) = 2, mults(2) = 1, mults(3) = 2;
+  const BSplineCurve target =
+      occ::from_geom(Handle(Geom_BSplineCurve)(new Geom_BSplineCurve(poles, knots, mults, 1)));
+  const occ::PreImage pre = occ::project_curve(base, target);
+  EXPECT_LT(incidence(base, pre, target), 1e-12);
+  for (int k = 0; k <= 100; ++k) {
+    const Eigen::Vector2d uv = pre.curve.evaluate(k / 100.0);
+    EXPECT_EQ(uv(1), 0.0) << "t = " << k / 100.0;
+  }
+  EXPECT_GT(pre.curve.evaluate(1.5)(1), 10.0);
+  EXPECT_LT(sheet_moves(base, {target}), 1e-12);
+}
+
+// A circle inside the face touching two of its sides (y = 0 and y = 60) at one point each.
+TEST(BoundaryCurves, CircleTouchingTheBoundary) {
+  const TopoDS_Face face = BRepBuilderAPI_MakeFace(gp_Pln(gp::XOY()), 0.0, 100.0, 0.0, 60.0).Face();
+  const BSplineSurface base = occ::surface_from_face(face);
+  const BSplineCurve target = occ::curve_from_edge(
+      BRepBuilderAPI_MakeEdge(gp_Circ(gp_Ax2(gp_Pnt(50, 30, 0), gp::DZ()), 30.0)).Edge());
+  const occ::PreImage pre = occ::project_curve(base, target);
+  // Within the pre-image's fit tolerance (1e-7 of the domain's larger side) everywhere, and
+  // within 1e-8 of the domain's side where it touches it (the solver clamps that much).
+  EXPECT_LT(incidence(base, pre, target), 1e-5);
+  for (int k = 0; k <= 1000; ++k) {
+    const Eigen::Vector2d uv = pre.curve.evaluate(2 * M_PI * k / 1000.0);
+    EXPECT_GE(uv(1), -60e-8);
+    EXPECT_LE(uv(1), 60.0 + 60e-8);
+  }
+  EXPECT_LT(sheet_moves(base, {target}), 1e-9);
+}
+
+// A picked vertex or point of a boundary edge is placed exactly on the boundary.
+TEST(BoundaryPoints, VerticesAndEdgePointsLandExactlyOnTheBoundary) {
+  const BSplineSurface base = occ::surface_from_face(interpolated_face());
+  const occ::PointOnSheet corner = occ::project_point(base, base.evaluate(1.0, 1.0));
+  EXPECT_EQ(corner.u, 1.0);
+  EXPECT_EQ(corner.v, 1.0);
+  EXPECT_LT(corner.distance, 1e-12);
+  const occ::PointOnSheet side = occ::project_point(base, base.evaluate(1.0, 0.3));
+  EXPECT_EQ(side.u, 1.0);
+  EXPECT_NEAR(side.v, 0.3, 1e-9);
+  const occ::PointOnSheet inside = occ::project_point(base, base.evaluate(1.0 - 1e-4, 0.3));
+  EXPECT_NEAR(inside.u, 1.0 - 1e-4, 1e-12);
+}
+
+}  // namespace
+}  // namespace varsurf
