@@ -110,6 +110,11 @@ void bind_occ_bridge(py::module_& m) {
       .def_readonly("distance", &occ::TrimHit::distance,
                     "Distance (mm) from that sample to the base face's boundary.");
 
+  py::class_<occ::TrimCurve>(m, "TrimCurve", "A curve of a base face's boundary on its sheet.")
+      .def_readonly("preimage", &occ::TrimCurve::preimage, "2D (u, v) curve on the sheet.")
+      .def_readonly("target", &occ::TrimCurve::target,
+                    "3D curve of the base face there, with the pre-image's parameter.");
+
   py::class_<occ::BaseTrim, std::shared_ptr<occ::BaseTrim>>(
       m, "BaseTrim",
       "A base face's trim (its wires: outer boundary and holes) and orientation, for the sheet "
@@ -132,6 +137,9 @@ void bind_occ_bridge(py::module_& m) {
           "sheet"_a,
           "BREP of the sheet's face bounded and oriented like the base face (its natural face "
           "when the base is natural).")
+      .def("boundary", &occ::BaseTrim::boundary,
+           "The base face's edges off its parameter rectangle, as pre-images and targets: what "
+           "keeps a trimmed boundary in place (empty for a natural face).")
       .def("place", py::overload_cast<double, double, double>(&occ::BaseTrim::place, py::const_),
            "u"_a, "v"_a, "tolerance"_a,
            "Where the sheet's (u, v) lies on the base face (outside by at most `tolerance` mm "

@@ -517,6 +517,14 @@ def solve_sheet_on_face(
     except (nat.InvalidInput, nat.GeometryError) as error:
         raise SheetError(f"a constraint's location cannot be placed on the base face: {error}") from error
     _refuse_outside_trim(trim, [(n, c.preimage) for n, c in zip(names, curve_constraints)], placed, tolerance)
+    if fix_boundary:  # a trimmed face's own edges are kept too, not only its parameter rectangle's
+        try:
+            held = trim.boundary()
+        except (nat.InvalidInput, nat.GeometryError) as error:
+            raise SheetError(f"the base face's boundary cannot be kept: {error}") from error
+        # After the named curves: outcome.problem.curves starts in curve_names order.
+        curve_constraints += [_build(nat.CurveConstraint, preimage=b.preimage, target=b.target, weight=1.0)
+                              for b in held]
 
     rest_surface = None
     if rest is not None and not (isinstance(rest, str) and rest == "base"):

@@ -237,6 +237,43 @@ TEST(TrimmedFace, PlacesPointsOverTheHoleAndOutsideTheBoundary) {
   EXPECT_EQ(plate.place(across, 0.01).place, occ::TrimPlace::inside);
 }
 
+TEST(TrimmedFace, BoundaryOffTheParameterRectangleIsHeldAlongTheBaseFacesEdges) {
+  // The plate's outer edges run along its parameter rectangle (fixed poles hold them): only the
+  // hole is returned; on the cylinder patch, through the reparametrization.
+  struct Case {
+    TopoDS_Face face;
+    gp_Pnt centre;
+    double radius;
+  };
+  for (const Case& c : {Case{plate_with_hole(), gp_Pnt(50, 40, 40), 10.0},
+                        Case{disc(30.0), gp_Pnt(0, 0, 0), 30.0}}) {
+    const occ::BaseTrim trim(c.face);
+    const std::vector<occ::TrimCurve> held = trim.boundary();
+    ASSERT_EQ(held.size(), 1u);
+    const occ::TrimCurve& h = held[0];
+    const BSplineSurface sheet = occ::surface_from_face(c.face);
+    for (int k = 0; k <= 100; ++k) {
+      const double t = h.preimage.first() + (h.preimage.last() - h.preimage.first()) * k / 100;
+      const Eigen::VectorXd uv = h.preimage.evaluate(t);
+      const Eigen::Vector3d on = sheet.evaluate(uv(0), uv(1));
+      const Eigen::VectorXd target = h.target.evaluate(t);
+      EXPECT_LT((on - target).norm(), 5e-8);  // interpolated to 1e-8 mm at midpoints
+      EXPECT_NEAR(gp_Pnt(on(0), on(1), on(2)).Distance(c.centre), c.radius, 1e-9);
+    }
+  }
+  const occ::BaseTrim patch(cylinder_patch_with_hole());
+  const std::vector<occ::TrimCurve> hole = patch.boundary();
+  ASSERT_EQ(hole.size(), 1u);
+  for (int k = 0; k <= 100; ++k) {
+    const Eigen::VectorXd p = hole[0].target.evaluate(
+        hole[0].target.first() + (hole[0].target.last() - hole[0].target.first()) * k / 100);
+    EXPECT_NEAR(std::hypot(p(0), p(1)), kRadius, 1e-8);
+  }
+  EXPECT_TRUE(occ::BaseTrim(BRepBuilderAPI_MakeFace(gp_Pln(gp::XOY()), 0, 1, 0, 1).Face())
+                  .boundary()
+                  .empty());
+}
+
 TEST(TrimmedFace, RefusesASheetOnAnotherDomain) {
   const TopoDS_Face base = disc(30.0);
   BSplineSurface other = start_sheet(base);

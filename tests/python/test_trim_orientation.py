@@ -108,6 +108,24 @@ def test_curves_over_the_hole_are_refused_and_others_met():
         model.solve_sheet_on_face(base, [], constraints=[point])
 
 
+def _hole_rim(shape):
+    """Points along the edges of `shape` that bound the plate's hole (radius 10 about (50, 40))."""
+    return [p for e in shape.Edges if math.hypot(e.CenterOfMass.x - 50, e.CenterOfMass.y - 40) < 11
+            for p in e.discretize(40)]
+
+
+def test_a_kept_boundary_keeps_the_holes_rim():
+    """FixBoundary keeps the base face's boundary: the hole's rim too, not only the rectangle's."""
+    base = plate_top()
+    ridge = Part.makeLine(Vector(20, 25, 45), Vector(80, 25, 45))  # 5 mm above the plate, beside the hole
+    kept = model.solve_sheet_on_face(base, [ridge], rest="base", tolerance=0.01)
+    rim = _hole_rim(kept.shape)
+    assert rim and max(abs(p.z - 40) for p in rim) <= 0.01  # measured: 0.0013 mm
+    assert max(abs(math.hypot(p.x - 50, p.y - 40) - 10) for p in rim) < 1e-6
+    free = model.solve_sheet_on_face(base, [ridge], rest="base", tolerance=0.01, fix_boundary=False)
+    assert max(p.z for p in _hole_rim(free.shape)) > 41  # without it the rim lifts with the ridge
+
+
 def test_curves_outside_the_disc_are_refused():
     base = disc()
     corner = Part.makeLine(Vector(20, 24, 2), Vector(28, 28, 2))  # in the square, not the disc
@@ -117,9 +135,10 @@ def test_curves_outside_the_disc_are_refused():
     outcome = model.solve_sheet_on_face(base, [inside])
     assert outcome.max_deviation < 0.01
     assert outcome.shape.check(True) is None
-    # Its boundary is still the circle in plan (the sheet is z over the disc's plane).
+    # Its boundary is still the circle, kept in place (FixBoundary) within the tolerance.
     rim = [p for e in outcome.shape.Edges for p in e.discretize(50)]
     assert max(abs(math.hypot(p.x, p.y) - 30.0) for p in rim) < 1e-6
+    assert max(abs(p.z) for p in rim) <= 0.01
 
 
 def test_a_curve_within_the_tolerance_of_the_holes_edge_is_accepted():

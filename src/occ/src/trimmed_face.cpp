@@ -11,17 +11,26 @@
 #include <BRep_Tool.hxx>
 #include <Bnd_Box.hxx>
 #include <Geom2dAPI_Interpolate.hxx>
+#include <Geom2dConvert.hxx>
 #include <Geom2d_BSplineCurve.hxx>
 #include <Geom2d_Curve.hxx>
 #include <Geom2d_Line.hxx>
+#include <Geom2d_TrimmedCurve.hxx>
+#include <GeomAPI_Interpolate.hxx>
 #include <GeomAPI_ProjectPointOnSurf.hxx>
+#include <Geom_BSplineCurve.hxx>
 #include <Precision.hxx>
 #include <ShapeFix_Face.hxx>
+#include <TColStd_Array1OfInteger.hxx>
+#include <TColStd_Array1OfReal.hxx>
 #include <TColStd_HArray1OfReal.hxx>
+#include <TColgp_Array1OfPnt.hxx>
+#include <TColgp_HArray1OfPnt.hxx>
 #include <TColgp_HArray1OfPnt2d.hxx>
 #include <TopExp.hxx>
 #include <TopExp_Explorer.hxx>
 #include <TopTools_DataMapOfShapeShape.hxx>
+#include <TopTools_IndexedMapOfShape.hxx>
 #include <TopoDS.hxx>
 #include <TopoDS_Edge.hxx>
 #include <TopoDS_Iterator.hxx>
@@ -271,26 +280,30 @@ Pcurve mapped(const Handle(Geom2d_Curve) & c, double f, double l, const Map& map
   }
 }
 
+// The edge's pcurve on the base face carried to the sheet's parameters (as it is when the
+// conversion kept them), to `accuracy` mm.
+Pcurve carry(const TopoDS_Edge& edge, const TopoDS_Face& base, bool identity,
+             const Handle(Geom_Surface) & surface, const Handle(Geom_BSplineSurface) & nurbs,
+             double accuracy) {
+  double f, l;
+  Handle(Geom2d_Curve) c = BRep_Tool::CurveOnSurface(edge, base, f, l);
+  if (c.IsNull()) throw GeometryError("the base face has an edge without a curve on it");
+  if (identity) return Pcurve{c, f, l};
+  const Box box = bounds_of(nurbs);
+  auto map = [&](const gp_Pnt2d& p, double& su, double& sv) {
+    invert(nurbs, box, surface->Value(p.X(), p.Y()), su, sv);
+  };
+  return mapped(c, f, l, map, nurbs, accuracy);
+}
+
 }  // namespace
 
 TopoDS_Face BaseTrim::bounded(const Handle(Geom_BSplineSurface) & sheet) const {
   BRep_Builder builder;
   const double tol = Precision::Confusion();
   const double accuracy = std::min(1e-8 * size_, 0.1 * tol);
-  auto map = [this](const gp_Pnt2d& p, double& su, double& sv) {
-    if (identity_) {
-      su = p.X();
-      sv = p.Y();
-    } else {
-      invert(nurbs_, bounds_of(nurbs_), surface_->Value(p.X(), p.Y()), su, sv);
-    }
-  };
-  auto carried = [&](const TopoDS_Edge& edge) -> Pcurve {
-    double f, l;
-    Handle(Geom2d_Curve) c = BRep_Tool::CurveOnSurface(edge, base_, f, l);
-    if (c.IsNull()) throw GeometryError("the base face has an edge without a curve on it");
-    if (identity_) return Pcurve{c, f, l};
-    return mapped(c, f, l, map, sheet, accuracy);
+  auto carried = [&](const TopoDS_Edge& edge) {
+    return carry(edge, base_, identity_, surface_, nurbs_, accuracy);
   };
 
   TopoDS_Face out;
@@ -381,6 +394,137 @@ TopoDS_Face BaseTrim::bounded(const Handle(Geom_BSplineSurface) & sheet) const {
   }
   out.Orientation(orientation_);
   return out;
+}
+
+namespace {
+
+// The surface along a pre-image, s(pre(t)), as a 3D B-spline with the pre-image's parameter:
+// cubic interpolation within each of its knot spans, joined C0 at its knots (a rational arc is
+// only C1 there, and one interpolation across would converge slowly), with the points doubled
+// until the midpoints are met within `accuracy` mm.
+Handle(Geom_BSplineCurve) follow(const Handle(Geom2d_BSplineCurve) & pre,
+                                 const Handle(Geom_Surface) & s, double accuracy) {
+  auto at = [&](double t) {
+    const gp_Pnt2d uv = pre->Value(t);
+    return s->Value(uv.X(), uv.Y());
+  };
+  auto tangent = [&](double t) {  // d/dt s(pre(t)): the interpolation's end conditions
+    gp_Pnt2d uv;
+    gp_Vec2d d;
+    pre->D1(t, uv, d);
+    gp_Pnt p;
+    gp_Vec su, sv;
+    s->D1(uv.X(), uv.Y(), p, su, sv);
+    return su * d.X() + sv * d.Y();
+  };
+  std::vector<gp_Pnt> poles;
+  std::vector<double> knots;
+  std::vector<int> mults;
+  for (int i = 1; i < pre->NbKnots(); ++i) {
+    const double a = pre->Knot(i), b = pre->Knot(i + 1);
+    Handle(Geom_BSplineCurve) piece;
+    for (int n = 4;; n *= 2) {
+      Handle(TColgp_HArray1OfPnt) points = new TColgp_HArray1OfPnt(1, n + 1);
+      Handle(TColStd_HArray1OfReal) params = new TColStd_HArray1OfReal(1, n + 1);
+      for (int k = 0; k <= n; ++k) {
+        const double t = k == n ? b : a + (b - a) * k / n;
+        points->SetValue(k + 1, at(t));
+        params->SetValue(k + 1, t);
+      }
+      GeomAPI_Interpolate interpolate(points, params, Standard_False, 0.0);
+      interpolate.Load(tangent(a), tangent(b), Standard_False);
+      interpolate.Perform();
+      if (!interpolate.IsDone())
+        throw GeometryError("a boundary edge of the base face could not be followed");
+      piece = interpolate.Curve();
+      double worst = 0.0;
+      for (int k = 0; k < n; ++k) {
+        const double t = a + (b - a) * (k + 0.5) / n;
+        worst = std::max(worst, at(t).Distance(piece->Value(t)));
+      }
+      if (worst <= accuracy || n >= 512) break;
+    }
+    const int degree = piece->Degree();  // 3: at least four points per piece
+    for (int k = poles.empty() ? 1 : 2; k <= piece->NbPoles(); ++k) poles.push_back(piece->Pole(k));
+    if (knots.empty()) {
+      knots.push_back(piece->Knot(1));
+      mults.push_back(degree + 1);
+    } else {
+      mults.back() = degree;  // the join: C0
+    }
+    for (int k = 2; k <= piece->NbKnots(); ++k) {
+      knots.push_back(piece->Knot(k));
+      mults.push_back(piece->Multiplicity(k));
+    }
+  }
+  TColgp_Array1OfPnt p(1, static_cast<int>(poles.size()));
+  TColStd_Array1OfReal k(1, static_cast<int>(knots.size()));
+  TColStd_Array1OfInteger m(1, static_cast<int>(mults.size()));
+  for (size_t i = 0; i < poles.size(); ++i) p(static_cast<int>(i) + 1) = poles[i];
+  for (size_t i = 0; i < knots.size(); ++i) {
+    k(static_cast<int>(i) + 1) = knots[i];
+    m(static_cast<int>(i) + 1) = mults[i];
+  }
+  return new Geom_BSplineCurve(p, k, m, 3);
+}
+
+// The image of a pre-image under an affine surface: the same rational B-spline with its poles
+// mapped (an affine map commutes with the weighted sums).
+Handle(Geom_BSplineCurve)
+    image(const Handle(Geom2d_BSplineCurve) & pre, const Handle(Geom_BSplineSurface) & s) {
+  TColgp_Array1OfPnt poles(1, pre->NbPoles());
+  TColStd_Array1OfReal weights(1, pre->NbPoles());
+  for (int i = 1; i <= pre->NbPoles(); ++i) {
+    poles(i) = s->Value(pre->Pole(i).X(), pre->Pole(i).Y());
+    weights(i) = pre->Weight(i);
+  }
+  TColStd_Array1OfReal knots(1, pre->NbKnots());
+  TColStd_Array1OfInteger mults(1, pre->NbKnots());
+  pre->Knots(knots);
+  pre->Multiplicities(mults);
+  return new Geom_BSplineCurve(poles, weights, knots, mults, pre->Degree(), pre->IsPeriodic());
+}
+
+}  // namespace
+
+std::vector<TrimCurve> BaseTrim::boundary() const {
+  return guarded("reading the base face's boundary", [&] {
+    std::vector<TrimCurve> out;
+    const Box box = bounds_of(nurbs_);
+    const double ptol = 1e-7 * box.span();
+    const double accuracy = std::min(1e-8 * size_, 0.1 * Precision::Confusion());
+    // A plane's sheet is affine in (u, v): the image of a pre-image is exact, pole by pole.
+    bool affine = nurbs_->UDegree() == 1 && nurbs_->VDegree() == 1 && nurbs_->NbUPoles() == 2 &&
+                  nurbs_->NbVPoles() == 2 && !nurbs_->IsURational() && !nurbs_->IsVRational();
+    if (affine) {
+      const gp_XYZ twist = nurbs_->Pole(2, 2).XYZ() - nurbs_->Pole(2, 1).XYZ() -
+                           nurbs_->Pole(1, 2).XYZ() + nurbs_->Pole(1, 1).XYZ();
+      affine = twist.Modulus() <= 1e-12 * size_;
+    }
+    TopTools_IndexedMapOfShape edges;
+    TopExp::MapShapes(base_, TopAbs_EDGE, edges);
+    for (int i = 1; i <= edges.Extent(); ++i) {
+      const TopoDS_Edge& edge = TopoDS::Edge(edges(i));
+      if (BRep_Tool::Degenerated(edge)) continue;
+      const Pcurve pc = carry(edge, base_, identity_, surface_, nurbs_, accuracy);
+      // Along one side of the parameter rectangle: held by the fixed boundary poles already.
+      bool side[4] = {true, true, true, true};
+      for (int k = 0; k <= 16; ++k) {
+        const gp_Pnt2d p = pc.curve->Value(pc.first + (pc.last - pc.first) * k / 16);
+        side[0] = side[0] && std::abs(p.X() - box.u1) <= ptol;
+        side[1] = side[1] && std::abs(p.X() - box.u2) <= ptol;
+        side[2] = side[2] && std::abs(p.Y() - box.v1) <= ptol;
+        side[3] = side[3] && std::abs(p.Y() - box.v2) <= ptol;
+      }
+      if (side[0] || side[1] || side[2] || side[3]) continue;
+      Handle(Geom2d_BSplineCurve) pre =
+          Geom2dConvert::CurveToBSplineCurve(new Geom2d_TrimmedCurve(pc.curve, pc.first, pc.last));
+      const Handle(Geom_BSplineCurve) target =
+          affine ? image(pre, nurbs_) : follow(pre, nurbs_, accuracy);
+      out.push_back(TrimCurve{from_geom(pre), from_geom(target)});
+    }
+    return out;
+  });
 }
 
 TrimHit BaseTrim::place(double su, double sv, double tolerance) const {

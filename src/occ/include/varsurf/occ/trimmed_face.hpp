@@ -10,6 +10,7 @@
 #include <TopoDS_Face.hxx>
 
 #include <memory>
+#include <vector>
 
 #include "varsurf/core/bspline_curve.hpp"
 #include "varsurf/core/spline_space.hpp"
@@ -25,6 +26,13 @@ struct TrimHit {
   TrimPlace place = TrimPlace::inside;
   double parameter = 0.0;  // curve parameter of the sample farthest outside
   double distance = 0.0;   // mm from that sample to the base face's boundary
+};
+
+// A curve of the base face's boundary: its 2D pre-image on the sheet and the 3D curve the sheet
+// follows there, with the pre-image's parameter.
+struct TrimCurve {
+  BSplineCurve preimage;
+  BSplineCurve target;
 };
 
 class BaseTrim {
@@ -50,6 +58,10 @@ class BaseTrim {
   // deviation). InvalidInput if the sheet does not share the base's parameter domain;
   // GeometryError if OCCT cannot build a valid face.
   TopoDS_Face face(const BSplineSurface& sheet) const;
+
+  // The base face's edges that do not run along the sheet's parameter rectangle (whose poles a
+  // kept boundary fixes): what else keeps a trimmed boundary in place. Empty when natural.
+  std::vector<TrimCurve> boundary() const;
 
   // Where the sheet's (u, v) falls on the base face; a point outside by no more than
   // `tolerance` (mm, measured to the boundary edges) counts as inside.
