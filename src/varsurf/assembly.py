@@ -52,6 +52,34 @@ def _closes(nat, surface, edges) -> bool:
         return False
 
 
+def _bounding(nat, surface, shared, own):
+    """The own curves that close the sheet's loop with its shared ones. A curve with an end that
+    meets no other curve's end (one across the sheet's interior, a closed one) does not bound it:
+    it shapes the sheet but is not part of its loop."""
+    gap = _loop_gap(surface)
+    ends = {}
+    for item in list(shared) + list(own):
+        try:
+            edge = item[1] if isinstance(item, tuple) else item
+            pre = nat.project_curve(surface, nat.curve_from_edge_brep(edge.exportBrepToString())).curve
+        except (nat.InvalidInput, nat.GeometryError):
+            continue  # kept as it is: chaining the loop reports it
+        ends[id(item)] = (pre.poles[0], pre.poles[-1])  # clamped: the first and last poles
+
+    def dangling(item, keep):
+        mine = ends.get(id(item))
+        others = [ends[id(o)] for o in list(shared) + keep if o is not item and id(o) in ends]
+        return mine is not None and any(all(math.dist(end, e) > gap for pair in others for e in pair)
+                                        for end in mine)
+
+    keep = list(own)
+    while True:  # dropping a curve can leave another dangling
+        loose = {id(item) for item in keep if dangling(item, keep)}
+        if not loose:
+            return keep
+        keep = [item for item in keep if id(item) not in loose]
+
+
 def build_solid(sheets: Sequence, tolerance: float) -> AssemblyOutcome:
     """Join sheets along their shared curves into a shell, a solid when it closes.
 
@@ -75,7 +103,8 @@ def build_solid(sheets: Sequence, tolerance: float) -> AssemblyOutcome:
             raise SheetError(f"{label} shares no curve with the other sheets: nothing bounds it")
         surface = nat.surface_from_face_brep(face.exportBrepToString())
         if own and not _closes(nat, surface, edges):
-            edges = edges + own  # the shared curves alone do not close: its own ones complete the loop
+            # the shared curves alone do not close: its own ones on the loop complete it
+            edges = edges + _bounding(nat, surface, edges, own)
         ids, pre_images = [], []
         for item in edges:
             key, edge = item if isinstance(item, tuple) else (item.hashCode(), item)

@@ -151,3 +151,39 @@ def test_a_12_m_solid_joins_within_its_sheets_tolerance(doc, native, tmp_path):
         assert not old.ToleranceFromSheets and old.Tolerance.Value == pytest.approx(3.0)
         recompute_all(again)
         assert old.isValid() and old.Tolerance.Value == pytest.approx(3.0), old.Status
+
+
+def _line(doc, name, a, b):
+    return _feature(doc, name, Part.LineSegment(V(*a), V(*b)).toShape())
+
+
+def test_a_sheet_of_an_open_shell_keeps_its_interior_curves(doc, native):
+    # Two flat sheets side by side, x in [5, 50] and [50, 95], y in [5, 55], sharing the seam
+    # x = 50; their own edges complete their loops. An arc across plate A's interior shapes it
+    # but does not bound it.
+    seam = _line(doc, "Seam", (50, 5, 0), (50, 55, 0))
+    own_a = [_line(doc, "A1", (50, 55, 0), (5, 55, 0)), _line(doc, "A2", (5, 55, 0), (5, 5, 0)),
+             _line(doc, "A3", (5, 5, 0), (50, 5, 0))]
+    own_b = [_line(doc, "B1", (50, 55, 0), (95, 55, 0)), _line(doc, "B2", (95, 55, 0), (95, 5, 0)),
+             _line(doc, "B3", (95, 5, 0), (50, 5, 0))]
+    base_a = _feature(doc, "BaseA", Part.makePlane(60, 70, V(-5, -5, 0)))
+    base_b = _feature(doc, "BaseB", Part.makePlane(60, 70, V(45, -5, 0)))
+    doc.recompute()
+    a = varsurf.make_sheet((base_a, "Face1"), [(o, "Edge1") for o in [seam] + own_a], name="PlateA")
+    b = varsurf.make_sheet((base_b, "Face1"), [(o, "Edge1") for o in [seam] + own_b], name="PlateB")
+    solid = varsurf.make_solid([a, b], name="Plates")
+    doc.recompute()
+    assert solid.isValid() and solid.Status.startswith("OK: open shell"), solid.Status
+    assert solid.Shape.Area == pytest.approx(2 * 45 * 50, rel=1e-6)  # two flat 45 x 50 mm faces
+    arc = _arc(doc, "Across", (15, 30, 0), (27.5, 30, 6), (40, 30, 0))
+    a.Curves = list(a.Curves) + [(arc, "Edge1")]
+    doc.recompute()
+    assert a.isValid() and solid.isValid() and solid.Status.startswith("OK: open shell"), solid.Status
+    assert len(solid.Shape.Faces) == 2 and solid.Shape.isValid()
+    for p in arc.Shape.discretize(20):
+        assert solid.Shape.distToShape(Part.Vertex(p))[0] <= a.Tolerance.Value
+    # Still bounded by the seam and its own edges (the arc's ends are no corners), lifted inside.
+    corners = {(x, y) for x in (5, 50, 95) for y in (5, 55)}
+    found = {(round(v.X, 6), round(v.Y, 6)) for v in solid.Shape.Vertexes}
+    assert found == corners and all(abs(v.Z) < 1e-9 for v in solid.Shape.Vertexes), found
+    assert solid.Shape.Area > 2 * 45 * 50 + 10.0
