@@ -129,6 +129,9 @@ class SheetOutcome:
     # what a joint solve of several sheets (varsurf.joint) starts from.
     problem: object = None
     options: object = None
+    # The base face's trim (native BaseTrim): trim.face_brep(surface) bounds and orients any
+    # surface of this sheet's space like the result (a drag's or a joint solve's).
+    trim: object = None
 
     @property
     def max_deviation(self) -> float:
@@ -685,4 +688,5 @@ def solve_sheet_on_face(
         refined_spans=[(b.level, b.u0, b.u1, b.v0, b.v1) for b in local.refined] if local is not None else [],
         problem=problem,
         options=options,
+        trim=trim,
     )

@@ -189,3 +189,35 @@ def test_sheet_feature_on_a_cut_box_keeps_the_hole(doc):
     doc.recompute()
     assert sheet.Status.startswith("OK"), sheet.Status
     assert sheet.Shape.Area == pytest.approx(100 * 80 - math.pi * 100, rel=1e-6)
+
+
+def test_solid_joins_sheets_on_trimmed_faces(doc):
+    """The pillow on two discs (radius 50) instead of rectangles: each Sheet is a trimmed disc, and
+    the Solid trims the sheets to their shared rim all the same. Its faces lie on the sheets."""
+    rim_points = [Vector(40 * math.cos(t), 25 * math.sin(t), 4 * math.sin(2 * t))
+                  for t in (2 * math.pi * k / 64 for k in range(64))]
+    curve = Part.BSplineCurve()
+    curve.interpolate(rim_points, PeriodicFlag=True)
+    rim = doc.addObject("Part::Feature", "Rim")
+    rim.Shape = curve.toShape()
+    sheets = []
+    for name, pressure in (("Top", 0.1), ("Bottom", -0.1)):
+        base = doc.addObject("Part::Feature", name + "Base")
+        base.Shape = disc().scale(50 / 30)
+        doc.recompute()
+        sheet = varsurf.make_sheet((base, "Face1"), [(rim, "Edge1")], name=name)
+        sheet.Stretch, sheet.Tolerance, sheet.Pressure = 1.0, 0.001, pressure
+        sheets.append(sheet)
+    solid = varsurf.make_solid(sheets, name="Pillow")
+    doc.recompute()
+    for sheet in sheets:
+        assert sheet.Status.startswith("OK"), sheet.Status
+        assert len(sheet.Shape.Edges) == 1 and sheet.Shape.Area < math.pi * 50 ** 2 * 1.2  # a disc
+    assert solid.Status.startswith("OK: solid"), solid.Status
+    shape = solid.Shape
+    assert shape.check(True) is None and shape.Volume > 0
+    assert len(shape.Faces) == 2
+    top, bottom = sorted(shape.Faces, key=lambda f: -f.CenterOfMass.z)
+    for face, sheet in ((top, sheets[0]), (bottom, sheets[1])):
+        assert _farthest(_inside_points(face, 30, 3), sheet.Shape) <= 1e-6
+        assert face.Area < sheet.Shape.Area  # trimmed to the rim, inside the disc
