@@ -2,14 +2,18 @@
 
 #include <IFSelect_ReturnStatus.hxx>
 #include <Interface_Static.hxx>
+#include <Precision.hxx>
 #include <STEPControl_Controller.hxx>
 #include <STEPControl_Reader.hxx>
 #include <STEPControl_Writer.hxx>
 
+#include <algorithm>
+#include <cstdio>
 #include <fstream>
 #include <string>
 
 #include "varsurf/core/errors.hpp"
+#include "varsurf/occ/exchange_edges.hpp"
 #include "varsurf/occ/occ_error.hpp"
 
 namespace varsurf::occ {
@@ -43,12 +47,22 @@ class StaticSetting {
 void write_step(const TopoDS_Shape& shape, const std::string& path) {
   if (shape.IsNull()) throw InvalidInput("cannot write a null shape to STEP");
   if (path.empty()) throw InvalidInput("STEP file path is empty");
+  // STEP stores no edge tolerances: readers re-derive them by sampling, so every deviation peak
+  // is put on a vertex first (see exchange_edges.hpp).
+  const ExchangeShape ready = prepare_for_exchange(shape);
+  // The file's uncertainty must cover the distance from a vertex to its edges' pcurves: OCCT's
+  // reader drops (and re-projects, coarsely) a pcurve whose end lies farther from its vertex.
+  char uncertainty[32];
+  std::snprintf(uncertainty, sizeof uncertainty, "%.3g",
+                std::max(2.0 * ready.max_deviation, Precision::Confusion()));
   guarded("writing STEP", [&] {
     STEPControl_Controller::Init();  // registers the STEP settings changed below
     const StaticSetting schema("write.step.schema", "AP214IS");
     const StaticSetting surface_curves("write.surfacecurve.mode", "1");
+    const StaticSetting precision_mode("write.precision.mode", "2");  // 2: the value below
+    const StaticSetting precision_value("write.precision.val", uncertainty);
     STEPControl_Writer writer;  // after the settings: its model takes the schema when created
-    if (writer.Transfer(shape, STEPControl_AsIs) != IFSelect_RetDone)
+    if (writer.Transfer(ready.shape, STEPControl_AsIs) != IFSelect_RetDone)
       throw GeometryError("writing STEP: the shape could not be translated");
     if (writer.Write(path.c_str()) != IFSelect_RetDone)
       throw GeometryError("writing STEP: cannot write '" + path + "'");

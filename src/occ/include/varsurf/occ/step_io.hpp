@@ -7,7 +7,10 @@
 
 namespace varsurf::occ {
 
-// InvalidInput for a null shape or an empty path; GeometryError if translation or writing fails.
+// Edges whose 3D curve and pcurves disagree are split where the disagreement peaks and the
+// file's uncertainty covers it, so that the re-read shape passes OCCT's curve-on-surface check
+// (prepare_for_exchange). InvalidInput for a null shape or an empty path; GeometryError if
+// translation or writing fails.
 // OCCT's global STEP settings are restored afterwards (they are shared with the host, e.g.
 // FreeCAD).
 void write_step(const TopoDS_Shape& shape, const std::string& path);

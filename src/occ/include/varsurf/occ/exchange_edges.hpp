@@ -1,0 +1,29 @@
+// Edges prepared for a file that stores no tolerances (STEP).
+//
+// An edge shared by two sheets that meet only within a tolerance has a 3D curve and pcurves
+// that disagree by up to that tolerance. STEP keeps the curves but not the tolerance: a reader
+// re-derives it by sampling the deviation (OCCT's reader: 23 evenly spaced parameters per edge,
+// plus 1e-5 relative), so a peak between samples is missed and the re-read edge fails the
+// curve-on-surface check of OCCT's Boolean operations. Splitting an edge where its deviation
+// peaks puts every peak on a vertex, where any reader measures it.
+#pragma once
+
+#include <TopoDS_Shape.hxx>
+
+namespace varsurf::occ {
+
+struct ExchangeShape {
+  TopoDS_Shape shape;
+  double max_deviation = 0.0;  // largest 3D-curve / pcurve distance over all edges
+  int split_edges = 0;         // edges split at their deviation's peaks
+};
+
+// The shape with each edge whose deviation exceeds OCCT's confusion (1e-7) split where the
+// deviation peaks, until on every piece it is largest at the ends (interior peaks stay 0.1 %
+// below: a reader's re-parametrisation moves them by less). Geometry is unchanged: the pieces
+// keep the edge's curves; the new vertices' tolerances cover the deviation there. Edges on a
+// surface's seam, and curves that are not B-splines, are left as they are. A null shape is
+// returned unchanged.
+ExchangeShape prepare_for_exchange(const TopoDS_Shape& shape);
+
+}  // namespace varsurf::occ
