@@ -8,6 +8,7 @@
 #include <BRepBuilderAPI_MakeFace.hxx>
 #include <BRepPrimAPI_MakeBox.hxx>
 #include <BRepPrimAPI_MakeCylinder.hxx>
+#include <BRepPrimAPI_MakeSphere.hxx>
 #include <BRep_Tool.hxx>
 #include <GeomAPI_PointsToBSplineSurface.hxx>
 #include <GeomAPI_ProjectPointOnSurf.hxx>
@@ -224,6 +225,28 @@ TEST(BoundaryCurves, SeamLineStaysOnOneSide) {
     EXPECT_LT(sheet_moves(base, {target}), 1e-9);
   }
   EXPECT_EQ(lines, 1);
+}
+
+// A sphere segment (a quarter of its height, a third of its turn): its meridians end at the pole,
+// where every u is the same point; the pre-image keeps the meridian's u up to the pole.
+TEST(BoundaryCurves, MeridiansRunIntoThePole) {
+  const TopoDS_Shape segment = BRepPrimAPI_MakeSphere(30.0, 0.0, M_PI / 2, 2 * M_PI / 3).Shape();
+  const TopoDS_Face face = face_of(segment, GeomAbs_Sphere);
+  const BSplineSurface base = occ::surface_from_face(face);
+  const occ::SheetDomain domain(base);
+  EXPECT_TRUE(domain.degenerate(1, 1));  // the pole
+  EXPECT_FALSE(domain.degenerate(1, -1));
+  EXPECT_FALSE(domain.closed(0));
+  std::vector<BSplineCurve> curves;
+  for (const TopoDS_Edge& e : edges_of(face)) {
+    curves.push_back(occ::curve_from_edge(e));
+    const occ::PreImage pre = occ::project_curve(base, curves.back());
+    EXPECT_EQ(off_boundary(base, pre.curve), 0.0);
+    EXPECT_LT(incidence(base, pre, curves.back()), 1e-9);
+    EXPECT_LE(pre.curve.pole_count(), 8);  // a straight line in (u, v), not a fit of a kink
+  }
+  ASSERT_EQ(curves.size(), 3u);
+  EXPECT_LT(sheet_moves(base, curves), 1e-9);
 }
 
 // A line along the side v = 0 that turns into the face: exactly on the side while along it.

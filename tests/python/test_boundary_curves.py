@@ -157,3 +157,14 @@ def test_sheet_feature_on_a_box_top_through_its_edges(doc, native):
     assert sheet.Status.startswith("OK"), sheet.Status
     assert max(sheet.MaxDeviations) <= SAME * 100
     assert_is_face(sheet.Shape.Faces[0], top, top.Edges)
+
+
+@pytest.mark.parametrize("make", [lambda: Part.makeSphere(30), lambda: Part.makeCone(20, 0, 40)],
+                         ids=["sphere", "cone"])
+def test_seam_and_poles_of_a_revolved_face(native, make):
+    """A sphere through its seam meridian (pole to pole), a cone through its base circle and its
+    seam line (to the apex): at a pole every u is the same point, on the seam both sides are."""
+    face = next(f for f in make().Faces if isinstance(f.Surface, (Part.Sphere, Part.Cone)))
+    edges = [e for e in face.Edges if not e.Degenerated]
+    out = solve(face, edges)
+    assert_is_face(out.shape, face, edges, area=False)

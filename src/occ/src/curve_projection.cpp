@@ -282,8 +282,28 @@ class Samples {
     const Sample s = neighbour ? projector_.project(t, &neighbour->second, neighbour->first)
                                : projector_.project(t, nullptr, 0.0);
     const auto added = points_.emplace_hint(it, t, s);
-    for (int c = 0; c < 2; ++c)
-      if (domain_.closed(c)) settle_seam(added, c);
+    for (int c = 0; c < 2; ++c) {
+      // At a side that collapses to a point (a sphere's pole) the other coordinate is free.
+      if (domain_.degenerate(c, -1) || domain_.degenerate(c, 1)) {
+        settle(
+            added,
+            [&](const Sample& k) {
+              const int side = domain_.side(k.uv, c);
+              return side != 0 && domain_.degenerate(c, side);
+            },
+            [&](Sample& k, const Sample& anchor) { k.uv(1 - c) = anchor.uv(1 - c); });
+      }
+    }
+    for (int c = 0; c < 2; ++c) {
+      if (!domain_.closed(c)) continue;
+      // On a closed sheet's seam a sample is on both of its sides.
+      settle(
+          added, [&](const Sample& k) { return domain_.on_seam(k.uv, c); },
+          [&](Sample& k, const Sample& anchor) {
+            const double lo = domain_.lo()(c), hi = domain_.hi()(c);
+            k.uv(c) = anchor.uv(c) - lo < hi - anchor.uv(c) ? lo : hi;
+          });
+    }
     return added->second;
   }
   const std::map<double, Sample>& points() const { return points_; }
@@ -294,34 +314,30 @@ class Samples {
  private:
   using Iterator = std::map<double, Sample>::iterator;
 
-  // A sample on a closed sheet's seam is on both of its sides; it takes the side of the nearest
-  // sample off the seam (to its left, else to its right), so that the pre-image runs from the
-  // seam into the sheet instead of jumping across it. A curve that only touches the seam at its
-  // start learns its side from its second sample.
-  void settle_seam(Iterator added, int c) {
-    auto place = [&](Iterator seam, const Sample& anchor) {
-      const double lo = domain_.lo()(c), hi = domain_.hi()(c);
-      seam->second.uv(c) = anchor.uv(c) - lo < hi - anchor.uv(c) ? lo : hi;
-    };
-    auto on_seam = [&](Iterator k) { return domain_.on_seam(k->second.uv, c); };
-    if (on_seam(added)) {
+  // A sample whose sheet point does not decide a coordinate (`free`) takes it from the nearest
+  // sample that is decided (to its left, else to its right) by `assign`, so that the pre-image
+  // runs on continuously instead of jumping: from a seam into the sheet on the curve's side, from
+  // a pole along the curve's meridian. A curve that starts there learns from its second sample.
+  template <class Free, class Assign>
+  void settle(Iterator added, Free free, Assign assign) {
+    if (free(added->second)) {
       for (Iterator k = added; k != points_.begin();) {
-        if (!on_seam(--k)) return place(added, k->second);
+        if (!free((--k)->second)) return assign(added->second, k->second);
       }
       for (Iterator k = std::next(added); k != points_.end(); ++k) {
-        if (!on_seam(k)) return place(added, k->second);
+        if (!free(k->second)) return assign(added->second, k->second);
       }
       return;
     }
-    // Seam samples at either end of the curve with no anchor on their far side follow this one.
+    // Free samples at either end of the curve with no anchor on their far side follow this one.
     Iterator k = added;
-    while (k != points_.begin() && on_seam(std::prev(k))) --k;
+    while (k != points_.begin() && free(std::prev(k)->second)) --k;
     if (k == points_.begin())
-      for (; k != added; ++k) place(k, added->second);
+      for (; k != added; ++k) assign(k->second, added->second);
     k = std::next(added);
-    while (k != points_.end() && on_seam(k)) ++k;
+    while (k != points_.end() && free(k->second)) ++k;
     if (k == points_.end())
-      for (Iterator j = std::next(added); j != points_.end(); ++j) place(j, added->second);
+      for (Iterator j = std::next(added); j != points_.end(); ++j) assign(j->second, added->second);
   }
 
   Projector& projector_;

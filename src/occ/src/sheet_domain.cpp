@@ -46,6 +46,17 @@ SheetDomain::SheetDomain(const BSplineSurface& sheet)
     }
     closed_[static_cast<size_t>(c)] = same;
   }
+  for (int c = 0; c < 2; ++c) {
+    for (int side = 0; side < 2; ++side) {
+      const double at = side == 0 ? lo_(c) : hi_(c);
+      auto point = [&](double s) { return c == 0 ? sheet.evaluate(at, s) : sheet.evaluate(s, at); };
+      const Eigen::Vector3d first = point(c == 0 ? lo_(1) : lo_(0));
+      bool collapsed = true;
+      for (double s : probes(sheet.space, 1 - c))
+        collapsed = collapsed && (point(s) - first).norm() <= 1e-9 * scale_;
+      degenerate_[static_cast<size_t>(2 * c + side)] = collapsed;
+    }
+  }
 }
 
 int SheetDomain::side(const Eigen::Vector2d& uv, int c) const {

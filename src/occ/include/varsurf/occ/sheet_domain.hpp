@@ -22,6 +22,11 @@ class SheetDomain {
   double model_size() const { return scale_; }
   // Whether the sheet's boundary at the lower and upper bound of direction c is one curve.
   bool closed(int c) const { return closed_[static_cast<size_t>(c)]; }
+  // Whether the side of the domain where coordinate c is at its lower (side -1) or upper (+1)
+  // bound collapses to a point (a sphere's pole, a cone's apex).
+  bool degenerate(int c, int side) const {
+    return degenerate_[static_cast<size_t>(2 * c + (side > 0 ? 1 : 0))];
+  }
 
   // -1 at the lower bound of direction c, +1 at the upper, 0 inside (within the snap margin).
   int side(const Eigen::Vector2d& uv, int c) const;
@@ -43,6 +48,7 @@ class SheetDomain {
   Eigen::Vector2d lo_, hi_;
   double scale_;
   std::array<bool, 2> closed_{false, false};
+  std::array<bool, 4> degenerate_{false, false, false, false};
 };
 
 }  // namespace varsurf::occ
