@@ -362,6 +362,7 @@ def test_step_round_trip_with_freecad(Part, tmp_path):
     original.importBrepFromString(brep)
     imported = Part.read(path)
     assert imported.Area == pytest.approx(original.Area, rel=1e-6)
+    imported.check(True)  # OCCT's full check, Boolean operations' included (raises otherwise)
 
 
 def test_coupled_operators_through_the_binding():

@@ -184,6 +184,9 @@ def test_step_export_reimports_as_the_same_face(scene, tmp_path, native):
     text = Path(path).read_text(errors="replace")
     assert "AUTOMOTIVE_DESIGN" in text.upper() or "AP214" in text.upper()  # AP214 schema
     assert native.check_brep(native.read_step(path)).valid
+    from step_check import assert_reads_back
+
+    assert_reads_back(sheet.Shape, path, native)
 
     import Import
 

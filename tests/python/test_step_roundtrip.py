@@ -7,9 +7,7 @@ curves and pcurves disagree by up to ~1e-3 mm. STEP stores no edge tolerances: t
 re-derives them by sampling, and used to miss peaks between samples (measured: 5 % low on the
 pillow, 30 % on the smooth box), which check(True) reports as BOPAlgo_InvalidCurveOnSurface.
 
-Area and volume are integrated adaptively (``mass_properties``, relative precision 1e-9) on both
-sides: FreeCAD's Shape.Area / Volume use a fixed rule good to only a few 1e-6 on trimmed B-spline
-faces, and its error changes with how a boundary is split into edges.
+The check itself (and why area and volume are integrated adaptively) is in step_check.py.
 """
 
 import sys
@@ -20,6 +18,7 @@ import Part
 import pytest
 
 import varsurf
+from step_check import assert_reads_back
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "examples"))
 import demo  # noqa: E402
@@ -29,8 +28,6 @@ import moving_curve  # noqa: E402
 import pillow  # noqa: E402
 import rounded_box  # noqa: E402
 import smooth_box  # noqa: E402
-
-RELATIVE = 1e-6  # the invariant: area and volume of the re-read shape
 
 
 def _built_moved_curve(doc):
@@ -47,27 +44,6 @@ EXAMPLES = {
     "rounded_box": rounded_box.build,
     "moving_curve": _built_moved_curve,
 }
-
-
-def assert_reads_back(shape, path, native):
-    """The STEP file at `path`, written from `shape`, read back by FreeCAD: valid under the full
-    check, the same faces, area and (for closed solids) volume."""
-    shape.check(True)  # the written shape itself is sound (raises with the faults otherwise)
-    back = Part.read(str(path))
-    try:
-        back.check(True)
-    except Exception as fault:  # FreeCAD raises with the list of BOPAlgo faults
-        pytest.fail(f"{Path(path).name} read back fails OpenCASCADE's check: {fault}")
-    assert len(back.Faces) == len(shape.Faces)
-    area, _ = native.mass_properties(shape.exportBrepToString())
-    back_area, _ = native.mass_properties(back.exportBrepToString())
-    assert back_area == pytest.approx(area, rel=RELATIVE)
-    assert len(back.Solids) == len(shape.Solids)
-    if shape.Solids:  # volume: of the solids only (an open sheet encloses none)
-        _, volume = native.mass_properties(Part.makeCompound(shape.Solids).exportBrepToString())
-        _, back_volume = native.mass_properties(Part.makeCompound(back.Solids).exportBrepToString())
-        assert volume > 0 and back_volume == pytest.approx(volume, rel=RELATIVE)
-    return back
 
 
 @pytest.mark.parametrize("name", list(EXAMPLES))
