@@ -118,11 +118,13 @@ BaseTrim::BaseTrim(const TopoDS_Face& base) {
     double u1, u2, v1, v2;
     BRepTools::UVBounds(base_, u1, u2, v1, v2);
     const Box sheet = bounds_of(nurbs_);
-    // The conversion kept the parameters when the two surfaces agree point for point.
+    // The conversion kept the parameters when the two surfaces agree point for point. The
+    // samples avoid symmetric fractions: a rational arc meets the angle at its spans' middles.
     identity_ = true;
-    for (int i = 0; i <= 6 && identity_; ++i) {
-      for (int j = 0; j <= 6 && identity_; ++j) {
-        const double u = u1 + (u2 - u1) * i / 6, v = v1 + (v2 - v1) * j / 6;
+    for (int i = 0; i <= 7 && identity_; ++i) {
+      for (int j = 0; j <= 7 && identity_; ++j) {
+        const double u = u1 + (u2 - u1) * std::min(1.0, (i + 0.3183) / 7.3183);
+        const double v = v1 + (v2 - v1) * std::min(1.0, (j + 0.2718) / 7.2718);
         identity_ = u >= sheet.u1 && u <= sheet.u2 && v >= sheet.v1 && v <= sheet.v2 &&
                     surface_->Value(u, v).Distance(nurbs_->Value(u, v)) <= 1e-9 * size_;
       }
@@ -220,64 +222,166 @@ TopoDS_Face BaseTrim::face(const BSplineSurface& sheet) const {
 
 namespace {
 
-// The pcurve c on [f, l] of the base, carried to the sheet's parameters by `map`. An isoline
-// stays an exact line (parametrized by its varying coordinate); any other curve is
-// interpolated through mapped points, doubling them until the midpoints are met within
-// `accuracy` (mm on the sheet).
-template <class Map>
-Pcurve mapped(const Handle(Geom2d_Curve) & c, double f, double l, const Map& map,
+// A curve given by its points as a cubic B-spline with the same parameter: interpolated within
+// each piece between consecutive `breaks` (where it may be only C1 or C0: one interpolation
+// across would converge slowly), with the piece's own end tangents (one-sided differences of
+// fourth order), joined C0, each piece's points doubled until its midpoints are within
+// `accuracy` as `error` measures.
+template <class At, class Error>
+Handle(Geom_BSplineCurve) interpolate_pieces(const At& at, const std::vector<double>& breaks,
+                                             const Error& error, double accuracy) {
+  auto tangent = [&](double t, double h) {  // h > 0: forward, h < 0: backward
+    const gp_XYZ f0 = at(t).XYZ(), f1 = at(t + h).XYZ(), f2 = at(t + 2 * h).XYZ(),
+                 f3 = at(t + 3 * h).XYZ(), f4 = at(t + 4 * h).XYZ();
+    return gp_Vec((-25 * f0 + 48 * f1 - 36 * f2 + 16 * f3 - 3 * f4) / (12 * h));
+  };
+  std::vector<gp_Pnt> poles;
+  std::vector<double> knots;
+  std::vector<int> mults;
+  for (size_t i = 0; i + 1 < breaks.size(); ++i) {
+    const double a = breaks[i], b = breaks[i + 1];
+    Handle(Geom_BSplineCurve) piece;
+    for (int n = 4;; n *= 2) {
+      Handle(TColgp_HArray1OfPnt) points = new TColgp_HArray1OfPnt(1, n + 1);
+      Handle(TColStd_HArray1OfReal) params = new TColStd_HArray1OfReal(1, n + 1);
+      for (int k = 0; k <= n; ++k) {
+        const double t = k == n ? b : a + (b - a) * k / n;
+        points->SetValue(k + 1, at(t));
+        params->SetValue(k + 1, t);
+      }
+      GeomAPI_Interpolate interpolate(points, params, Standard_False, 0.0);
+      interpolate.Load(tangent(a, 1e-3 * (b - a)), tangent(b, -1e-3 * (b - a)), Standard_False);
+      interpolate.Perform();
+      if (!interpolate.IsDone())
+        throw GeometryError("a boundary edge of the base face could not be followed on the sheet");
+      piece = interpolate.Curve();
+      double worst = 0.0;
+      for (int k = 0; k < n; ++k) {
+        const double t = a + (b - a) * (k + 0.5) / n;
+        worst = std::max(worst, error(at(t), piece->Value(t)));
+      }
+      if (worst <= accuracy || n >= 512) break;
+    }
+    for (int k = poles.empty() ? 1 : 2; k <= piece->NbPoles(); ++k) poles.push_back(piece->Pole(k));
+    if (knots.empty()) {
+      knots.push_back(piece->Knot(1));
+      mults.push_back(4);
+    } else {
+      mults.back() = 3;  // the join: C0
+    }
+    for (int k = 2; k <= piece->NbKnots(); ++k) {
+      knots.push_back(piece->Knot(k));
+      mults.push_back(piece->Multiplicity(k));
+    }
+  }
+  TColgp_Array1OfPnt p(1, static_cast<int>(poles.size()));
+  TColStd_Array1OfReal k(1, static_cast<int>(knots.size()));
+  TColStd_Array1OfInteger m(1, static_cast<int>(mults.size()));
+  for (size_t i = 0; i < poles.size(); ++i) p(static_cast<int>(i) + 1) = poles[i];
+  for (size_t i = 0; i < knots.size(); ++i) {
+    k(static_cast<int>(i) + 1) = knots[i];
+    m(static_cast<int>(i) + 1) = mults[i];
+  }
+  return new Geom_BSplineCurve(p, k, m, 3);
+}
+
+// Knots of a B-spline where it is less than C2 (multiplicity above degree - 2), ends excluded.
+template <class Curve>
+std::vector<double> kinks(const Handle(Curve) & c) {
+  std::vector<double> out;
+  for (int i = 2; i < c->NbKnots(); ++i)
+    if (c->Multiplicity(i) > c->Degree() - 2) out.push_back(c->Knot(i));
+  return out;
+}
+
+// The pcurve c on [f, l] of the base carried to the sheet's parameters through the conversion's
+// reparametrization (the sheet's point nearest to the base's). An isoline stays an exact line
+// (parametrized by its varying coordinate); any other curve is interpolated in pieces between
+// its own kinks and where it crosses the sheet's kinked knot lines, to `accuracy` mm on the
+// sheet.
+Pcurve mapped(const Handle(Geom2d_Curve) & c, double f, double l, const Handle(Geom_Surface) & base,
               const Handle(Geom_BSplineSurface) & sheet, double accuracy) {
   const Box box = bounds_of(sheet);
   const double ptol = 1e-10 * box.span();
-  for (int n = 32;; n *= 2) {
-    std::vector<gp_Pnt2d> pts(static_cast<size_t>(n) + 1);
-    double su = c->Value(f).X(), sv = c->Value(f).Y();
-    for (int k = 0; k <= n; ++k) {
-      const gp_Pnt2d p = c->Value(f + (l - f) * k / n);
-      map(p, su, sv);  // starts from the previous point's image
-      pts[static_cast<size_t>(k)] = gp_Pnt2d(su, sv);
-    }
-    double umin = pts[0].X(), umax = umin, vmin = pts[0].Y(), vmax = vmin;
-    for (const gp_Pnt2d& p : pts) {
-      umin = std::min(umin, p.X());
-      umax = std::max(umax, p.X());
-      vmin = std::min(vmin, p.Y());
-      vmax = std::max(vmax, p.Y());
-    }
-    for (int axis = 0; axis < 2; ++axis) {
-      const bool iso = axis == 0 ? umax - umin <= ptol : vmax - vmin <= ptol;
-      if (!iso) continue;
-      const double fixed = axis == 0 ? pts[0].X() : pts[0].Y();
-      const double a = axis == 0 ? pts.front().Y() : pts.front().X();
-      const double z = axis == 0 ? pts.back().Y() : pts.back().X();
-      if (!(std::abs(z - a) > ptol)) continue;
-      const double dir = z > a ? 1.0 : -1.0;
-      Handle(Geom2d_Line) line = axis == 0
-                                     ? new Geom2d_Line(gp_Pnt2d(fixed, 0.0), gp_Dir2d(0.0, dir))
-                                     : new Geom2d_Line(gp_Pnt2d(0.0, fixed), gp_Dir2d(dir, 0.0));
-      return Pcurve{line, dir * a, dir * z};
-    }
-    Handle(TColgp_HArray1OfPnt2d) points = new TColgp_HArray1OfPnt2d(1, n + 1);
-    Handle(TColStd_HArray1OfReal) params = new TColStd_HArray1OfReal(1, n + 1);
-    for (int k = 0; k <= n; ++k) {
-      points->SetValue(k + 1, pts[static_cast<size_t>(k)]);
-      params->SetValue(k + 1, f + (l - f) * k / n);
-    }
-    Geom2dAPI_Interpolate interpolate(points, params, Standard_False, ptol);
-    interpolate.Perform();
-    if (!interpolate.IsDone())
-      throw GeometryError("an edge of the base face could not be carried over to the sheet");
-    const Handle(Geom2d_BSplineCurve)& curve = interpolate.Curve();
-    double worst = 0.0;
-    for (int k = 0; k < n; ++k) {
-      const gp_Pnt2d p = c->Value(f + (l - f) * (k + 0.5) / n);
-      double mu = pts[static_cast<size_t>(k)].X(), mv = pts[static_cast<size_t>(k)].Y();
-      map(p, mu, mv);
-      const gp_Pnt2d q = curve->Value(f + (l - f) * (k + 0.5) / n);
-      worst = std::max(worst, sheet->Value(mu, mv).Distance(sheet->Value(q.X(), q.Y())));
-    }
-    if (worst <= accuracy || n >= 1024) return Pcurve{Handle(Geom2d_Curve)(curve.get()), f, l};
+  double su = c->Value(f).X(), sv = c->Value(f).Y();  // the last image: the next one's start
+  auto at = [&](double t) {
+    const gp_Pnt2d p = c->Value(t);
+    invert(sheet, box, base->Value(p.X(), p.Y()), su, sv);
+    return gp_Pnt(su, sv, 0.0);
+  };
+  const int n = 64;
+  std::vector<gp_Pnt> pts;
+  for (int k = 0; k <= n; ++k) pts.push_back(at(f + (l - f) * k / n));
+  double umin = pts[0].X(), umax = umin, vmin = pts[0].Y(), vmax = vmin;
+  for (const gp_Pnt& p : pts) {
+    umin = std::min(umin, p.X());
+    umax = std::max(umax, p.X());
+    vmin = std::min(vmin, p.Y());
+    vmax = std::max(vmax, p.Y());
   }
+  for (int axis = 0; axis < 2; ++axis) {
+    const bool iso = axis == 0 ? umax - umin <= ptol : vmax - vmin <= ptol;
+    if (!iso) continue;
+    const double fixed = axis == 0 ? pts[0].X() : pts[0].Y();
+    const double a = axis == 0 ? pts.front().Y() : pts.front().X();
+    const double z = axis == 0 ? pts.back().Y() : pts.back().X();
+    if (!(std::abs(z - a) > ptol)) continue;
+    const double dir = z > a ? 1.0 : -1.0;
+    Handle(Geom2d_Line) line = axis == 0
+                                   ? new Geom2d_Line(gp_Pnt2d(fixed, 0.0), gp_Dir2d(0.0, dir))
+                                   : new Geom2d_Line(gp_Pnt2d(0.0, fixed), gp_Dir2d(dir, 0.0));
+    return Pcurve{line, dir * a, dir * z};
+  }
+
+  std::vector<double> breaks = {f, l};
+  if (auto bs = Handle(Geom2d_BSplineCurve)::DownCast(c)) {
+    for (double t : kinks(bs))
+      if (t > f && t < l) breaks.push_back(t);
+  }
+  for (int axis = 0; axis < 2; ++axis) {
+    std::vector<double> lines;
+    for (int i = 2; i < (axis == 0 ? sheet->NbUKnots() : sheet->NbVKnots()); ++i) {
+      const int mult = axis == 0 ? sheet->UMultiplicity(i) : sheet->VMultiplicity(i);
+      if (mult > (axis == 0 ? sheet->UDegree() : sheet->VDegree()) - 2)
+        lines.push_back(axis == 0 ? sheet->UKnot(i) : sheet->VKnot(i));
+    }
+    for (double knot : lines) {
+      for (int k = 0; k < n; ++k) {
+        const double c0 = pts[static_cast<size_t>(k)].Coord(axis + 1) - knot;
+        const double c1 = pts[static_cast<size_t>(k) + 1].Coord(axis + 1) - knot;
+        if (!(c0 * c1 < 0.0)) continue;
+        double lo = f + (l - f) * k / n, hi = f + (l - f) * (k + 1) / n;
+        su = pts[static_cast<size_t>(k)].X();
+        sv = pts[static_cast<size_t>(k)].Y();
+        for (int it = 0; it < 60 && hi - lo > 1e-15 * (l - f); ++it) {
+          const double mid = 0.5 * (lo + hi);
+          if ((at(mid).Coord(axis + 1) - knot) * c0 > 0.0)
+            lo = mid;
+          else
+            hi = mid;
+        }
+        breaks.push_back(0.5 * (lo + hi));
+      }
+    }
+  }
+  std::sort(breaks.begin(), breaks.end());
+  breaks.erase(std::unique(breaks.begin(), breaks.end(),
+                           [&](double x, double y) { return y - x <= 1e-9 * (l - f); }),
+               breaks.end());
+  breaks.back() = l;
+
+  auto error = [&](const gp_Pnt& x, const gp_Pnt& y) {
+    return sheet->Value(x.X(), x.Y()).Distance(sheet->Value(y.X(), y.Y()));
+  };
+  const Handle(Geom_BSplineCurve) curve = interpolate_pieces(at, breaks, error, accuracy);
+  TColgp_Array1OfPnt2d poles(1, curve->NbPoles());
+  for (int i = 1; i <= curve->NbPoles(); ++i)
+    poles(i) = gp_Pnt2d(curve->Pole(i).X(), curve->Pole(i).Y());
+  TColStd_Array1OfReal knots(1, curve->NbKnots());
+  TColStd_Array1OfInteger mults(1, curve->NbKnots());
+  curve->Knots(knots);
+  curve->Multiplicities(mults);
+  return Pcurve{new Geom2d_BSplineCurve(poles, knots, mults, curve->Degree()), f, l};
 }
 
 // The edge's pcurve on the base face carried to the sheet's parameters (as it is when the
@@ -289,11 +393,7 @@ Pcurve carry(const TopoDS_Edge& edge, const TopoDS_Face& base, bool identity,
   Handle(Geom2d_Curve) c = BRep_Tool::CurveOnSurface(edge, base, f, l);
   if (c.IsNull()) throw GeometryError("the base face has an edge without a curve on it");
   if (identity) return Pcurve{c, f, l};
-  const Box box = bounds_of(nurbs);
-  auto map = [&](const gp_Pnt2d& p, double& su, double& sv) {
-    invert(nurbs, box, surface->Value(p.X(), p.Y()), su, sv);
-  };
-  return mapped(c, f, l, map, nurbs, accuracy);
+  return mapped(c, f, l, surface, nurbs, accuracy);
 }
 
 }  // namespace
@@ -398,74 +498,19 @@ TopoDS_Face BaseTrim::bounded(const Handle(Geom_BSplineSurface) & sheet) const {
 
 namespace {
 
-// The surface along a pre-image, s(pre(t)), as a 3D B-spline with the pre-image's parameter:
-// cubic interpolation within each of its knot spans, joined C0 at its knots (a rational arc is
-// only C1 there, and one interpolation across would converge slowly), with the points doubled
-// until the midpoints are met within `accuracy` mm.
+// The surface along a pre-image, s(pre(t)), as a 3D B-spline with the pre-image's parameter,
+// interpolated in pieces between the pre-image's kinks (a rational arc is only C1 at its knots).
 Handle(Geom_BSplineCurve) follow(const Handle(Geom2d_BSplineCurve) & pre,
                                  const Handle(Geom_Surface) & s, double accuracy) {
   auto at = [&](double t) {
     const gp_Pnt2d uv = pre->Value(t);
     return s->Value(uv.X(), uv.Y());
   };
-  auto tangent = [&](double t) {  // d/dt s(pre(t)): the interpolation's end conditions
-    gp_Pnt2d uv;
-    gp_Vec2d d;
-    pre->D1(t, uv, d);
-    gp_Pnt p;
-    gp_Vec su, sv;
-    s->D1(uv.X(), uv.Y(), p, su, sv);
-    return su * d.X() + sv * d.Y();
-  };
-  std::vector<gp_Pnt> poles;
-  std::vector<double> knots;
-  std::vector<int> mults;
-  for (int i = 1; i < pre->NbKnots(); ++i) {
-    const double a = pre->Knot(i), b = pre->Knot(i + 1);
-    Handle(Geom_BSplineCurve) piece;
-    for (int n = 4;; n *= 2) {
-      Handle(TColgp_HArray1OfPnt) points = new TColgp_HArray1OfPnt(1, n + 1);
-      Handle(TColStd_HArray1OfReal) params = new TColStd_HArray1OfReal(1, n + 1);
-      for (int k = 0; k <= n; ++k) {
-        const double t = k == n ? b : a + (b - a) * k / n;
-        points->SetValue(k + 1, at(t));
-        params->SetValue(k + 1, t);
-      }
-      GeomAPI_Interpolate interpolate(points, params, Standard_False, 0.0);
-      interpolate.Load(tangent(a), tangent(b), Standard_False);
-      interpolate.Perform();
-      if (!interpolate.IsDone())
-        throw GeometryError("a boundary edge of the base face could not be followed");
-      piece = interpolate.Curve();
-      double worst = 0.0;
-      for (int k = 0; k < n; ++k) {
-        const double t = a + (b - a) * (k + 0.5) / n;
-        worst = std::max(worst, at(t).Distance(piece->Value(t)));
-      }
-      if (worst <= accuracy || n >= 512) break;
-    }
-    const int degree = piece->Degree();  // 3: at least four points per piece
-    for (int k = poles.empty() ? 1 : 2; k <= piece->NbPoles(); ++k) poles.push_back(piece->Pole(k));
-    if (knots.empty()) {
-      knots.push_back(piece->Knot(1));
-      mults.push_back(degree + 1);
-    } else {
-      mults.back() = degree;  // the join: C0
-    }
-    for (int k = 2; k <= piece->NbKnots(); ++k) {
-      knots.push_back(piece->Knot(k));
-      mults.push_back(piece->Multiplicity(k));
-    }
-  }
-  TColgp_Array1OfPnt p(1, static_cast<int>(poles.size()));
-  TColStd_Array1OfReal k(1, static_cast<int>(knots.size()));
-  TColStd_Array1OfInteger m(1, static_cast<int>(mults.size()));
-  for (size_t i = 0; i < poles.size(); ++i) p(static_cast<int>(i) + 1) = poles[i];
-  for (size_t i = 0; i < knots.size(); ++i) {
-    k(static_cast<int>(i) + 1) = knots[i];
-    m(static_cast<int>(i) + 1) = mults[i];
-  }
-  return new Geom_BSplineCurve(p, k, m, 3);
+  auto error = [](const gp_Pnt& x, const gp_Pnt& y) { return x.Distance(y); };
+  std::vector<double> breaks = {pre->FirstParameter()};
+  for (double t : kinks(pre)) breaks.push_back(t);
+  breaks.push_back(pre->LastParameter());
+  return interpolate_pieces(at, breaks, error, accuracy);
 }
 
 // The image of a pre-image under an affine surface: the same rational B-spline with its poles
