@@ -1,19 +1,103 @@
 #include "varsurf/occ/deviation.hpp"
 
-#include <Extrema_GenLocateExtPS.hxx>
-#include <Extrema_POnSurf.hxx>
-#include <GeomAdaptor_Surface.hxx>
+#include <Geom_BSplineCurve.hxx>
 #include <Geom_BSplineSurface.hxx>
-#include <ShapeAnalysis_Surface.hxx>
+#include <TColStd_Array1OfReal.hxx>
+#include <math_BrentMinimum.hxx>
+#include <math_Function.hxx>
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "varsurf/core/errors.hpp"
 #include "varsurf/occ/geom_convert.hpp"
 #include "varsurf/occ/occ_error.hpp"
+#include "varsurf/occ/surface_inversion.hpp"
 
 namespace varsurf::occ {
+
+namespace {
+
+struct Sample {
+  double t;
+  gp_Pnt point;
+  gp_Vec tangent;
+  SurfacePoint foot;
+};
+
+// Where the sampling along the curve is dense enough: consecutive samples turn the tangent by
+// less than this, and their closest points move less than this fraction of a surface patch.
+constexpr double kMaxTurn = 10.0 * M_PI / 180.0;
+constexpr double kMaxPatchStep = 1.0 / 3.0;
+constexpr int kMaxBisections = 14;
+// Local maxima of the distance refined by a 1-D maximization, largest first.
+constexpr int kRefinedMaxima = 24;
+
+class Measure {
+ public:
+  Measure(const Handle(Geom_BSplineSurface) & surface, const Handle(Geom_BSplineCurve) & curve)
+      : inversion_(surface), curve_(curve) {}
+
+  Sample at(double t, const SurfacePoint* start) {
+    Sample s;
+    s.t = t;
+    curve_->D1(t, s.point, s.tangent);
+    s.foot = inversion_.closest(s.point, start);
+    return s;
+  }
+
+  // Samples a and b are close enough that the distance between them is captured.
+  bool dense_enough(const Sample& a, const Sample& b) const {
+    const double ta = a.tangent.Magnitude(), tb = b.tangent.Magnitude();
+    if (ta > 0 && tb > 0 && a.tangent.Angle(b.tangent) > kMaxTurn) return false;
+    return std::abs(inversion_.patch_coordinate_u(a.foot.u) -
+                    inversion_.patch_coordinate_u(b.foot.u)) <= kMaxPatchStep &&
+           std::abs(inversion_.patch_coordinate_v(a.foot.v) -
+                    inversion_.patch_coordinate_v(b.foot.v)) <= kMaxPatchStep;
+  }
+
+ private:
+  SurfaceInversion inversion_;
+  Handle(Geom_BSplineCurve) curve_;
+};
+
+// -distance(t) for math_BrentMinimum, starting each inversion from the nearest sample's foot.
+class NegativeDistance : public math_Function {
+ public:
+  NegativeDistance(Measure& measure, const SurfacePoint& start)
+      : measure_(measure), start_(start) {}
+  Standard_Boolean Value(const Standard_Real t, Standard_Real& f) override {
+    const Sample s = measure_.at(t, &start_);
+    f = -s.foot.distance;
+    return Standard_True;
+  }
+
+ private:
+  Measure& measure_;
+  SurfacePoint start_;
+};
+
+// The starting parameters: `samples` evenly spaced, and in every knot span of the curve enough
+// for its degree (a span is where the curve can bend on its own).
+std::vector<double> initial_parameters(const Handle(Geom_BSplineCurve) & curve, int samples) {
+  const double t0 = curve->FirstParameter(), t1 = curve->LastParameter();
+  std::vector<double> ts;
+  for (int i = 0; i < samples; ++i)
+    ts.push_back(i == samples - 1 ? t1 : t0 + (t1 - t0) * i / (samples - 1));
+  const int per_span = 2 * curve->Degree() + 2;
+  for (int k = 1; k < curve->NbKnots(); ++k) {
+    const double a = curve->Knot(k), b = curve->Knot(k + 1);
+    for (int i = 0; i <= per_span; ++i) ts.push_back(a + (b - a) * i / per_span);
+  }
+  std::sort(ts.begin(), ts.end());
+  const double gap = 1e-12 * (t1 - t0);
+  ts.erase(std::unique(ts.begin(), ts.end(), [&](double a, double b) { return b - a <= gap; }),
+           ts.end());
+  return ts;
+}
+
+}  // namespace
 
 double max_deviation(const BSplineSurface& surface, const BSplineCurve& target, int samples) {
   surface.validate();
@@ -22,45 +106,58 @@ double max_deviation(const BSplineSurface& surface, const BSplineCurve& target, 
   if (samples < 2 || samples > 10000000)
     throw InvalidInput("max_deviation needs between 2 and 10^7 samples");
   const Handle(Geom_BSplineSurface) geom = to_geom(surface);
+  const Handle(Geom_BSplineCurve) curve = to_geom_curve(target);
   return guarded("measuring the deviation", [&] {
-    // Newton on the normal projection from the last closest point (Extrema_GenLocateExtPS), with
-    // ShapeAnalysis_Surface's global search (which also finds boundary points) for the first
-    // sample and wherever Newton fails or does worse than the step between samples allows.
-    // Measured per curve of 200 samples: 20 ms with a global extremum search and boundary
-    // projections per sample, 13 ms marching with ShapeAnalysis_Surface::NextValueOfUV, 24 ms with
-    // the distance criterion, about 1 ms this way.
-    ShapeAnalysis_Surface analysis(geom);
-    GeomAdaptor_Surface adaptor(geom);
-    Extrema_GenLocateExtPS locate(adaptor, 1e-12, 1e-12);
-    double worst = 0.0, last_gap = 0.0;
-    gp_Pnt2d uv;
-    gp_Pnt previous;
-    const double t0 = target.first(), t1 = target.last();
-    for (int i = 0; i < samples; ++i) {
-      const double t = i == samples - 1 ? t1 : t0 + (t1 - t0) * i / (samples - 1);
-      const Eigen::VectorXd p = target.evaluate(t);
-      const gp_Pnt point(p(0), p(1), p(2));
-      const double step = i > 0 ? point.Distance(previous) : 0.0;
-      previous = point;
-      double gap = 0.0;
-      bool local = false;
-      if (i > 0) {
-        locate.Perform(point, uv.X(), uv.Y(), Standard_False);
-        if (locate.IsDone()) {
-          gap = std::sqrt(locate.SquareDistance());
-          double u = 0.0, v = 0.0;
-          locate.Point().Parameter(u, v);
-          // The closest distance moves by at most the step between samples.
-          local = gap <= last_gap + step + 1e-12;
-          if (local) uv = gp_Pnt2d(u, v);
+    Measure measure(geom, curve);
+    // 1. The starting samples, each inverted from the previous one's closest point.
+    std::vector<Sample> coarse;
+    for (double t : initial_parameters(curve, samples))
+      coarse.push_back(measure.at(t, coarse.empty() ? nullptr : &coarse.back().foot));
+    // 2. Bisection wherever the curve turns or its closest point crosses a surface patch faster
+    //    than the distance can be followed.
+    std::vector<Sample> fine{coarse.front()};
+    const double min_step = 1e-9 * (curve->LastParameter() - curve->FirstParameter());
+    for (size_t k = 1; k < coarse.size(); ++k) {
+      std::vector<std::pair<Sample, int>> pending{{coarse[k], 0}};
+      while (!pending.empty()) {
+        const auto [b, depth] = pending.back();
+        const Sample& a = fine.back();
+        if (depth >= kMaxBisections || b.t - a.t <= min_step || measure.dense_enough(a, b)) {
+          fine.push_back(b);
+          pending.pop_back();
+          continue;
         }
+        const Sample mid = measure.at(0.5 * (a.t + b.t), &a.foot);
+        pending.back().second = depth + 1;
+        pending.emplace_back(mid, depth + 1);
       }
-      if (!local) {
-        uv = analysis.ValueOfUV(point, 1e-11);
-        gap = analysis.Gap();
-      }
-      last_gap = gap;
-      worst = std::max(worst, gap);
+    }
+    double worst = 0.0;
+    for (const Sample& s : fine) worst = std::max(worst, s.foot.distance);
+    // 3. The largest local maxima between samples, found by Brent's method on [t_{i-1}, t_{i+1}]
+    //    so the figure is the curve's, not its samples'.
+    std::vector<size_t> maxima;
+    for (size_t i = 1; i + 1 < fine.size(); ++i) {
+      const double d = fine[i].foot.distance;
+      if (d >= fine[i - 1].foot.distance && d >= fine[i + 1].foot.distance && d >= 0.25 * worst &&
+          d > 0.0)
+        maxima.push_back(i);
+    }
+    const size_t kept = std::min<size_t>(maxima.size(), kRefinedMaxima);
+    std::partial_sort(maxima.begin(), maxima.begin() + kept, maxima.end(), [&](size_t a, size_t b) {
+      return fine[a].foot.distance > fine[b].foot.distance;
+    });
+    for (size_t k = 0; k < kept; ++k) {
+      const size_t i = maxima[k];
+      NegativeDistance f(measure, fine[i].foot);
+      // Brent's tolerance is relative to |t| plus an absolute part: both a billionth of the
+      // bracket.
+      const double width = fine[i + 1].t - fine[i - 1].t;
+      const double relative = 1e-9 * width / (std::abs(fine[i].t) + width);
+      math_BrentMinimum brent(relative, -fine[i].foot.distance, 60, 1e-9 * width);
+      brent.Perform(f, fine[i - 1].t, fine[i].t, fine[i + 1].t);
+      if (brent.IsDone() && std::isfinite(brent.Minimum()))
+        worst = std::max(worst, -brent.Minimum());
     }
     return worst;
   });

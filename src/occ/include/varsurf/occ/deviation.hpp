@@ -7,8 +7,11 @@
 
 namespace varsurf::occ {
 
-// Max over `samples` evenly spaced target parameters of the minimum distance to the sheet
-// (interior projections and the closest boundary point both count). samples >= 2.
+// The largest distance from a point of `target` to the sheet (closest points inside it and on its
+// boundary both count). The curve is sampled at least `samples` times evenly (>= 2), and besides in
+// every knot span of the curve for its degree, more where it turns or its closest point crosses a
+// surface patch; the largest local maxima are then refined between samples, so the figure hardly
+// depends on `samples`.
 double max_deviation(const BSplineSurface& surface, const BSplineCurve& target, int samples = 200);
 
 }  // namespace varsurf::occ

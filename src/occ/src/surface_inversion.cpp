@@ -1,0 +1,330 @@
+#include "varsurf/occ/surface_inversion.hpp"
+
+#include <GeomAPI_ProjectPointOnSurf.hxx>
+#include <GeomAdaptor_Surface.hxx>
+#include <GeomConvert_BSplineSurfaceToBezierSurface.hxx>
+#include <Geom_BezierSurface.hxx>
+#include <ShapeAnalysis_Surface.hxx>
+#include <TColStd_Array1OfReal.hxx>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <queue>
+#include <utility>
+#include <vector>
+
+namespace varsurf::occ {
+
+namespace {
+
+struct Box {
+  std::array<double, 3> lo{{std::numeric_limits<double>::infinity(),
+                            std::numeric_limits<double>::infinity(),
+                            std::numeric_limits<double>::infinity()}};
+  std::array<double, 3> hi{{-std::numeric_limits<double>::infinity(),
+                            -std::numeric_limits<double>::infinity(),
+                            -std::numeric_limits<double>::infinity()}};
+  void add(const gp_XYZ& p) {
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = std::min(lo[k], p.Coord(k + 1));
+      hi[k] = std::max(hi[k], p.Coord(k + 1));
+    }
+  }
+  void add(const Box& b) {
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = std::min(lo[k], b.lo[k]);
+      hi[k] = std::max(hi[k], b.hi[k]);
+    }
+  }
+  double square_distance(const gp_XYZ& p) const {
+    double s = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      const double x = p.Coord(k + 1);
+      const double d = x < lo[k] ? lo[k] - x : x > hi[k] ? x - hi[k] : 0.0;
+      s += d * d;
+    }
+    return s;
+  }
+};
+
+// Where t falls on the sorted breakpoints: interval index plus the fraction across it.
+double grid_coordinate(const std::vector<double>& breaks, double t) {
+  const int n = static_cast<int>(breaks.size()) - 1;
+  const auto it = std::upper_bound(breaks.begin(), breaks.end(), t);
+  const int i = std::min(std::max(static_cast<int>(it - breaks.begin()) - 1, 0), n - 1);
+  const double f = (t - breaks[i]) / (breaks[i + 1] - breaks[i]);
+  return i + std::min(std::max(f, 0.0), 1.0);
+}
+
+}  // namespace
+
+struct SurfaceInversion::Parts {
+  // A node of the patch tree covers patches [i0, i1) x [j0, j1); leaves cover one patch.
+  struct Node {
+    Box box;
+    int i0, i1, j0, j1;
+    int child[2] = {-1, -1};
+  };
+  // Newton's starts: a (degree + 1)^2 grid of surface points per patch.
+  struct Seed {
+    gp_XYZ point;
+    double u, v;
+  };
+
+  Handle(Geom_BSplineSurface) surface;
+  GeomAdaptor_Surface adaptor;  // caches the current span's polynomial: fast repeated evaluation
+  double u0 = 0, u1 = 0, v0 = 0, v1 = 0;
+  double scale = 1.0;  // the surface's size: absolute tolerances are relative to it
+  std::vector<double> breaks_u, breaks_v;
+  std::vector<Node> nodes;
+  std::vector<std::vector<Seed>> seeds;  // per patch, index i * patches_v + j
+  int patches_v = 0;
+  long fallbacks = 0;
+
+  int build(const std::vector<Box>& patch_boxes, int i0, int i1, int j0, int j1);
+  // Newton on |S(u, v) - p|^2 / 2 inside the parameter box. `settled` says whether it converged.
+  SurfacePoint descend(const gp_XYZ& p, double u, double v, bool& settled);
+  SurfacePoint global_search(const gp_Pnt& p);
+};
+
+int SurfaceInversion::Parts::build(const std::vector<Box>& patch_boxes, int i0, int i1, int j0,
+                                   int j1) {
+  const int id = static_cast<int>(nodes.size());
+  nodes.push_back(Node{Box{}, i0, i1, j0, j1});
+  if (i1 - i0 == 1 && j1 - j0 == 1) {
+    nodes[id].box = patch_boxes[i0 * patches_v + j0];
+    return id;
+  }
+  int a, b;
+  if (i1 - i0 >= j1 - j0) {
+    const int im = (i0 + i1) / 2;
+    a = build(patch_boxes, i0, im, j0, j1);
+    b = build(patch_boxes, im, i1, j0, j1);
+  } else {
+    const int jm = (j0 + j1) / 2;
+    a = build(patch_boxes, i0, i1, j0, jm);
+    b = build(patch_boxes, i0, i1, jm, j1);
+  }
+  nodes[id].child[0] = a;
+  nodes[id].child[1] = b;
+  nodes[id].box = nodes[a].box;
+  nodes[id].box.add(nodes[b].box);
+  return id;
+}
+
+SurfacePoint SurfaceInversion::Parts::descend(const gp_XYZ& p, double u, double v, bool& settled) {
+  settled = false;
+  u = std::min(std::max(u, u0), u1);
+  v = std::min(std::max(v, v0), v1);
+  gp_Pnt s;
+  gp_Vec su, sv, suu, svv, suv;
+  adaptor.D2(u, v, s, su, sv, suu, svv, suv);
+  gp_Vec r(p, s);
+  double f = r.SquareMagnitude();
+  const double tiny = 1e-13 * scale;
+  for (int iteration = 0; iteration < 60 && !settled; ++iteration) {
+    const double gu = su.Dot(r), gv = sv.Dot(r);
+    // A variable at its bound whose descent direction points out of the box stays there: that
+    // is how a closest point on the boundary is found.
+    const bool free_u = !((u <= u0 && gu > 0) || (u >= u1 && gu < 0));
+    const bool free_v = !((v <= v0 && gv > 0) || (v >= v1 && gv < 0));
+    const double a = su.Dot(su), b = su.Dot(sv), c = sv.Dot(sv);
+    double huu = a + suu.Dot(r), huv = b + suv.Dot(r), hvv = c + svv.Dot(r);
+    double du = 0.0, dv = 0.0;
+    for (int attempt = 0; attempt < 2; ++attempt) {
+      // Newton first; where its Hessian is not positive definite (far from a convex spot), the
+      // Gauss-Newton metric with a little damping, which always descends.
+      if (attempt == 1) {
+        const double damping = 1e-10 * (a + c) + 1e-300;
+        huu = a + damping;
+        huv = b;
+        hvv = c + damping;
+      }
+      if (free_u && free_v) {
+        const double det = huu * hvv - huv * huv;
+        if (huu > 0 && hvv > 0 && det > 1e-14 * huu * hvv) {
+          du = -(hvv * gu - huv * gv) / det;
+          dv = -(huu * gv - huv * gu) / det;
+          break;
+        }
+      } else if (free_u) {
+        if (huu > 0) {
+          du = -gu / huu;
+          break;
+        }
+      } else if (free_v) {
+        if (hvv > 0) {
+          dv = -gv / hvv;
+          break;
+        }
+      } else {
+        break;  // a corner, held by both bounds
+      }
+    }
+    // Newton's own step being negligible on the surface is convergence (quadratic near the end).
+    const bool last = (su * du + sv * dv).Magnitude() <= tiny + 1e-9 * std::sqrt(f);
+    if (du == 0.0 && dv == 0.0) {
+      settled = true;
+      break;
+    }
+    // Backtracking along the clamped step until the distance drops (Armijo).
+    bool moved = false;
+    for (double alpha = 1.0; alpha > 1e-12; alpha *= 0.5) {
+      const double un = std::min(std::max(u + alpha * du, u0), u1);
+      const double vn = std::min(std::max(v + alpha * dv, v0), v1);
+      gp_Pnt sn;
+      gp_Vec sun, svn, suun, svvn, suvn;
+      adaptor.D2(un, vn, sn, sun, svn, suun, svvn, suvn);
+      const gp_Vec rn(p, sn);
+      const double fn = rn.SquareMagnitude();
+      const double predicted = gu * (un - u) + gv * (vn - v);  // <= 0 for a descent step
+      if (fn <= f + 1e-4 * predicted) {
+        const double travel = s.Distance(sn);
+        u = un;
+        v = vn;
+        s = sn;
+        su = sun;
+        sv = svn;
+        suu = suun;
+        svv = svvn;
+        suv = suvn;
+        r = rn;
+        const double previous = f;
+        f = fn;
+        moved = true;
+        // Settled when the point no longer moves on the surface, or the distance stopped
+        // changing at machine precision.
+        settled = last || travel <= tiny + 1e-10 * std::sqrt(f) || previous - f <= 1e-15 * previous;
+        break;
+      }
+    }
+    if (!moved) {
+      // No descent along Newton's step: rounding. Stationary if the point is on the surface to
+      // rounding or the free gradient is (nearly) normal to the surface.
+      const double g = std::hypot(free_u ? gu : 0.0, free_v ? gv : 0.0);
+      settled = last || std::sqrt(f) <= tiny || g <= 1e-7 * std::sqrt(a + c) * std::sqrt(f);
+      break;
+    }
+  }
+  return SurfacePoint{u, v, std::sqrt(f)};
+}
+
+SurfacePoint SurfaceInversion::Parts::global_search(const gp_Pnt& p) {
+  ++fallbacks;
+  SurfacePoint best{u0, v0, std::numeric_limits<double>::infinity()};
+  GeomAPI_ProjectPointOnSurf projector(p, surface, u0, u1, v0, v1);
+  if (projector.IsDone() && projector.NbPoints() > 0) {
+    projector.LowerDistanceParameters(best.u, best.v);
+    best.distance = projector.LowerDistance();
+  }
+  // Interior extrema miss closest points on the boundary; ShapeAnalysis also tries those.
+  ShapeAnalysis_Surface analysis(surface);
+  const gp_Pnt2d uv = analysis.ValueOfUV(p, 1e-12);
+  if (analysis.Gap() < best.distance) best = SurfacePoint{uv.X(), uv.Y(), analysis.Gap()};
+  return best;
+}
+
+SurfaceInversion::SurfaceInversion(const Handle(Geom_BSplineSurface) & surface)
+    : parts_(new Parts) {
+  Parts& parts = *parts_;
+  parts.surface = surface;
+  parts.adaptor.Load(surface);
+  surface->Bounds(parts.u0, parts.u1, parts.v0, parts.v1);
+  GeomConvert_BSplineSurfaceToBezierSurface converter(surface);
+  const int nu = converter.NbUPatches(), nv = converter.NbVPatches();
+  TColStd_Array1OfReal ku(1, nu + 1), kv(1, nv + 1);
+  converter.UKnots(ku);
+  converter.VKnots(kv);
+  for (int i = 1; i <= nu + 1; ++i) parts.breaks_u.push_back(ku(i));
+  for (int j = 1; j <= nv + 1; ++j) parts.breaks_v.push_back(kv(j));
+  parts.patches_v = nv;
+  std::vector<Box> boxes(static_cast<size_t>(nu) * nv);
+  parts.seeds.resize(boxes.size());
+  const int su = surface->UDegree() + 1, sv = surface->VDegree() + 1;
+  Box all;
+  for (int i = 0; i < nu; ++i) {
+    for (int j = 0; j < nv; ++j) {
+      // With positive weights a rational patch is a convex combination of its poles too.
+      const Handle(Geom_BezierSurface) patch = converter.Patch(i + 1, j + 1);
+      Box& box = boxes[i * nv + j];
+      for (int a = 1; a <= patch->NbUPoles(); ++a)
+        for (int b = 1; b <= patch->NbVPoles(); ++b) box.add(patch->Pole(a, b).XYZ());
+      all.add(box);
+      std::vector<Parts::Seed>& seeds = parts.seeds[i * nv + j];
+      for (int a = 0; a <= su; ++a) {
+        for (int b = 0; b <= sv; ++b) {
+          const double u = ku(i + 1) + (ku(i + 2) - ku(i + 1)) * a / su;
+          const double v = kv(j + 1) + (kv(j + 2) - kv(j + 1)) * b / sv;
+          seeds.push_back(Parts::Seed{parts.adaptor.Value(u, v).XYZ(), u, v});
+        }
+      }
+    }
+  }
+  double diagonal = 0.0;
+  for (int k = 0; k < 3; ++k) diagonal += (all.hi[k] - all.lo[k]) * (all.hi[k] - all.lo[k]);
+  parts.scale = std::max(std::sqrt(diagonal), 1e-300);
+  parts.build(boxes, 0, nu, 0, nv);
+}
+
+SurfaceInversion::~SurfaceInversion() = default;
+
+long SurfaceInversion::fallbacks() const {
+  return parts_->fallbacks;
+}
+
+double SurfaceInversion::patch_coordinate_u(double u) const {
+  return grid_coordinate(parts_->breaks_u, u);
+}
+
+double SurfaceInversion::patch_coordinate_v(double v) const {
+  return grid_coordinate(parts_->breaks_v, v);
+}
+
+SurfacePoint SurfaceInversion::closest(const gp_Pnt& point, const SurfacePoint* start) {
+  Parts& parts = *parts_;
+  const gp_XYZ p = point.XYZ();
+  SurfacePoint best{parts.u0, parts.v0, std::numeric_limits<double>::infinity()};
+  bool best_settled = false;
+  if (start != nullptr) best = parts.descend(p, start->u, start->v, best_settled);
+  // Best-first over the patch tree: a patch whose box is farther than the best point so far
+  // cannot hold a closer one (to a margin far below any tolerance).
+  const double margin = 1e-12 * parts.scale;
+  using Entry = std::pair<double, int>;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
+  queue.emplace(parts.nodes[0].box.square_distance(p), 0);
+  while (!queue.empty()) {
+    const auto [square_distance, id] = queue.top();
+    queue.pop();
+    if (std::sqrt(square_distance) >= best.distance - margin) break;
+    const Parts::Node& node = parts.nodes[id];
+    if (node.child[0] < 0) {
+      const std::vector<Parts::Seed>& seeds = parts.seeds[node.i0 * parts.patches_v + node.j0];
+      const Parts::Seed* nearest = &seeds.front();
+      double nearest_distance = std::numeric_limits<double>::infinity();
+      for (const Parts::Seed& seed : seeds) {
+        const double d = (seed.point - p).SquareModulus();
+        if (d < nearest_distance) {
+          nearest_distance = d;
+          nearest = &seed;
+        }
+      }
+      bool settled = false;
+      const SurfacePoint candidate = parts.descend(p, nearest->u, nearest->v, settled);
+      if (candidate.distance < best.distance) {
+        best = candidate;
+        best_settled = settled;
+      }
+      continue;
+    }
+    for (int child : node.child) queue.emplace(parts.nodes[child].box.square_distance(p), child);
+  }
+  if (!best_settled) {
+    const SurfacePoint global = parts.global_search(point);
+    if (global.distance < best.distance) best = global;
+  }
+  return best;
+}
+
+}  // namespace varsurf::occ
