@@ -354,6 +354,9 @@ void bind_core_types(py::module_& m) {
       .def_readonly("constraint_samples", &SolveReport::constraint_samples)
       .def_readonly("constraint_rank", &SolveReport::constraint_rank)
       .def_readonly("clusters", &SolveReport::clusters)
+      .def_readonly("held_constraints", &SolveReport::held_constraints,
+                    "Constraints the rest shape already meets within the fit tolerance: held "
+                    "where it has them, not fitted to their data.")
       .def_readonly("coupled", &SolveReport::coupled, "True if one 3n system was solved.")
       .def_readonly("iterations", &SolveReport::iterations, "Nonlinear steps taken.")
       .def_readonly("converged", &SolveReport::converged)

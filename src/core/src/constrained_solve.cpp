@@ -10,6 +10,7 @@
 #include <Eigen/SparseLU>
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 #include <string>
 
 #include "solve_limits.hpp"
@@ -50,6 +51,9 @@ const char* to_string(SolveMode mode) {
 struct ConstrainedSolve::Impl {
   SolveOptions opt;
   SolveMode mode = SolveMode::exact;
+  Eigen::MatrixXd shift;  // the rest shape (all columns), or empty: unknowns are x - shift
+  // The start is the energy's unconstrained minimum: constraints it meets are held, not fitted.
+  bool start_is_minimum = false;
   std::vector<int> free_cols, free_index;
   int n = 0, r = 0;
   Eigen::Index width = 1;
@@ -111,6 +115,11 @@ struct ConstrainedSolve::Impl {
   std::vector<double> block_weight;   // sum of the sample weights of each block
   std::vector<bool> block_exact;
   mutable Eigen::MatrixXd bregman_offset;  // d_k - D of the last solve: a warm start for drags
+  // Added to D in each solve: for a constraint the start already meets within the tolerance it
+  // is B x0 - D of the prepared data, so the sheet keeps the start there and follows only the
+  // data's later motion (its noise below the tolerance is not fitted).
+  Eigen::MatrixXd sample_offset;
+  int held_blocks = 0;
   // cg
   Eigen::VectorXd inv_diag;
   // tsvd / mtsvd on large constraint groups: CGLS iterations as the regularizing truncation
@@ -131,6 +140,12 @@ struct ConstrainedSolve::Impl {
   Eigen::MatrixXd solve_penalty(const Eigen::MatrixXd& g, const Eigen::MatrixXd& d,
                                 SolveReport& rep) const;
   void setup_samples(const std::vector<ConstraintSamples>& blocks);
+  // The blocks' right-hand sides relative to the rest shape (empty without one).
+  std::vector<ConstraintSamples> shifted(const std::vector<ConstraintSamples>& blocks) const;
+  void reduce(const std::vector<ConstraintSamples>& blocks, SolveReport& rep);
+  void factor_kkt(const std::vector<Eigen::Triplet<double>>& qt);
+  // false if the penalty matrix is not numerically positive definite at this eps.
+  bool factor_penalty(double scale);
   Eigen::MatrixXd samples_rhs(const std::vector<ConstraintSamples>& blocks) const;
   Eigen::MatrixXd solve_cg(const Eigen::MatrixXd& g, const Eigen::MatrixXd& b,
                            SolveReport& rep) const;
@@ -143,6 +158,15 @@ ConstrainedSolve::ConstrainedSolve(const Quadratic& pb, const SolveOptions& opt,
   const int total = static_cast<int>(pb.q.rows());
   m.width = pb.x0.cols();
   m.x0 = pb.x0;
+  if (pb.rest.size()) {
+    if (pb.rest.rows() != pb.x0.rows() || pb.rest.cols() != pb.x0.cols() || !pb.rest.allFinite())
+      throw InvalidInput("rest shape: expected finite values shaped like the start");
+    // Everything below works on the displacement from the rest shape.
+    m.shift = pb.rest;
+    m.x0 = pb.x0 - pb.rest;
+  }
+  const std::vector<ConstraintSamples> shifted = m.shifted(pb.blocks);
+  const std::vector<ConstraintSamples>& blocks = m.shift.size() ? shifted : pb.blocks;
   m.free_index.assign(static_cast<size_t>(total), -1);
   for (int k = 0; k < total; ++k)
     if (!pb.fixed[static_cast<size_t>(k)]) {
@@ -155,13 +179,13 @@ ConstrainedSolve::ConstrainedSolve(const Quadratic& pb, const SolveOptions& opt,
   // The mode, before the reduction (the L-curve modes truncate differently).
   m.mode = opt.mode;
   if (m.mode == SolveMode::automatic) {
-    const int cluster = m.n > 0 ? largest_cluster(pb.blocks, m.free_index, m.n) : 0;
+    const int cluster = m.n > 0 ? largest_cluster(blocks, m.free_index, m.n) : 0;
     if (m.n > opt.direct_limit) {
       m.mode = SolveMode::cg;
       rep.mode_reason = "cg: " + std::to_string(m.n) + " unknowns, more than the " +
                         std::to_string(opt.direct_limit) + " factored directly";
     } else if (cluster > opt.cluster_limit && opt.fit_tolerance > 0.0 &&
-               std::none_of(pb.blocks.begin(), pb.blocks.end(),
+               std::none_of(blocks.begin(), blocks.end(),
                             [](const ConstraintSamples& b) { return b.exact; })) {
       m.mode = SolveMode::penalty;
       rep.mode_reason = "penalty: the largest group of interacting constraints has " +
@@ -183,42 +207,10 @@ ConstrainedSolve::ConstrainedSolve(const Quadratic& pb, const SolveOptions& opt,
   const long long row = (pb.q.nonZeros() + total - 1) / std::max(total, 1) / (m.width == 1 ? 3 : 1);
   check_memory(m.n, std::max(row, 1LL), m.mode, opt, "the solve");
 
+  // The energy on the free columns, and its coupling to the fixed ones.
   auto t = Clock::now();
-  if ((m.mode == SolveMode::tsvd || m.mode == SolveMode::mtsvd) &&
-      largest_cluster(pb.blocks, m.free_index, m.n) > opt.krylov_limit) {
-    m.krylov = true;
-    rep.mode_reason +=
-        " (Krylov: CGLS iterations truncated at the L-curve corner; the largest "
-        "constraint group exceeds " +
-        std::to_string(opt.krylov_limit) + " unknowns for a dense SVD)";
-  }
-  if (m.mode == SolveMode::penalty || m.krylov) {
-    m.setup_samples(pb.blocks);
-    rep.constraint_samples = static_cast<int>(m.samples.rows());
-    rep.reduce_seconds = seconds_since(t);
-  } else {
-    ReductionOptions ro;
-    ro.rank_tolerance = opt.rank_tolerance;
-    ro.fit_tolerance = opt.fit_tolerance;
-    ro.keep_tolerance = opt.keep_tolerance;
-    ro.truncation = (m.mode == SolveMode::tsvd || m.mode == SolveMode::mtsvd)
-                        ? Truncation::lcurve
-                        : Truncation::discrepancy;
-    m.red = reduce_constraints(pb.blocks, m.free_index, pb.x0, m.n, ro);
-    m.r = static_cast<int>(m.red.rows.rows());
-    m.a = m.red.rows;
-    rep.constraint_samples = m.red.samples;
-    rep.constraint_rank = m.r;
-    rep.clusters = m.red.clusters;
-    rep.conflict = m.red.conflict;
-    rep.lcurve = m.red.lcurve;
-    rep.reduce_seconds = seconds_since(t);
-  }
-
-  check_keep_going(opt);  // the reduction can be long; the factorization cannot be interrupted
-  t = Clock::now();
   m.x0_free.resize(m.n, m.width);
-  for (int i = 0; i < m.n; ++i) m.x0_free.row(i) = pb.x0.row(m.free_cols[static_cast<size_t>(i)]);
+  for (int i = 0; i < m.n; ++i) m.x0_free.row(i) = m.x0.row(m.free_cols[static_cast<size_t>(i)]);
   std::vector<Eigen::Triplet<double>> qt;
   qt.reserve(static_cast<size_t>(pb.q.nonZeros()));
   m.coupling = Eigen::MatrixXd::Zero(m.n, m.width);
@@ -232,7 +224,7 @@ ConstrainedSolve::ConstrainedSolve(const Quadratic& pb, const SolveOptions& opt,
         qt.emplace_back(fr, fc, it.value());
         if (fr == fc) diag_mean += it.value();
       } else {
-        m.coupling.row(fr) += it.value() * pb.x0.row(col);
+        m.coupling.row(fr) += it.value() * m.x0.row(col);
       }
     }
   }
@@ -241,88 +233,75 @@ ConstrainedSolve::ConstrainedSolve(const Quadratic& pb, const SolveOptions& opt,
   diag_mean /= m.n;
   const double scale = diag_mean > 0.0 ? diag_mean : 1.0;
   m.eps = opt.regularization * scale;
+  // Is the start the energy's unconstrained minimum (a rest shape with nothing else pulling)? Then
+  // its residual is what the discrepancy principle measures: constraints it already meets
+  // within the tolerance ask nothing of the sheet.
+  {
+    const Eigen::MatrixXd g = m.energy_rhs(pb.f);
+    const double gradient = (m.q_ff * m.x0_free - g).cwiseAbs().maxCoeff();
+    const double size = scale * m.x0_free.cwiseAbs().maxCoeff() + g.cwiseAbs().maxCoeff();
+    m.start_is_minimum = gradient <= 1e-12 * size;
+  }
+  const double assemble_seconds = seconds_since(t);
 
+  t = Clock::now();
+  if ((m.mode == SolveMode::tsvd || m.mode == SolveMode::mtsvd) &&
+      largest_cluster(blocks, m.free_index, m.n) > opt.krylov_limit) {
+    m.krylov = true;
+    rep.mode_reason +=
+        " (Krylov: CGLS iterations truncated at the L-curve corner; the largest "
+        "constraint group exceeds " +
+        std::to_string(opt.krylov_limit) + " unknowns for a dense SVD)";
+  }
+  if (m.mode == SolveMode::penalty || m.krylov) {
+    m.setup_samples(blocks);
+    rep.constraint_samples = static_cast<int>(m.samples.rows());
+    rep.held_constraints = m.held_blocks;
+  } else {
+    m.reduce(blocks, rep);
+  }
+  rep.reduce_seconds = seconds_since(t);
+
+  check_keep_going(opt);  // the reduction can be long; the factorization cannot be interrupted
+  t = Clock::now();
   if (m.krylov && m.mode == SolveMode::tsvd) {
     // CGLS needs no factorization.
   } else if ((m.mode == SolveMode::exact || m.mode == SolveMode::mtsvd) && !m.krylov) {
-    // KKT system [Q_ff, A^T; A, 0] [x_f; y] = [f_f - Q_fc x_c; b] (Welch & Witkin eq. 9).
-    std::vector<Eigen::Triplet<double>> trip = qt;
-    for (int row = 0; row < m.r; ++row)
-      for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(m.red.rows, row); it;
-           ++it) {
-        trip.emplace_back(m.n + row, static_cast<int>(it.col()), it.value());
-        trip.emplace_back(static_cast<int>(it.col()), m.n + row, it.value());
-      }
-    m.kkt.resize(m.n + m.r, m.n + m.r);
-    m.kkt.setFromTriplets(trip.begin(), trip.end());
-    m.kkt.makeCompressed();
-    // The factored matrix carries eps on the unknowns' diagonal so that directions neither
-    // energy nor constraints determine stay where they started; refinement against the exact
-    // matrix then removes the eps bias from every determined direction (a proximal iteration).
-    Sparse shifted = m.kkt;
-    for (int i = 0; i < m.n; ++i) shifted.coeffRef(i, i) += m.eps;
-    m.lu.analyzePattern(shifted);
-    m.lu.factorize(shifted);
-    if (m.lu.info() != Eigen::Success)
-      throw SolveFailure("the constrained system is singular: " + m.lu.lastErrorMessage());
+    m.factor_kkt(qt);
   } else if (m.mode == SolveMode::penalty || m.krylov) {
     if (!(opt.penalty_weight > 0.0) || !std::isfinite(opt.penalty_weight))
       throw InvalidInput("penalty weight must be a positive number");
     if (opt.penalty_steps < 1) throw InvalidInput("penalty steps must be at least 1");
-    // W&W eq. 10 minimizes |(mu B; H) p - (mu d; f)|; its normal equations (Q + mu^2 B^T B) p =
-    // f + mu^2 B^T d keep the sparsity of Q (each sample row touches one span's poles), so a
-    // sparse Cholesky replaces W&W's sparse QR of the stacked system, which would need a square
-    // root of the energy. mu^2 is relative to the energy's and the samples' scales.
-    const Sparse btb = Sparse(m.samples.transpose()) * m.samples;
-    double btb_mean = 0.0;
-    for (int i = 0; i < m.n; ++i) btb_mean += btb.coeff(i, i);
-    btb_mean /= m.n;
-    m.mu2 = opt.penalty_weight * scale / (btb_mean > 0.0 ? btb_mean : 1.0);
-    Sparse m_pen = m.q_ff + Sparse(m.mu2 * btb);
-    for (int i = 0; i < m.n; ++i) m_pen.coeffRef(i, i) += m.eps;
-    bool factored = false;
-    if (opt.penalty_qr) {
-#ifdef VARSURF_HAVE_SPQR
-      Sparse q_eps = m.q_ff;
-      for (int i = 0; i < m.n; ++i) q_eps.coeffRef(i, i) += m.eps;
-      m.energy_factor.compute(q_eps);
-      if (m.energy_factor.info() != Eigen::Success)
-        throw SolveFailure("penalty (QR): the energy could not be factored");
-      const Sparse root =
-          Sparse(Sparse(m.energy_factor.matrixU()) * m.energy_factor.permutationP());
-      std::vector<Eigen::Triplet<double>> st;
-      const double mu = std::sqrt(m.mu2);
-      for (int col = 0; col < m.samples.outerSize(); ++col)
-        for (Sparse::InnerIterator it(m.samples, col); it; ++it)
-          st.emplace_back(static_cast<int>(it.row()), col, mu * it.value());
-      for (int col = 0; col < root.outerSize(); ++col)
-        for (Sparse::InnerIterator it(root, col); it; ++it)
-          st.emplace_back(static_cast<int>(m.samples.rows() + it.row()), col, it.value());
-      Sparse stacked(m.samples.rows() + m.n, m.n);
-      stacked.setFromTriplets(st.begin(), st.end());
-      stacked.makeCompressed();
-      m.spqr.compute(stacked);
-      if (m.spqr.info() != Eigen::Success)
-        throw SolveFailure("penalty (QR): SuiteSparseQR could not factor the stacked system");
-      m.use_qr = true;
-      factored = true;
-#else
-      throw InvalidInput("penalty_qr needs SuiteSparseQR, which this build does not have");
-#endif
+    // Rounding can leave the penalty matrix of a badly scaled energy (high degree, thin faces)
+    // short of positive definite by more than the regularization: a larger pull toward the
+    // previous iterate (the refinement is a proximal iteration, so it biases nothing) restores
+    // it; if even that fails, the exact mode's LU takes the semi-definite system.
+    const double first_eps = m.eps;
+    bool factored = m.factor_penalty(scale);
+    for (double eps = std::max(first_eps, 1e-13 * scale) * 1e3;
+         !factored && eps <= 1e-4 * scale * (1.0 + 1e-9); eps *= 1e3) {
+      m.eps = eps;
+      factored = m.factor_penalty(scale);
     }
-#ifdef VARSURF_HAVE_CHOLMOD
-    m.use_cholmod = !factored && m.n > 2000;
-    if (m.use_cholmod) {
-      m.cholmod.compute(m_pen);
-      factored = m.cholmod.info() == Eigen::Success;
+    if (factored && m.eps != first_eps) {
+      std::ostringstream why;
+      why << "; the penalty system was not positive definite, regularized with " << m.eps / scale
+          << " of the energy's scale";
+      rep.mode_reason += why.str();
+    } else if (!factored && m.krylov) {
+      throw SolveFailure(
+          "the penalty system could not be factored (not positive definite even when "
+          "regularized)");
+    } else if (!factored) {
+      m.eps = first_eps;
+      m.mode = SolveMode::exact;
+      rep.mode = m.mode;
+      rep.mode_reason +=
+          "; the penalty system was not positive definite even when regularized: solved by the "
+          "exact mode instead";
+      m.reduce(blocks, rep);
+      m.factor_kkt(qt);
     }
-#endif
-    if (!factored) {
-      m.ldlt.compute(m_pen);
-      factored = m.ldlt.info() == Eigen::Success;
-    }
-    if (!factored)
-      throw SolveFailure("the penalty system could not be factored (not positive definite)");
   } else if (m.mode == SolveMode::cg) {
     m.inv_diag.resize(m.n);
     for (int i = 0; i < m.n; ++i) {
@@ -330,7 +309,131 @@ ConstrainedSolve::ConstrainedSolve(const Quadratic& pb, const SolveOptions& opt,
       m.inv_diag(i) = d > 0.0 ? 1.0 / d : 1.0;
     }
   }
-  rep.factor_seconds = seconds_since(t);
+  rep.factor_seconds = seconds_since(t) + assemble_seconds;
+}
+
+std::vector<ConstraintSamples> ConstrainedSolve::Impl::shifted(
+    const std::vector<ConstraintSamples>& blocks) const {
+  if (!shift.size()) return {};
+  std::vector<ConstraintSamples> out = blocks;
+  for (ConstraintSamples& block : out)
+    for (int r = 0; r < block.rows(); ++r) {
+      const auto& idx = block.index[static_cast<size_t>(r)];
+      const Eigen::VectorXd& c = block.coeff[static_cast<size_t>(r)];
+      if (block.rhs.cols() != width) throw InvalidInput("constraint samples of mixed widths");
+      for (size_t k = 0; k < idx.size(); ++k) {
+        if (idx[k] < 0 || idx[k] >= shift.rows())
+          throw InvalidInput("constraint sample index out of range");
+        block.rhs.row(r) -= c(static_cast<Eigen::Index>(k)) * shift.row(idx[k]);
+      }
+    }
+  return out;
+}
+
+void ConstrainedSolve::Impl::reduce(const std::vector<ConstraintSamples>& blocks,
+                                    SolveReport& rep) {
+  ReductionOptions ro;
+  ro.rank_tolerance = opt.rank_tolerance;
+  ro.fit_tolerance = opt.fit_tolerance;
+  ro.keep_tolerance = opt.keep_tolerance;
+  ro.max_fit_factor = opt.max_fit_factor;
+  ro.start_is_minimum = start_is_minimum;
+  ro.truncation = (mode == SolveMode::tsvd || mode == SolveMode::mtsvd) ? Truncation::lcurve
+                                                                        : Truncation::discrepancy;
+  red = reduce_constraints(blocks, free_index, x0, n, ro);
+  r = static_cast<int>(red.rows.rows());
+  a = red.rows;
+  rep.constraint_samples = red.samples;
+  rep.constraint_rank = r;
+  rep.clusters = red.clusters;
+  rep.held_constraints = red.held;
+  rep.conflict = red.conflict;
+  rep.lcurve = red.lcurve;
+}
+
+void ConstrainedSolve::Impl::factor_kkt(const std::vector<Eigen::Triplet<double>>& qt) {
+  // KKT system [Q_ff, A^T; A, 0] [x_f; y] = [f_f - Q_fc x_c; b] (Welch & Witkin eq. 9).
+  std::vector<Eigen::Triplet<double>> trip = qt;
+  for (int row = 0; row < r; ++row)
+    for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(red.rows, row); it; ++it) {
+      trip.emplace_back(n + row, static_cast<int>(it.col()), it.value());
+      trip.emplace_back(static_cast<int>(it.col()), n + row, it.value());
+    }
+  kkt.resize(n + r, n + r);
+  kkt.setFromTriplets(trip.begin(), trip.end());
+  kkt.makeCompressed();
+  // The factored matrix carries eps on the unknowns' diagonal so that directions neither
+  // energy nor constraints determine stay where they started; refinement against the exact
+  // matrix then removes the eps bias from every determined direction (a proximal iteration).
+  Sparse shifted_kkt = kkt;
+  for (int i = 0; i < n; ++i) shifted_kkt.coeffRef(i, i) += eps;
+  lu.analyzePattern(shifted_kkt);
+  lu.factorize(shifted_kkt);
+  if (lu.info() != Eigen::Success)
+    throw SolveFailure("the constrained system is singular: " + lu.lastErrorMessage());
+}
+
+bool ConstrainedSolve::Impl::factor_penalty(double scale) {
+  // W&W eq. 10 minimizes |(mu B; H) p - (mu d; f)|; its normal equations (Q + mu^2 B^T B) p =
+  // f + mu^2 B^T d keep the sparsity of Q (each sample row touches one span's poles), so a
+  // sparse Cholesky replaces W&W's sparse QR of the stacked system, which would need a square
+  // root of the energy. mu^2 is relative to the energy's and the samples' scales.
+  const Sparse btb = Sparse(samples.transpose()) * samples;
+  double btb_mean = 0.0;
+  for (int i = 0; i < n; ++i) btb_mean += btb.coeff(i, i);
+  btb_mean /= n;
+  mu2 = opt.penalty_weight * scale / (btb_mean > 0.0 ? btb_mean : 1.0);
+  Sparse m_pen = q_ff + Sparse(mu2 * btb);
+  for (int i = 0; i < n; ++i) m_pen.coeffRef(i, i) += eps;
+  if (opt.penalty_qr) {
+#ifdef VARSURF_HAVE_SPQR
+    Sparse q_eps = q_ff;
+    for (int i = 0; i < n; ++i) q_eps.coeffRef(i, i) += eps;
+    energy_factor.compute(q_eps);
+    if (energy_factor.info() != Eigen::Success) return false;
+    const Sparse root = Sparse(Sparse(energy_factor.matrixU()) * energy_factor.permutationP());
+    std::vector<Eigen::Triplet<double>> st;
+    const double mu = std::sqrt(mu2);
+    for (int col = 0; col < samples.outerSize(); ++col)
+      for (Sparse::InnerIterator it(samples, col); it; ++it)
+        st.emplace_back(static_cast<int>(it.row()), col, mu * it.value());
+    for (int col = 0; col < root.outerSize(); ++col)
+      for (Sparse::InnerIterator it(root, col); it; ++it)
+        st.emplace_back(static_cast<int>(samples.rows() + it.row()), col, it.value());
+    Sparse stacked(samples.rows() + n, n);
+    stacked.setFromTriplets(st.begin(), st.end());
+    stacked.makeCompressed();
+    spqr.compute(stacked);
+    if (spqr.info() != Eigen::Success)
+      throw SolveFailure("penalty (QR): SuiteSparseQR could not factor the stacked system");
+    use_qr = true;
+    return true;
+#else
+    throw InvalidInput("penalty_qr needs SuiteSparseQR, which this build does not have");
+#endif
+  }
+#ifdef VARSURF_HAVE_CHOLMOD
+  // A failed CHOLMOD factorization must not be used by the solve (LDLT takes over below).
+  use_cholmod = n > 2000;
+  if (use_cholmod) {
+    cholmod.compute(m_pen);
+    if (cholmod.info() == Eigen::Success) {
+      // CHOLMOD checks only the pivots' signs: a factor that cannot reproduce a known solution
+      // (rounding beyond the regularization) is refused too.
+      const Eigen::VectorXd ones = Eigen::VectorXd::Ones(n);
+      const Eigen::VectorXd back = cholmod.solve(Eigen::VectorXd(m_pen * ones));
+      if (back.allFinite() && (back - ones).cwiseAbs().maxCoeff() <= 1e-2) return true;
+    }
+    use_cholmod = false;
+  }
+#endif
+  // LDL^T "succeeds" on an indefinite matrix (negative pivots). Each pivot of Q + mu^2 B^T B +
+  // eps I is at least its smallest eigenvalue, eps: smaller ones are rounding beyond it (without
+  // a regularization, pivots at rounding level mean a singular system).
+  ldlt.compute(m_pen);
+  if (ldlt.info() != Eigen::Success || !ldlt.vectorD().allFinite()) return false;
+  const double smallest = ldlt.vectorD().minCoeff();
+  return smallest > (eps > 0.0 ? 0.5 * eps : 1e-13 * ldlt.vectorD().cwiseAbs().maxCoeff());
 }
 
 ConstrainedSolve::~ConstrainedSolve() = default;
@@ -340,8 +443,10 @@ const Eigen::MatrixXd& ConstrainedSolve::reduced_rhs() const {
 }
 
 Eigen::MatrixXd ConstrainedSolve::reduced_rhs(const std::vector<ConstraintSamples>& moved) const {
-  if (impl_->mode == SolveMode::penalty || impl_->krylov) return impl_->samples_rhs(moved);
-  return varsurf::reduced_rhs(impl_->red, moved, impl_->free_index, impl_->x0);
+  const std::vector<ConstraintSamples> shifted = impl_->shifted(moved);
+  const std::vector<ConstraintSamples>& blocks = impl_->shift.size() ? shifted : moved;
+  if (impl_->mode == SolveMode::penalty || impl_->krylov) return impl_->samples_rhs(blocks);
+  return varsurf::reduced_rhs(impl_->red, blocks, impl_->free_index, impl_->x0);
 }
 
 void ConstrainedSolve::Impl::setup_samples(const std::vector<ConstraintSamples>& blocks) {
@@ -369,6 +474,29 @@ void ConstrainedSolve::Impl::setup_samples(const std::vector<ConstraintSamples>&
   samples.resize(row, n);
   samples.setFromTriplets(trip.begin(), trip.end());
   sample_rhs = samples_rhs(blocks);
+  if (!start_is_minimum || !(opt.fit_tolerance > 0.0) || row == 0) return;
+  // Constraints the start meets as the refinement would judge them met (RMS within
+  // fit_tolerance, no sample beyond max_fit_factor times it) are held at the start.
+  const Eigen::MatrixXd res = sample_rhs - samples * x0_free;
+  std::vector<double> sq(block_weight.size(), 0.0), far(block_weight.size(), 0.0);
+  for (Eigen::Index i = 0; i < res.rows(); ++i) {
+    const size_t b = static_cast<size_t>(sample_block[static_cast<size_t>(i)]);
+    const double r2 = res.row(i).squaredNorm(), w = sample_weight[static_cast<size_t>(i)];
+    sq[b] += r2;
+    if (w > 0.0) far[b] = std::max(far[b], std::sqrt(r2 / w));
+  }
+  std::vector<bool> held(block_weight.size(), false);
+  for (size_t b = 0; b < block_weight.size(); ++b) {
+    const double rms = block_weight[b] > 0.0 ? std::sqrt(sq[b] / block_weight[b]) : 0.0;
+    held[b] = !block_exact[b] && rms <= opt.fit_tolerance &&
+              far[b] <= opt.max_fit_factor * opt.fit_tolerance;
+    held_blocks += held[b] ? 1 : 0;
+  }
+  if (!held_blocks) return;
+  sample_offset = Eigen::MatrixXd::Zero(res.rows(), width);
+  for (Eigen::Index i = 0; i < res.rows(); ++i)
+    if (held[static_cast<size_t>(sample_block[static_cast<size_t>(i)])])
+      sample_offset.row(i) = -res.row(i);
 }
 
 Eigen::MatrixXd ConstrainedSolve::Impl::samples_rhs(
@@ -572,14 +700,18 @@ Eigen::MatrixXd ConstrainedSolve::solve(const Eigen::MatrixXd& f, const Eigen::M
                                         SolveReport& rep) const {
   const Impl& m = *impl_;
   Eigen::MatrixXd x = m.x0;
-  if (m.n == 0) return x;
+  if (m.n == 0) return m.shift.size() ? Eigen::MatrixXd(x + m.shift) : x;
   const auto t = Clock::now();
   const Eigen::Index expected = (m.mode == SolveMode::penalty || m.krylov) ? m.samples.rows() : m.r;
   if (b.rows() != expected || b.cols() != m.width)
     throw InvalidInput("reduced right-hand side size");
   Eigen::MatrixXd sol;
+  const bool sampled = m.mode == SolveMode::penalty || m.krylov;
+  const Eigen::MatrixXd held_b =
+      sampled && m.sample_offset.size() ? Eigen::MatrixXd(b + m.sample_offset) : Eigen::MatrixXd();
+  const Eigen::MatrixXd& d = held_b.size() ? held_b : b;
   if (m.krylov) {
-    sol = m.solve_krylov(m.energy_rhs(f), b, rep);
+    sol = m.solve_krylov(m.energy_rhs(f), d, rep);
   } else
     switch (m.mode) {
       case SolveMode::exact:
@@ -587,7 +719,7 @@ Eigen::MatrixXd ConstrainedSolve::solve(const Eigen::MatrixXd& f, const Eigen::M
         sol = m.solve_kkt(m.energy_rhs(f), b, rep);
         break;
       case SolveMode::penalty:
-        sol = m.solve_penalty(m.energy_rhs(f), b, rep);
+        sol = m.solve_penalty(m.energy_rhs(f), d, rep);
         break;
       case SolveMode::cg:
         sol = m.solve_cg(m.energy_rhs(f), b, rep);
@@ -607,6 +739,7 @@ Eigen::MatrixXd ConstrainedSolve::solve(const Eigen::MatrixXd& f, const Eigen::M
     rep.constraint_residual = (m.a * sol - b).cwiseAbs().maxCoeff();
   }
   for (int i = 0; i < m.n; ++i) x.row(m.free_cols[static_cast<size_t>(i)]) = sol.row(i);
+  if (m.shift.size()) x += m.shift;
   rep.solve_seconds = seconds_since(t);
   return x;
 }

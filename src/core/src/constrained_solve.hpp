@@ -11,15 +11,18 @@
 
 namespace varsurf {
 
-// minimize x^T Q x - 2 f^T x over the free columns subject to the constraint samples (reduced to
-// independent rows), with fixed columns at x0. Each column of f / x0 is one right-hand side
-// sharing Q and the constraint matrix.
+// minimize (x - rest)^T Q (x - rest) - 2 f^T x over the free columns subject to the constraint
+// samples (reduced to independent rows), with fixed columns at x0 (rest empty: 0). Each column of
+// f / x0 is one right-hand side sharing Q and the constraint matrix. The solve works on the
+// displacement x - rest: a rest shape that nothing moves comes back exactly, however badly Q is
+// conditioned (high degrees), instead of through Q^-1 (Q rest).
 struct Quadratic {
   Eigen::SparseMatrix<double> q;
   Eigen::MatrixXd f;
   Eigen::MatrixXd x0;       // start values, and the values of fixed columns
   std::vector<bool> fixed;  // per column
   std::vector<ConstraintSamples> blocks;
+  Eigen::MatrixXd rest;  // as x0, or empty
 };
 
 // Reduces the constraints and factors what the mode needs once; solve() may then be called for

@@ -64,7 +64,9 @@ struct Cluster {
   Eigen::Index numeric_rank = 0;
   Eigen::Index rank = 0;  // kept
   double start_sq = 0.0, weight = 0.0;
+  double start_far = 0.0;  // the start's largest sample distance
   bool exact = false;
+  bool held = false;  // met by the start: kept rows hold the start's values
 };
 
 }  // namespace
@@ -135,11 +137,13 @@ ReducedConstraints reduce_constraints(const std::vector<ConstraintSamples>& bloc
     const Eigen::Index n = static_cast<Eigen::Index>(cl.cols.size());
     Eigen::MatrixXd b = Eigen::MatrixXd::Zero(m, n);
     Eigen::MatrixXd d(m, width);
+    Eigen::VectorXd row_weight(m);
     for (Eigen::Index i = 0; i < m; ++i) {
       const FreeRow& row = rows[members[static_cast<size_t>(i)]];
       for (size_t k = 0; k < row.cols.size(); ++k)
         b(i, local[static_cast<size_t>(row.cols[k])]) += row.vals[k];
       d.row(i) = row.rhs;
+      row_weight(i) = row.weight;
       cl.weight += row.weight;
       cl.exact = cl.exact || row.exact;
       cl.sample_rows.push_back(row.id);
@@ -172,12 +176,26 @@ ReducedConstraints reduce_constraints(const std::vector<ConstraintSamples>& bloc
     while (cl.numeric_rank < cl.s.size() && cl.s(cl.numeric_rank) > opt.rank_tolerance * cl.s(0))
       ++cl.numeric_rank;
     cl.start_sq = d_start.squaredNorm();
+    // Rows are scaled by sqrt(w): a sample's distance is |residual| / sqrt(w).
+    for (Eigen::Index i = 0; i < m; ++i)
+      if (row_weight(i) > 0.0)
+        cl.start_far =
+            std::max(cl.start_far, std::sqrt(d_start.row(i).squaredNorm() / row_weight(i)));
     // Residual that no choice of poles removes: constraints that contradict each other (curves
     // crossing at different heights).
     const double best = std::max(0.0, cl.start_sq - cl.gain.topRows(cl.numeric_rank).squaredNorm());
     if (cl.weight > 0.0) out.conflict = std::max(out.conflict, std::sqrt(best / cl.weight));
-    if (opt.truncation == Truncation::discrepancy) {
-      const double allowed = best + opt.fit_tolerance * opt.fit_tolerance * cl.weight;
+    const double fit_sq = opt.fit_tolerance * opt.fit_tolerance * cl.weight;
+    cl.held = opt.truncation == Truncation::discrepancy && opt.start_is_minimum && !cl.exact &&
+              opt.fit_tolerance > 0.0 && cl.start_sq <= fit_sq &&
+              (opt.max_fit_factor <= 0.0 || cl.start_far <= opt.max_fit_factor * opt.fit_tolerance);
+    if (cl.held) {
+      // The discrepancy principle needs no direction of this data: the unconstrained minimum
+      // already meets it. Fitting it anyway would bend the sheet to noise below the tolerance;
+      // holding the well-conditioned directions where the start has them keeps it there.
+      while (cl.rank < cl.numeric_rank && cl.s(cl.rank) >= opt.keep_tolerance * cl.s(0)) ++cl.rank;
+    } else if (opt.truncation == Truncation::discrepancy) {
+      const double allowed = best + fit_sq;
       // Well-conditioned directions are always kept: they cannot throw poles far (|coefficient|
       // <= |data| / (keep_tolerance s_max)), and dropping one that the start happens to meet
       // would let the solve drift off it. Only the weak ones are left to the discrepancy test.
@@ -200,9 +218,14 @@ ReducedConstraints reduce_constraints(const std::vector<ConstraintSamples>& bloc
       size_t cluster;
     };
     std::vector<Direction> all;
-    double total_sq = 0.0;
+    double total_sq = 0.0, allowed = 0.0;
+    bool any_exact = false;
     for (size_t c = 0; c < clusters.size(); ++c) {
       total_sq += clusters[c].start_sq;
+      const Cluster& cl = clusters[c];
+      allowed += std::max(0.0, cl.start_sq - cl.gain.topRows(cl.numeric_rank).squaredNorm()) +
+                 opt.fit_tolerance * opt.fit_tolerance * cl.weight;
+      any_exact = any_exact || cl.exact;
       for (Eigen::Index i = 0; i < clusters[c].numeric_rank; ++i)
         all.push_back({clusters[c].s(i), clusters[c].gain.row(i).squaredNorm(), c});
     }
@@ -214,8 +237,17 @@ ReducedConstraints reduce_constraints(const std::vector<ConstraintSamples>& bloc
       gain(static_cast<Eigen::Index>(i)) = all[i].gain_sq;
     }
     out.lcurve = lcurve(sigma, gain, total_sq);
-    for (int i = 0; i < out.lcurve.corner; ++i)
-      ++clusters[all[static_cast<size_t>(i)].cluster].rank;
+    // Past the point where every cluster is within fit_tolerance the remaining directions fit
+    // only noise (the discrepancy principle): the corner is not taken beyond it.
+    int kept = out.lcurve.corner;
+    if (opt.fit_tolerance > 0.0 && !any_exact) {
+      double residual = total_sq;
+      int needed = 0;
+      while (needed < kept && residual > allowed)
+        residual -= all[static_cast<size_t>(needed++)].gain_sq;
+      kept = needed;
+    }
+    for (int i = 0; i < kept; ++i) ++clusters[all[static_cast<size_t>(i)].cluster].rank;
   }
 
   std::vector<Eigen::Triplet<double>> trip;
@@ -224,7 +256,13 @@ ReducedConstraints reduce_constraints(const std::vector<ConstraintSamples>& bloc
   for (const Cluster& cl : clusters) {
     const Eigen::Index rank = cl.rank;
     const Eigen::Index n = static_cast<Eigen::Index>(cl.cols.size());
-    const Eigen::MatrixXd br = cl.beta.topRows(rank).array().colwise() / cl.s.head(rank).array();
+    // A held cluster's rows take the start's values: (beta - gain) / s = V^T start.
+    const Eigen::MatrixXd br =
+        (cl.held ? Eigen::MatrixXd(cl.beta.topRows(rank) - cl.gain.topRows(rank))
+                 : Eigen::MatrixXd(cl.beta.topRows(rank)))
+            .array()
+            .colwise() /
+        cl.s.head(rank).array();
     for (Eigen::Index r = 0; r < rank; ++r) {
       for (Eigen::Index k = 0; k < n; ++k)
         if (cl.v(k, r) != 0.0)
@@ -238,6 +276,10 @@ ReducedConstraints reduce_constraints(const std::vector<ConstraintSamples>& bloc
     const Eigen::MatrixXd ut = cl.u.leftCols(rank).transpose();
     map.transform = cl.s.head(rank).cwiseInverse().asDiagonal() *
                     (cl.to_core.size() ? Eigen::MatrixXd(ut * cl.to_core) : ut);
+    if (cl.held) {
+      map.offset = -(cl.gain.topRows(rank).array().colwise() / cl.s.head(rank).array()).matrix();
+      ++out.held;
+    }
     out.maps.push_back(std::move(map));
     rank_total += static_cast<int>(rank);
     ++out.clusters;
@@ -289,6 +331,7 @@ Eigen::MatrixXd reduced_rhs(const ReducedConstraints& red,
           free_rhs(*where[g].first, where[g].second, free_index, fixed);
     }
     out.middleRows(map.first_row, map.transform.rows()) = map.transform * d;
+    if (map.offset.size()) out.middleRows(map.first_row, map.offset.rows()) += map.offset;
   }
   return out;
 }

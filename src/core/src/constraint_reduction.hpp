@@ -22,6 +22,13 @@ struct ReductionOptions {
   double rank_tolerance = 1e-9;
   double fit_tolerance = 0.0;
   double keep_tolerance = 1e-2;
+  // A cluster also counts as met only while no sample is farther than max_fit_factor *
+  // fit_tolerance (0: the RMS alone decides).
+  double max_fit_factor = 0.0;
+  // The start values of the free columns are the energy's unconstrained minimum (a rest shape,
+  // nothing else pulling): a cluster the start already meets within fit_tolerance takes none of
+  // its data, only its motion from the prepared data (see reduce_constraints).
+  bool start_is_minimum = false;
   Truncation truncation = Truncation::discrepancy;
 };
 
@@ -33,12 +40,14 @@ struct ReducedConstraints {
   double conflict = 0.0;  // largest RMS residual that no pole choice removes, over clusters
   LCurve lcurve;          // with Truncation::lcurve
   // rhs rows [first_row, first_row + transform.rows()) = transform * (right-hand sides of the
-  // cluster's sample rows, fixed columns moved over): what a drag recomputes.
+  // cluster's sample rows, fixed columns moved over) + offset: what a drag recomputes.
   struct ClusterMap {
     std::vector<int> sample_rows;  // global sample row ids (blocks concatenated)
     Eigen::MatrixXd transform;     // kept rows x sample rows
+    Eigen::MatrixXd offset;        // kept rows x width, or empty for none
     int first_row = 0;
   };
+  int held = 0;  // clusters the start already met: held where the start has them
   std::vector<ClusterMap> maps;
 };
 
@@ -52,8 +61,13 @@ struct ReducedConstraints {
 // to each constraint's weight), is within fit_tolerance of the best the cluster can reach;
 // directions with singular values of at least keep_tolerance * s_max are kept regardless.
 // Directions beyond it are left to the energy instead of being fitted to data the space cannot
-// hold, which is what makes coarse sheets go wild. The L-curve truncation keeps the globally
-// largest singular directions up to the L-curve's corner instead.
+// hold, which is what makes coarse sheets go wild. With start_is_minimum, a cluster whose start
+// residual is already within the fit tolerance (the discrepancy principle's answer: no direction
+// is needed) keeps its well-conditioned directions with the start's own values as right-hand
+// side, so data noise below the tolerance moves nothing while the other constraints cannot drag
+// the sheet off it; later moved data shifts those values by the data's motion (offset). The
+// L-curve truncation keeps the globally largest singular directions up to the L-curve's corner,
+// and no more than the discrepancy principle needs to bring all clusters within fit_tolerance.
 ReducedConstraints reduce_constraints(const std::vector<ConstraintSamples>& blocks,
                                       const std::vector<int>& free_index,
                                       const Eigen::MatrixXd& fixed, int free_count,

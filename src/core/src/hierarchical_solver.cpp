@@ -99,7 +99,7 @@ Eigen::MatrixX3d solve_on_hierarchy(const SheetProblem& base, const Hierarchical
   check_memory(3LL * fine.space.size(),
                (2LL * fine.space.degree_u + 1) * (2LL * fine.space.degree_v + 1),
                SolveMode::penalty, opt, "the refined sheet's finest level");
-  const Quadratic q = coupled_sheet_quadratic(fine, opt);
+  const Quadratic q = coupled_sheet_quadratic(fine, opt, /*fold_rest=*/false);
   // x = x_s + B3 d: the displacement d lives in the hierarchical space.
   const Sparse b = h.to_finest();
   const Sparse b3 = kron_identity3(b);
@@ -107,7 +107,9 @@ Eigen::MatrixX3d solve_on_hierarchy(const SheetProblem& base, const Hierarchical
   const Eigen::MatrixXd xs = flatten(fine.initial_poles);
   Quadratic hq;
   hq.q = Sparse(b3.transpose() * q.q * b3);
-  hq.f = b3.transpose() * (q.f - q.q * xs);
+  // With a rest shape the energy is that of x - rest: the displacement from the start is what
+  // it sees (exactly zero when the start is the rest shape, whatever Q's conditioning).
+  hq.f = b3.transpose() * (q.f - q.q * (q.rest.size() ? Eigen::MatrixXd(xs - q.rest) : xs));
   const Eigen::Index m = b3.cols();
   hq.x0 = Eigen::MatrixXd::Zero(m, 1);
   // A degree of freedom that moves a fixed (boundary) pole is held at zero: its function is then

@@ -233,6 +233,10 @@ Joint assemble_joint(const ModelProblem& pb, const SolveOptions& opt) {
   q.f = Eigen::MatrixXd::Zero(n, 1);
   q.x0 = Eigen::MatrixXd::Zero(n, 1);
   q.fixed.assign(static_cast<size_t>(n), false);
+  // Rest shapes (sheets') and starts (space curves'): the solve works on the displacement from
+  // them, so what nothing moves comes back exactly.
+  Eigen::MatrixXd rest = Eigen::MatrixXd::Zero(n, 1);
+  bool any_rest = false;
   std::vector<Eigen::Triplet<double>> triplets;
   for (size_t s = 0; s < pb.sheets.size(); ++s) {
     SheetProblem sheet = pb.sheets[s];
@@ -242,7 +246,7 @@ Joint assemble_joint(const ModelProblem& pb, const SolveOptions& opt) {
             {jn.preimage, pb.curves[static_cast<size_t>(jn.curve)].start, jn.weight, jn.exact});
     Quadratic qs;
     try {
-      qs = coupled_sheet_quadratic(sheet, opt);
+      qs = coupled_sheet_quadratic(sheet, opt, /*fold_rest=*/false);
     } catch (const InvalidInput& e) {
       throw InvalidInput(label("sheet", s) + ": " + e.what());
     }
@@ -250,6 +254,10 @@ Joint assemble_joint(const ModelProblem& pb, const SolveOptions& opt) {
     append_block(triplets, qs.q, off);
     q.f.middleRows(off, qs.f.rows()) = qs.f;
     q.x0.middleRows(off, qs.x0.rows()) = qs.x0;
+    if (qs.rest.size()) {
+      rest.middleRows(off, qs.rest.rows()) = qs.rest;
+      any_rest = true;
+    }
     std::copy(qs.fixed.begin(), qs.fixed.end(), q.fixed.begin() + off);
     for (ConstraintSamples& b : qs.blocks) {
       shift_columns(b, off);
@@ -268,7 +276,8 @@ Joint assemble_joint(const ModelProblem& pb, const SolveOptions& opt) {
     }
     append_block(triplets, h, off);
     const Eigen::MatrixXd start = flatten(curve.start.poles);
-    q.f.middleRows(off, start.rows()) = h * start;  // energy of the displacement from the start
+    rest.middleRows(off, start.rows()) = start;  // energy of the displacement from the start
+    any_rest = true;
     q.x0.middleRows(off, start.rows()) = start;
     // A handle at an end of the (clamped) curve is its end pole: held exactly, so the curve keeps
     // meeting the curves at its ends; the others are rows.
@@ -307,6 +316,7 @@ Joint assemble_joint(const ModelProblem& pb, const SolveOptions& opt) {
       triplets.emplace_back(j.lay.hinge[h] + i, j.lay.hinge[h] + i, 1.0);
   q.q.resize(n, n);
   q.q.setFromTriplets(triplets.begin(), triplets.end());
+  if (any_rest) q.rest = std::move(rest);
   return j;
 }
 

@@ -18,7 +18,9 @@ Eigen::MatrixX3d unflatten(const Eigen::MatrixXd& x);
 
 // The sheet's energy, operators and constraints in the coupled ordering (3 k + c), fixed poles
 // marked. InvalidInput for an invalid problem or for the iterated terms (pressure, repellers,
-// shape attractors).
-Quadratic coupled_sheet_quadratic(const SheetProblem& problem, const SolveOptions& options);
+// shape attractors). With fold_rest the rest shape is moved into f (x^T Q x - 2 f^T x, for
+// joint solves that add sheets' f together); without, it stays in Quadratic::rest.
+Quadratic coupled_sheet_quadratic(const SheetProblem& problem, const SolveOptions& options,
+                                  bool fold_rest = true);
 
 }  // namespace varsurf

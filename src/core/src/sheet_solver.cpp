@@ -128,11 +128,13 @@ Eigen::MatrixXd iterate_nonlinear(const SheetProblem& pb, const SolveOptions& op
       }
     }
     add_pressure_force(pb.space, pb.pressure, current, model);
-    Quadratic step = fixed_system ? Quadratic{Sparse(), base.f, Eigen::MatrixXd(), {}, {}} : base;
+    Quadratic step =
+        fixed_system ? Quadratic{Sparse(), base.f, Eigen::MatrixXd(), {}, {}, {}} : base;
     if (model.uses_coupled()) {
       Sparse extra(3 * poles, 3 * poles);
       extra.setFromTriplets(model.coupled.begin(), model.coupled.end());
       step.q += extra;
+      if (step.rest.size()) step.f += extra * step.rest;  // the solve centres Q on the rest
     }
     step.f += model.coupled_f;
     SolveReport inner;
@@ -230,7 +232,7 @@ Assembled assemble(const SheetProblem& pb, const SolveOptions& opt, SolveReport&
   Assembled out;
   Sparse h = assemble_thin_plate(sp, pb.energy);
   QuadraticTerms terms(poles);
-  if (pb.rest_poles.rows() != 0) terms.separable_f += h * pb.rest_poles;
+  const bool rest = pb.rest_poles.rows() != 0;  // the energy acts on the displacement from it
   if (!pb.attractors.empty() || !pb.directors.empty() || !pb.repellers.empty() ||
       !pb.shape_attractors.empty())
     out.scales = operator_scales(sp, h);
@@ -252,6 +254,8 @@ Assembled assemble(const SheetProblem& pb, const SolveOptions& opt, SolveReport&
     Sparse extra(poles, poles);
     extra.setFromTriplets(terms.separable.begin(), terms.separable.end());
     h += extra;
+    // The solve centres all of Q on the rest shape; the operators' terms are not centred.
+    if (rest) terms.separable_f += extra * pb.rest_poles;
   }
   if (!std::isfinite(pb.pressure)) throw InvalidInput("pressure must be finite");
   out.nonlinear = !pb.repellers.empty() || !pb.shape_attractors.empty() || pb.pressure != 0.0;
@@ -265,14 +269,17 @@ Assembled assemble(const SheetProblem& pb, const SolveOptions& opt, SolveReport&
     quad.x0 = pb.initial_poles;
     quad.fixed.assign(static_cast<size_t>(poles), false);
     for (int k : pb.fixed_poles) quad.fixed[static_cast<size_t>(k)] = true;
+    if (rest) quad.rest = pb.rest_poles;
   } else {
     quad.q = kron_identity3(h);
+    quad.f = flatten(terms.separable_f) + terms.coupled_f;
+    if (rest) quad.rest = flatten(pb.rest_poles);
     if (terms.uses_coupled()) {
       Sparse extra(3 * poles, 3 * poles);
       extra.setFromTriplets(terms.coupled.begin(), terms.coupled.end());
       quad.q += extra;
+      if (rest) quad.f += extra * quad.rest;
     }
-    quad.f = flatten(terms.separable_f) + terms.coupled_f;
     quad.x0 = flatten(pb.initial_poles);
     quad.fixed.assign(static_cast<size_t>(3 * poles), false);
     for (int k : pb.fixed_poles)
@@ -287,7 +294,7 @@ Eigen::MatrixX3d to_poles(const Eigen::MatrixXd& x, bool coupled) {
 
 }  // namespace
 
-Quadratic coupled_sheet_quadratic(const SheetProblem& pb, const SolveOptions& opt) {
+Quadratic coupled_sheet_quadratic(const SheetProblem& pb, const SolveOptions& opt, bool fold_rest) {
   validate_problem(pb, opt);
   SolveOptions coupled = opt;
   coupled.force_coupled = true;
@@ -297,6 +304,11 @@ Quadratic coupled_sheet_quadratic(const SheetProblem& pb, const SolveOptions& op
     throw InvalidInput(
         "pressure, repellers and shape attractors are iterated per sheet: they cannot be part of "
         "a joint solve (solve that sheet on its own)");
+  // Joint solves combine several sheets' f: the rest shape goes into f, as x^T Q x - 2 f^T x.
+  if (fold_rest && as.quad.rest.size()) {
+    as.quad.f += as.quad.q * as.quad.rest;
+    as.quad.rest.resize(0, 0);
+  }
   return std::move(as.quad);
 }
 

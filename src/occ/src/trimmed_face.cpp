@@ -63,6 +63,12 @@ Box bounds_of(const Handle(Geom_Surface) & s) {
   return b;
 }
 
+Box face_box(const TopoDS_Face& face) {
+  Box b{};
+  BRepTools::UVBounds(face, b.u1, b.u2, b.v1, b.v2);
+  return b;
+}
+
 // (u, v) of `s` nearest to p, starting from (u, v): Gauss-Newton (the point lies on the surface,
 // so it converges quadratically), with OCCT's global projection when it stalls (at a pole or
 // far from the start). Returns the distance left.
@@ -94,6 +100,29 @@ double invert(const Handle(Geom_Surface) & s, const Box& box, const gp_Pnt& p, d
     }
   }
   return d;
+}
+
+// The sheet's (su, sv) of the base's (u, v): the sheet's point nearest to the base's. Where the
+// base degenerates (at a pole one derivative vanishes and any su fits), that coordinate comes
+// from a point just inside the face (`face`: its (u, v) box), where it is determined: the
+// conversions reparametrize each direction on its own.
+void carry_point(const Handle(Geom_Surface) & base, const Box& face,
+                 const Handle(Geom_Surface) & sheet, const Box& box, double u, double v, double& su,
+                 double& sv) {
+  gp_Pnt p;
+  gp_Vec du, dv;
+  base->D1(u, v, p, du, dv);
+  invert(sheet, box, p, su, sv);
+  const double big = std::max(du.Magnitude(), dv.Magnitude());
+  for (int axis = 0; axis < 2 && big > 0.0; ++axis) {
+    if ((axis == 0 ? du : dv).Magnitude() > 1e-7 * big) continue;
+    const double lo = axis == 0 ? face.v1 : face.u1, hi = axis == 0 ? face.v2 : face.u2;
+    const double at = axis == 0 ? v : u;
+    const double step = 1e-4 * (hi - lo) * (at < 0.5 * (lo + hi) ? 1.0 : -1.0);
+    double a = su, b = sv;
+    invert(sheet, box, axis == 0 ? base->Value(u, v + step) : base->Value(u + step, v), a, b);
+    (axis == 0 ? su : sv) = axis == 0 ? a : b;
+  }
 }
 
 // An edge's pcurve on the sheet with the range it is used on.
@@ -191,7 +220,7 @@ void BaseTrim::to_sheet(double u, double v, double& su, double& sv) const {
     sv = v;
     return;
   }
-  invert(nurbs_, bounds_of(nurbs_), surface_->Value(u, v), su, sv);
+  carry_point(surface_, face_box(base_), nurbs_, bounds_of(nurbs_), u, v, su, sv);
 }
 
 void BaseTrim::to_base(double su, double sv, double& u, double& v) const {
@@ -300,13 +329,13 @@ std::vector<double> kinks(const Handle(Curve) & c) {
 // its own kinks and where it crosses the sheet's kinked knot lines, to `accuracy` mm on the
 // sheet.
 Pcurve mapped(const Handle(Geom2d_Curve) & c, double f, double l, const Handle(Geom_Surface) & base,
-              const Handle(Geom_BSplineSurface) & sheet, double accuracy) {
+              const Box& face, const Handle(Geom_BSplineSurface) & sheet, double accuracy) {
   const Box box = bounds_of(sheet);
   const double ptol = 1e-10 * box.span();
   double su = c->Value(f).X(), sv = c->Value(f).Y();  // the last image: the next one's start
   auto at = [&](double t) {
     const gp_Pnt2d p = c->Value(t);
-    invert(sheet, box, base->Value(p.X(), p.Y()), su, sv);
+    carry_point(base, face, sheet, box, p.X(), p.Y(), su, sv);
     return gp_Pnt(su, sv, 0.0);
   };
   const int n = 64;
@@ -393,7 +422,7 @@ Pcurve carry(const TopoDS_Edge& edge, const TopoDS_Face& base, bool identity,
   Handle(Geom2d_Curve) c = BRep_Tool::CurveOnSurface(edge, base, f, l);
   if (c.IsNull()) throw GeometryError("the base face has an edge without a curve on it");
   if (identity) return Pcurve{c, f, l};
-  return mapped(c, f, l, surface, nurbs, accuracy);
+  return mapped(c, f, l, surface, face_box(base), nurbs, accuracy);
 }
 
 }  // namespace

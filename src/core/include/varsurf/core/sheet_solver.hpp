@@ -146,6 +146,10 @@ struct SolveReport {
   int constraint_samples = 0;  // least-squares rows before reduction
   int constraint_rank = 0;     // independent rows kept
   int clusters = 0;            // independent groups of constraints
+  // Constraints (clusters; penalty mode: constraints) the start shape, being the energy's
+  // unconstrained minimum (a rest shape), already meets within fit_tolerance: held where it
+  // has them instead of fitted to their data (discrepancy principle).
+  int held_constraints = 0;
   // RMS distance (model units) by which the constraints contradict each other: the least-squares
   // residual at full rank, largest over clusters. Near 0 when they are compatible.
   double conflict = 0.0;
