@@ -4,6 +4,7 @@
 #include <pybind11/stl.h>
 
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "binding.hpp"
@@ -212,17 +213,21 @@ void bind_occ_bridge(py::module_& m) {
 
   m.def(
       "project_curve",
-      [](const BSplineSurface& surface, const BSplineCurve& curve, int samples, double tolerance) {
+      [](const BSplineSurface& surface, const BSplineCurve& curve, int samples, double tolerance,
+         const std::optional<Eigen::Vector3d>& direction) {
         occ::ProjectionOptions options;
         options.samples = samples;
         options.tolerance = tolerance;
+        if (direction) options.direction = *direction;
         return occ::project_curve(surface, curve, options);
       },
       "surface"_a, "curve"_a, "samples"_a = 0, "tolerance"_a = occ::ProjectionOptions().tolerance,
-      py::call_guard<py::gil_scoped_release>(),
-      "Pre-image of a 3D target curve on a sheet: orthogonal projection of `samples` target "
-      "points (0 = automatic), fitted by a 2D B-spline with the target's own parameter. Raises "
-      "InvalidInput if the curve passes more than `tolerance` beyond the sheet's boundary.");
+      "direction"_a = py::none(), py::call_guard<py::gil_scoped_release>(),
+      "Pre-image of a 3D target curve on a sheet: projection of `samples` target points (0 = "
+      "automatic) -- orthogonal, or along `direction` (x, y, z) where given -- fitted by a 2D "
+      "B-spline with the target's own parameter. Raises InvalidInput if the curve passes more "
+      "than `tolerance` beyond the sheet's boundary (along `direction`: if a line through it "
+      "misses the sheet or grazes it).");
 
   m.def("refine_surface", &occ::refine_surface, "surface"_a, "min_spans_u"_a, "min_spans_v"_a,
         "min_degree"_a = 1,

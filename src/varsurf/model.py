@@ -387,6 +387,17 @@ def _mode_used(report, local) -> str:
             f"{unknowns // 3} of them free, their x, y and z solved together ({unknowns} unknowns)")
 
 
+def _projection_failure(name, direction, error):
+    """The message of a curve whose pre-image cannot be found, naming the real cause."""
+    if direction is not None:
+        return f"{name} cannot be projected onto the base face along {tuple(round(c, 6) for c in direction)}: {error}"
+    if "jumps" in error:
+        return (f"{name}'s orthogonal projection onto the base face jumps (the curve lies too far from a curved "
+                f"base for its nearest points to follow it): {error}. Project it along a direction instead: set "
+                "the Sheet's Projection to Direction (or Automatic, for a sketch facing the base)")
+    return (f"{name} runs beyond the base face (it must lie over the face to be projected onto it): {error}")
+
+
 def solve_sheet_on_face(
     face,
     edges: Sequence,
@@ -414,6 +425,7 @@ def solve_sheet_on_face(
     influence_level: int = 0,
     time_limit: Optional[float] = None,
     memory_limit: Optional[float] = None,
+    projections: Optional[Sequence] = None,
 ) -> SheetOutcome:
     """Solve the variational sheet over ``face`` that passes through ``edges``.
 
@@ -433,6 +445,9 @@ def solve_sheet_on_face(
         up to max_spans. A conflict that survives refinement (curves crossing at different
         heights, a curve the fixed boundary cannot reach) is an error naming the curves.
     names: one label per edge for messages and reports ("Sketch001:Edge2").
+    projections: one entry per edge: None projects the edge orthogonally onto the base face (to
+        its closest points), an (x, y, z) direction projects it along that direction (a sketch
+        seen along its normal). Omitted: every edge orthogonally.
     constraints: ConstraintSpec objects (varsurf.constraints): point, tangent, normal,
         point-in-plane and point-on-line constraints, attractors, directors, frozen regions.
     stretch_tensor, bend_tensor: anisotropic weights (a11, a12, a22) and (b11, b12, b22) of
@@ -458,6 +473,9 @@ def solve_sheet_on_face(
     names = [str(n) for n in names]
     if len(names) != len(edges):
         raise SheetError(f"{len(edges)} edges but {len(names)} names")
+    projections = [None] * len(edges) if projections is None else list(projections)
+    if len(projections) != len(edges):
+        raise SheetError(f"{len(edges)} edges but {len(projections)} projection directions")
     for label, value in (("Stretch", stretch), ("Bend", bend)):
         if not value >= 0.0:  # also rejects NaN
             raise SheetError(f"{label} must be >= 0 (got {value})")
@@ -491,7 +509,7 @@ def solve_sheet_on_face(
 
     curve_constraints = []
     targets = []
-    for edge, name in zip(edges, names):
+    for edge, name, direction in zip(edges, names, projections):
         if getattr(edge, "ShapeType", None) != "Edge":
             raise SheetError(f"{name} is not an edge")
         try:
@@ -499,12 +517,9 @@ def solve_sheet_on_face(
         except (nat.InvalidInput, nat.GeometryError) as error:
             raise SheetError(f"{name} cannot be converted to a B-spline curve: {error}") from error
         try:
-            pre = nat.project_curve(base, curve)
+            pre = nat.project_curve(base, curve, direction=direction)
         except nat.InvalidInput as error:
-            raise SheetError(
-                f"{name} runs beyond the base face (it must lie over the face to be projected "
-                f"onto it): {error}"
-            ) from error
+            raise SheetError(_projection_failure(name, direction, str(error))) from error
         except nat.GeometryError as error:
             raise SheetError(f"{name} cannot be projected onto the base face: {error}") from error
         curve_constraints.append(

@@ -11,12 +11,14 @@
 #include <iterator>
 #include <limits>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "varsurf/core/errors.hpp"
 #include "varsurf/core/knot_vector.hpp"
+#include "varsurf/occ/directional_projection.hpp"
 #include "varsurf/occ/geom_convert.hpp"
 #include "varsurf/occ/occ_error.hpp"
 #include "varsurf/occ/sheet_domain.hpp"
@@ -35,9 +37,10 @@ struct Sample {
 class Projector {
  public:
   Projector(const BSplineSurface& base, const SheetDomain& domain, const BSplineCurve& target,
-            double tolerance)
+            double tolerance, const LineFoot* along)
       : base_(base),
         domain_(domain),
+        along_(along),
         target_(target),
         tolerance_(tolerance),
         lo_(domain.lo()),
@@ -49,6 +52,10 @@ class Projector {
   Sample project(double t, const Sample* neighbour, double neighbour_t) {
     const Eigen::Vector3d p = target_.evaluate(t);
     const Eigen::Vector2d* previous = neighbour ? &neighbour->uv : nullptr;
+    if (along_) {  // seen along a direction: the line's meeting point, continued from the last
+      const Eigen::Vector2d uv = domain_.snapped((*along_)(p, previous));
+      return {uv, (surface(uv, 0).row(0).transpose() - p).norm()};
+    }
     // Along the curve, Newton from the previous sample's (u, v) usually suffices; OCCT decides
     // the first sample, samples that newly reach the domain's edge, and wherever the distance
     // jumps by more than the step between samples allows. (Measured: OCCT's NextValueOfUV for every
@@ -202,6 +209,7 @@ class Projector {
 
   const BSplineSurface& base_;
   const SheetDomain& domain_;
+  const LineFoot* along_;  // null: orthogonal projection
   const BSplineCurve& target_;
   double tolerance_;
   Eigen::Vector2d lo_, hi_;
@@ -475,7 +483,9 @@ PreImage project_curve(const BSplineSurface& base, const BSplineCurve& target,
                          : std::max(options.min_samples, options.samples_per_span * spans);
   const int per_span = std::max(degree + 1, (wanted + spans - 1) / spans);
   const SheetDomain domain(base);
-  Projector projector(base, domain, target, options.tolerance);
+  std::optional<LineFoot> along;
+  if (!options.direction.isZero(0.0)) along.emplace(base, options.direction);
+  Projector projector(base, domain, target, options.tolerance, along ? &*along : nullptr);
   Samples samples(projector, domain);
   for (int s = 0; s < spans; ++s) {
     for (int i = 0; i < per_span; ++i) {

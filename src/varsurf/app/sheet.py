@@ -12,6 +12,7 @@ import FreeCAD
 
 from varsurf import model
 from varsurf.app.feature import FeatureProxy, value
+from varsurf.app import projection
 from varsurf.app.constraint import spec_of
 
 TYPE = "VarSurf::Sheet"
@@ -24,6 +25,8 @@ _FLOAT_MAX = 1.0e12
 _PROPERTIES = [
     ("Base", "App::PropertyLinkSub", "Sheet", "The base face: its surface is the start shape and its boundary is kept when FixBoundary is on. Empty: the sheet starts from the best-fit plane of the curves, with a free boundary", False),
     ("Curves", "App::PropertyLinkSubList", "Sheet", "Edges the sheet must pass through; each must lie over the base face", False),
+    ("Projection", "App::PropertyEnumeration", "Sheet", "How each curve finds its place on the base face. Automatic: curves of a sketch facing the base are seen along the sketch's normal (a plan view: right for sketches drawn above a curved base), other curves are projected orthogonally. Normal: every curve onto its nearest point of the base. Direction: every curve along ProjectionDirection", False),
+    ("ProjectionDirection", "App::PropertyVector", "Sheet", "With Projection = Direction: the direction the curves are projected along onto the base face", False),
     ("Constraints", "App::PropertyLinkList", "Sheet", "Constraint objects (points, tangents, normals, planes, lines, attractors, directors, frozen regions)", False),
     ("RestShape", "App::PropertyEnumeration", "Sheet", "Base: the energy acts on the displacement from the base face, so edits keep its detail. None: pure fairness (melted). Installed: the displacement from an installed shape", False),
     ("InstalledRest", "Part::PropertyPartShape", "Sheet", "The shape installed as rest shape (install_rest_shape)", False),
@@ -80,6 +83,8 @@ _DEFAULTS = {
     "Bend": (model.DEFAULT_BEND, 0.0, _FLOAT_MAX, 0.1),
     "FixBoundary": True,
     "RestShape": _set_rest_shapes,
+    "Projection": list(projection.MODES),
+    "ProjectionDirection": FreeCAD.Vector(0, 0, 1),
     "Tolerance": model.DEFAULT_TOLERANCE,
     "SolveMode": list(model.SOLVE_MODES),
     "Refinement": list(model.REFINEMENTS),
@@ -211,6 +216,7 @@ def compute(obj):
     )
     options["constraints"] = [spec_of(c) for c in (getattr(obj, "Constraints", None) or []) if c.Enabled]
     options["rest"] = _rest_of(obj, face)
+    options["projections"] = projection.directions(obj, face, curve_links(obj))
     options["pressure"] = float(getattr(obj, "Pressure", 0.0))
     exact = list(getattr(obj, "ExactCurves", []) or [])
     unknown = [n for n in exact if n not in names]
@@ -239,9 +245,14 @@ def _regions(flat):
     return [tuple(flat[k:k + 5]) for k in range(0, len(flat), 5)]
 
 
+def curve_links(obj):
+    """(link object, "EdgeN") per curve of a Sheet, in the order of its solve's curves."""
+    return [(link, sub) for link, subs in obj.Curves for sub in subs if sub]
+
+
 def curve_keys(obj):
     """"ObjectName:EdgeN" per curve of a Sheet, in the order of its solve's curves."""
-    return [f"{link.Name}:{sub}" for link, subs in obj.Curves for sub in subs if sub]
+    return [f"{link.Name}:{sub}" for link, sub in curve_links(obj)]
 
 
 def outcome_of(obj):
@@ -264,9 +275,12 @@ class SheetFeature(FeatureProxy):
         _restore_constraints(obj)
 
     def onDocumentRestored(self, obj):
+        older = "Projection" not in obj.PropertiesList
         super().onDocumentRestored(obj)
         if self.state_problem() is not None:
             return
+        if older:  # files from before projection choices projected every curve orthogonally
+            obj.Projection = "Normal"
         # Files from before a mode was added list fewer modes: offer them all, keep the choice.
         if list(obj.getEnumerationsOfProperty("SolveMode")) != list(model.SOLVE_MODES):
             mode = str(obj.SolveMode)

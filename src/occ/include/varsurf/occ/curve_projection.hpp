@@ -21,6 +21,10 @@ struct ProjectionOptions {
   double fit_tolerance = 1e-7;
   int degree = 3;        // degree of the pre-image (raised to the target's if that is higher)
   int max_poles = 1000;  // refinement stops here and reports the fit error it reached
+  // Non-zero: each target point goes where the line through it along this direction meets the
+  // sheet (a sketch seen along its normal: directional_projection.hpp) instead of to its closest
+  // point.
+  Eigen::Vector3d direction = Eigen::Vector3d::Zero();
 };
 
 // A target on the sheet's boundary (its own edges, a seam) has its pre-image exactly on the
