@@ -32,6 +32,8 @@ namespace {
 constexpr double kConfusion = 1e-7;  // OCCT's smallest tolerance: deviations below it are safe
 constexpr double kMargin = 1e-3;     // interior peaks must stay this far (relative) below the ends
 constexpr int kMaxPieces = 64;       // per edge
+constexpr double kShortest = 20.0;   // pieces stay this many times the largest deviation long:
+                                     // 10 file uncertainties (step_io writes twice the deviation)
 
 // The distance between an edge's 3D curve and its curves on its faces, at a parameter.
 class EdgeDeviation {
@@ -39,6 +41,7 @@ class EdgeDeviation {
   EdgeDeviation(const TopoDS_Edge& edge, const std::vector<TopoDS_Face>& faces) : curve_(edge) {
     for (const TopoDS_Face& f : faces) on_faces_.emplace_back(edge, f);
   }
+  gp_Pnt point(double t) const { return curve_.Value(t); }
   double operator()(double t) const {
     const gp_Pnt p = curve_.Value(t);
     double d = 0.0;
@@ -87,18 +90,19 @@ Peak interior_peak(const EdgeDeviation& d, double a, double b, int samples) {
 }
 
 // Breaks (interior parameters, ascending) after which the deviation on every piece of [a, b]
-// is largest at the piece's ends.
-void peak_breaks(const EdgeDeviation& d, double a, double b, int samples,
+// is largest at the piece's ends. No piece is shorter than `shortest` (a reader removes edges
+// shorter than the file's uncertainty).
+void peak_breaks(const EdgeDeviation& d, double a, double b, int samples, double shortest,
                  std::vector<double>& breaks) {
   if (static_cast<int>(breaks.size()) + 1 >= kMaxPieces) return;
   const Peak p = interior_peak(d, a, b, samples);
   const double ends = std::max(d(a), d(b));
-  const double length = b - a;
   if (p.value <= kConfusion || p.value <= (1.0 - kMargin) * ends) return;
-  if (p.t - a <= 1e-9 * length || b - p.t <= 1e-9 * length) return;
-  peak_breaks(d, a, p.t, samples, breaks);
+  const gp_Pnt at = d.point(p.t);
+  if (at.Distance(d.point(a)) < shortest || at.Distance(d.point(b)) < shortest) return;
+  peak_breaks(d, a, p.t, samples, shortest, breaks);
   breaks.push_back(p.t);
-  peak_breaks(d, p.t, b, samples, breaks);
+  peak_breaks(d, p.t, b, samples, shortest, breaks);
 }
 
 int knot_count(const Handle(Geom_Curve) & c) {
@@ -176,14 +180,23 @@ ExchangeShape prepare_for_exchange(const TopoDS_Shape& shape) {
     TopTools_DataMapOfShapeListOfShape pieces;  // forward edge -> its pieces, in order
     TopTools_MapOfShape touched_faces;
     BRep_Builder builder;
+    // First every edge's deviation: the largest sets the file's uncertainty, hence the shortest
+    // piece allowed.
+    std::vector<std::vector<TopoDS_Face>> faces_of(static_cast<size_t>(edge_faces.Extent()));
+    std::vector<double> deviation_of(faces_of.size());
     for (int k = 1; k <= edge_faces.Extent(); ++k) {
       const TopoDS_Edge edge = TopoDS::Edge(edge_faces.FindKey(k).Oriented(TopAbs_FORWARD));
-      std::vector<TopoDS_Face> faces;
+      std::vector<TopoDS_Face>& faces = faces_of[static_cast<size_t>(k - 1)];
       TopTools_MapOfShape seen;
       for (TopTools_ListIteratorOfListOfShape it(edge_faces(k)); it.More(); it.Next())
         if (seen.Add(it.Value())) faces.push_back(TopoDS::Face(it.Value()));
-      const double deviation = checked_deviation(edge, faces);
-      out.max_deviation = std::max(out.max_deviation, deviation);
+      deviation_of[static_cast<size_t>(k - 1)] = checked_deviation(edge, faces);
+      out.max_deviation = std::max(out.max_deviation, deviation_of[static_cast<size_t>(k - 1)]);
+    }
+    for (int k = 1; k <= edge_faces.Extent(); ++k) {
+      const TopoDS_Edge edge = TopoDS::Edge(edge_faces.FindKey(k).Oriented(TopAbs_FORWARD));
+      const std::vector<TopoDS_Face>& faces = faces_of[static_cast<size_t>(k - 1)];
+      const double deviation = deviation_of[static_cast<size_t>(k - 1)];
       if (deviation <= kConfusion || !splittable(edge, faces)) continue;
       double f = 0.0, l = 0.0;
       BRep_Tool::Range(edge, f, l);
@@ -194,7 +207,7 @@ ExchangeShape prepare_for_exchange(const TopoDS_Shape& shape) {
       }
       const EdgeDeviation d(edge, faces);
       std::vector<double> breaks;
-      peak_breaks(d, f, l, 64 + 8 * knots, breaks);
+      peak_breaks(d, f, l, 64 + 8 * knots, kShortest * out.max_deviation, breaks);
       if (breaks.empty()) continue;
       // The pieces keep the edge's tolerance, raised to what OCCT measures if that is more.
       const double tolerance = std::max(BRep_Tool::Tolerance(edge), 1.0001 * deviation);

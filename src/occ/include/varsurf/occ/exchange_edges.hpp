@@ -20,7 +20,9 @@ struct ExchangeShape {
 
 // The shape with each edge whose deviation exceeds OCCT's confusion (1e-7) split where the
 // deviation peaks, until on every piece it is largest at the ends (interior peaks stay 0.1 %
-// below: a reader's re-parametrisation moves them by less). Geometry is unchanged: the pieces
+// below: a reader's re-parametrisation moves them by less), except where a piece would come out
+// shorter than 20 times the largest deviation (a reader removes edges shorter than the file's
+// uncertainty; step_io writes twice the deviation). Geometry is unchanged: the pieces
 // keep the edge's curves; the new vertices' tolerances cover the deviation there. Edges on a
 // surface's seam, and curves that are not B-splines, are left as they are. A null shape is
 // returned unchanged.
