@@ -136,10 +136,13 @@ def test_curves_over_the_hole_are_refused_and_others_met():
     assert outcome.shape.distToShape(beside)[0] < 0.01
     assert len(outcome.shape.Wires) == 2  # still holed
     assert outcome.shape.check(True) is None
-    # A point constraint over the hole is refused too.
+    # Constraints over the hole are refused too: a point, and a join along an edge across it.
     point = ConstraintSpec(kind="Point", name="Lift", location=(50.0, 43.0, 45.0))
     with pytest.raises(model.SheetError, match=r"Lift lies over a hole of the base face"):
         model.solve_sheet_on_face(base, [], constraints=[point])
+    join = ConstraintSpec(kind="G0", name="Join", edge=across)
+    with pytest.raises(model.SheetError, match=r"Join lies over a hole of the base face \(up to 10 mm"):
+        model.solve_sheet_on_face(base, [], constraints=[join])
 
 
 def _hole_rim(shape):
