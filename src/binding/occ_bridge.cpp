@@ -242,8 +242,9 @@ void bind_occ_bridge(py::module_& m) {
 
   m.def("max_deviation", &occ::max_deviation, "surface"_a, "curve"_a, "samples"_a = 200,
         py::call_guard<py::gil_scoped_release>(),
-        "Largest distance from `samples` evenly spaced target points to the whole sheet, "
-        "measured by OpenCASCADE (independent of the solver).");
+        "Largest distance from the target curve to the whole sheet (boundary included), "
+        "independent of the solver: at least `samples` evenly spaced points, more in every knot "
+        "span and where the curve turns, the largest peaks refined between them.");
 
   m.def(
       "write_step",

@@ -67,7 +67,8 @@ def default_memory_limit() -> float:
         return 0.5 * os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
     except (ValueError, OSError, AttributeError):
         return 4e9
-#: Points per curve at which the result's distance to the curve is measured.
+#: Fewest points per curve at which the result's distance to the curve is measured (the
+#: measurement adds its own where the curve needs them and refines the peaks between them).
 DEVIATION_SAMPLES = 200
 
 try:  # the extension is optional at import time so that the workbench still loads and explains
