@@ -38,7 +38,12 @@ void bind_occ_bridge(py::module_& m) {
       .def_readonly("max_distance", &occ::PreImage::max_distance,
                     "Largest distance from the sampled target to the sheet.")
       .def_readonly("fit_error", &occ::PreImage::fit_error,
-                    "Largest |preimage(t_k) - projected (u, v)_k| over the samples.");
+                    "Largest |preimage(t_k) - projected (u, v)_k| over the samples.")
+      .def_readonly("boundary_distance", &occ::PreImage::boundary_distance,
+                    "Largest distance from the target to the sheet where its foot point is on "
+                    "the sheet's boundary (-1 if it never is).")
+      .def_readonly("boundary_t", &occ::PreImage::boundary_t,
+                    "The target's parameter where boundary_distance is reached.");
 
   py::class_<occ::PointOnSheet>(m, "PointOnSheet", "Result of project_point.")
       .def(py::init<>())

@@ -523,6 +523,15 @@ def solve_sheet_on_face(
             raise SheetError(_projection_failure(name, direction, str(error))) from error
         except nat.GeometryError as error:
             raise SheetError(f"{name} cannot be projected onto the base face: {error}") from error
+        # Where the curve's foot point is on the face's boundary, a kept boundary cannot move to it
+        # (the solver sees those samples on fixed poles only): say so instead of refining in vain.
+        if fix_boundary and pre.boundary_distance > tolerance:
+            x, y, z = (float(c) for c in curve.evaluate(pre.boundary_t))
+            raise SheetError(
+                f"{name} is {pre.boundary_distance:.3g} mm from the base face where it reaches the face's "
+                f"kept boundary (at ({x:.4g}, {y:.4g}, {z:.4g})): the kept boundary cannot move "
+                "there; let the curve meet the boundary, or turn FixBoundary off"
+            )
         curve_constraints.append(
             _build(nat.CurveConstraint, preimage=pre.curve, target=curve, weight=1.0,
                    exact=name in set(exact_curves))

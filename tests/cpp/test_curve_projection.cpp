@@ -24,6 +24,7 @@
 #include <string>
 #include <vector>
 
+#include "test_support.hpp"
 #include "varsurf/core/errors.hpp"
 #include "varsurf/core/sheet_solver.hpp"
 #include "varsurf/core/spline_space.hpp"
@@ -150,6 +151,14 @@ TEST(BoundaryCurves, PlaneEdgesProjectOntoTheDomainsSides) {
   }
   ASSERT_EQ(curves.size(), 4u);
   EXPECT_LT(sheet_moves(base, {curves[0]}), 1e-12);
+  // How far a kept boundary would have to move: the edge raised by 5; none for a curve inside.
+  BSplineCurve raised = curves[0];
+  raised.poles.col(2).array() += 5.0;
+  EXPECT_NEAR(occ::project_curve(base, raised).boundary_distance, 5.0, 1e-12);
+  Eigen::VectorXd a(3), b(3);
+  a << 10, 10, 0;
+  b << 90, 50, 0;
+  EXPECT_EQ(occ::project_curve(base, test::line_curve(a, b)).boundary_distance, -1.0);
   EXPECT_LT(sheet_moves(base, curves), 1e-12);
 }
 

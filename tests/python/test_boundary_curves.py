@@ -168,3 +168,15 @@ def test_seam_and_poles_of_a_revolved_face(native, make):
     edges = [e for e in face.Edges if not e.Degenerated]
     out = solve(face, edges)
     assert_is_face(out.shape, face, edges, area=False)
+
+
+def test_curve_off_a_kept_boundary_is_refused_by_name(native):
+    """A curve 5 mm above the face's side: with the boundary kept the sheet cannot reach it (the
+    solver would see it on fixed poles only), so the sheet says so at once; freed, it is met."""
+    plane = Part.makePlane(100, 60)
+    raised = plane.Edges[1].copy()
+    raised.translate(V(0, 0, 5))
+    with pytest.raises(model.SheetError, match=r"Raised is 5 mm from the base face .* kept boundary"):
+        model.solve_sheet_on_face(plane, [raised], names=["Raised"])
+    out = model.solve_sheet_on_face(plane, [raised], fix_boundary=False)
+    assert max(out.max_deviations) <= model.DEFAULT_TOLERANCE
