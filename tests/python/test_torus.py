@@ -11,6 +11,8 @@ R, r = 30.0, 8.0  # major and minor radius (mm)
 
 
 def _torus_feature(doc, name, **angles):
+    # Part's Torus starts the tube's angle at 180 degrees: its seams are not where a conversion of
+    # the whole surface opens it.
     torus = doc.addObject("Part::Torus", name)
     torus.Radius1, torus.Radius2 = R, r
     for key, value in angles.items():
@@ -64,6 +66,11 @@ def _check_reproduces(sheet, base_face, area, angle_range):
             p = base_face.valueAt(a0 + (a1 - a0) * (i + 0.5) / 9, b0 + (b1 - b0) * (j + 0.5) / 9)
             assert face.distToShape(Part.Vertex(p))[0] <= 1e-9 * size
     assert _area(face.Surface) == pytest.approx(area, rel=1e-9)
+    # The sheet's boundary is the face's (for a full torus: its two seams, wherever they lie).
+    rim = Part.Compound(face.Edges)
+    for edge in base_face.Edges:
+        for p in edge.discretize(12):
+            assert rim.distToShape(Part.Vertex(p))[0] <= 1e-9 * size
 
 
 def test_a_full_torus_face_is_a_base(doc, native):

@@ -3,6 +3,7 @@
 #include <BRepTools.hxx>
 #include <BRep_Tool.hxx>
 #include <GCPnts_AbscissaPoint.hxx>
+#include <GeomAPI_ProjectPointOnSurf.hxx>
 #include <GeomAdaptor_Curve.hxx>
 #include <GeomConvert.hxx>
 #include <Geom_RectangularTrimmedSurface.hxx>
@@ -123,6 +124,19 @@ bool covers_both_periods(const Handle(Geom_Surface) & s, double u1, double u2, d
   const double tol = Precision::PConfusion();
   return s->IsUPeriodic() && s->IsVPeriodic() && u2 - u1 >= s->UPeriod() - tol &&
          v2 - v1 >= s->VPeriod() - tol;
+}
+
+// The box on `bs` (all of `s`, converted to a doubly periodic B-spline) whose sides are the face's
+// seams: u1 and v1 of `s` may be anywhere around it (Part's Torus starts v at pi), and the
+// conversion's parameters are not the angles between its knots.
+void seams_on(const Handle(Geom_Surface) & s, const Handle(Geom_BSplineSurface) & bs, double& u1,
+              double& u2, double& v1, double& v2) {
+  GeomAPI_ProjectPointOnSurf foot(s->Value(u1, v1), bs);
+  if (!foot.IsDone() || foot.NbPoints() == 0 || !bs->IsUPeriodic() || !bs->IsVPeriodic())
+    throw GeometryError("face: its seams could not be found on its converted surface");
+  foot.LowerDistanceParameters(u1, v1);
+  u2 = u1 + bs->UPeriod();
+  v2 = v1 + bs->VPeriod();
 }
 
 }  // namespace
@@ -288,12 +302,15 @@ BSplineSurface surface_from_face(const TopoDS_Face& face) {
       // up to 12 s on a sphere face cut near its pole (found by the OCCT bridge fuzzer). A box
       // over whole periods both ways (a full torus) is the whole surface, and OCCT's trimmed
       // torus conversion refuses it (Standard_DomainError): the untrimmed surface converts to
-      // a doubly periodic B-spline, which restrict_to opens at the surface's own seams.
+      // a doubly periodic B-spline, which restrict_to opens at the face's seams.
       const bool whole = covers_both_periods(geom, u1, u2, v1, v2);
       basis = GeomConvert::SurfaceToBSplineSurface(
           whole ? geom : new Geom_RectangularTrimmedSurface(geom, u1, u2, v1, v2));
       if (basis.IsNull()) throw GeometryError("face: conversion to NURBS gave no B-spline surface");
-      basis->Bounds(u1, u2, v1, v2);
+      if (whole)
+        seams_on(geom, basis, u1, u2, v1, v2);
+      else
+        basis->Bounds(u1, u2, v1, v2);
     }
     Handle(Geom_BSplineSurface) s = Handle(Geom_BSplineSurface)::DownCast(basis->Copy());
     restrict_to(s, u1, u2, v1, v2);
