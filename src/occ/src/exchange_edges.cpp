@@ -267,4 +267,30 @@ ExchangeShape prepare_for_exchange(const TopoDS_Shape& shape) {
   });
 }
 
+int cover_measured_deviations(const TopoDS_Shape& shape) {
+  if (shape.IsNull()) return 0;
+  return guarded("measuring edge deviations", [&] {
+    TopTools_IndexedDataMapOfShapeListOfShape edge_faces;
+    TopExp::MapShapesAndAncestors(shape, TopAbs_EDGE, TopAbs_FACE, edge_faces);
+    BRep_Builder builder;
+    int raised = 0;
+    for (int k = 1; k <= edge_faces.Extent(); ++k) {
+      const TopoDS_Edge& edge = TopoDS::Edge(edge_faces.FindKey(k));
+      if (BRep_Tool::Degenerated(edge)) continue;
+      std::vector<TopoDS_Face> faces;
+      for (TopTools_ListIteratorOfListOfShape it(edge_faces(k)); it.More(); it.Next())
+        faces.push_back(TopoDS::Face(it.Value()));
+      const double deviation = checked_deviation(edge, faces);
+      if (deviation <= BRep_Tool::Tolerance(edge)) continue;
+      const double tolerance = 1.0001 * deviation;
+      builder.UpdateEdge(edge, tolerance);
+      for (TopoDS_Iterator v(edge); v.More(); v.Next())
+        if (BRep_Tool::Tolerance(TopoDS::Vertex(v.Value())) < tolerance)
+          builder.UpdateVertex(TopoDS::Vertex(v.Value()), tolerance);
+      ++raised;
+    }
+    return raised;
+  });
+}
+
 }  // namespace varsurf::occ

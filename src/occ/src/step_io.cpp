@@ -80,6 +80,9 @@ TopoDS_Shape read_step(const std::string& path) {
       throw GeometryError("reading STEP: '" + path + "' holds no transferable shape");
     TopoDS_Shape shape = reader.OneShape();
     if (shape.IsNull()) throw GeometryError("reading STEP: '" + path + "' holds no shape");
+    // The reader's tolerances are sampled and may fall short of the true deviation (files from
+    // other writers): cover it, so the shape passes OCCT's Boolean checks.
+    cover_measured_deviations(shape);
     return shape;
   });
 }

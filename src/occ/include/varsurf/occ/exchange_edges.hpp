@@ -28,4 +28,10 @@ struct ExchangeShape {
 // returned unchanged.
 ExchangeShape prepare_for_exchange(const TopoDS_Shape& shape);
 
+// The reading side: raises every edge tolerance that falls short of the 3D-curve / pcurve
+// deviation OCCT's curve-on-surface check measures (as its Boolean operations do), and vertex
+// tolerances to match; returns how many edges were raised. A re-read file from any writer then
+// passes that check. The shape's geometry is not touched.
+int cover_measured_deviations(const TopoDS_Shape& shape);
+
 }  // namespace varsurf::occ

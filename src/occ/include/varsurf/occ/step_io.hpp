@@ -15,7 +15,8 @@ namespace varsurf::occ {
 // FreeCAD).
 void write_step(const TopoDS_Shape& shape, const std::string& path);
 
-// All roots of the file as one shape. GeometryError if the file cannot be read or holds no shape.
+// All roots of the file as one shape, its edge tolerances covering the deviation OCCT measures
+// (cover_measured_deviations). GeometryError if the file cannot be read or holds no shape.
 TopoDS_Shape read_step(const std::string& path);
 
 }  // namespace varsurf::occ
