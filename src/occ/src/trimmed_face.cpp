@@ -188,8 +188,9 @@ BaseTrim::BaseTrim(const TopoDS_Face& base) {
     builder.Add(outer, BRepTools::OuterWire(base_));
     outer_ = std::make_unique<BRepTopAdaptor_FClass2d>(outer, uv_tol);
 
-    // The sheet's normal against the face's outward one, where the surface is least degenerate.
-    double best = -1.0, dot = 1.0;
+    // The sheet's normal against the face's outward one, where the surfaces are least degenerate
+    // (inside the face if any sample is).
+    double best[2] = {-1.0, -1.0}, dot[2] = {1.0, 1.0};  // [outside, inside]
     for (int i = 1; i <= 7; ++i) {
       for (int j = 1; j <= 7; ++j) {
         const double u = u1 + (u2 - u1) * i / 8, v = v1 + (v2 - v1) * j / 8;
@@ -201,14 +202,15 @@ BaseTrim::BaseTrim(const TopoDS_Face& base) {
         nurbs_->D1(a, b, q, tu, tv);
         const gp_Vec n = su.Crossed(sv), m = tu.Crossed(tv);
         const double weight = n.Magnitude() * m.Magnitude();
-        const bool in = whole_->Perform(gp_Pnt2d(u, v)) == TopAbs_IN;
-        if (weight > best * (in ? 1.0 : 4.0)) {  // inside the face preferred
-          best = weight;
-          dot = n.Dot(m);
+        const int in = whole_->Perform(gp_Pnt2d(u, v)) == TopAbs_IN ? 1 : 0;
+        if (weight > best[in]) {
+          best[in] = weight;
+          dot[in] = n.Dot(m);
         }
       }
     }
-    normal_sign_ = (dot >= 0.0) == (orientation_ != TopAbs_REVERSED) ? 1 : -1;
+    const double along = best[1] > 0.0 ? dot[1] : dot[0];
+    normal_sign_ = (along >= 0.0) == (orientation_ != TopAbs_REVERSED) ? 1 : -1;
   });
 }
 
