@@ -210,6 +210,20 @@ def test_pressure_inflates_every_box_face_outward(index):
     assert result.normalAt(*uv).dot(outward) > 0.999
 
 
+def test_pressure_inflates_a_reversed_holed_face_outward():
+    """The plate's bottom (z = 0) is Reversed and holed: the sheet bulges down, out of the plate,
+    keeps its hole, and faces down like its base."""
+    plate = Part.makeBox(100, 80, 40).cut(Part.makeCylinder(10, 60, Vector(50, 40, -10)))
+    base = next(f for f in plate.Faces if abs(f.CenterOfMass.z) < 1e-9 and len(f.Wires) == 2)
+    assert base.Orientation == "Reversed"
+    result = model.solve_sheet_on_face(base, [], pressure=0.001, stretch=1.0).shape
+    assert result.Orientation == "Reversed" and len(result.Wires) == 2
+    z = [p.z for p in _inside_points(result, 200, 4)]
+    assert min(z) < -0.05 and max(z) <= 0.01  # measured: -0.11 mm; the rims stay at z = 0 (Tolerance)
+    u, v = result.Surface.parameter(Vector(20, 20, 0))
+    assert result.normalAt(u, v).z < -0.99
+
+
 def test_sheet_feature_on_a_cut_box_keeps_the_hole(doc):
     """Through the document, the way the GUI makes it: a Sheet on the top of Part Box - Cylinder."""
     box = doc.addObject("Part::Box", "Box")
