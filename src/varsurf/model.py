@@ -392,6 +392,8 @@ def _projection_failure(name, direction, error):
     """The message of a curve whose pre-image cannot be found, naming the real cause."""
     if direction is not None:
         return f"{name} cannot be projected onto the base face along {tuple(round(c, 6) for c in direction)}: {error}"
+    if "crosses the seam of the closed face" in error:  # on the face, but around it
+        return f"{name} goes around the closed base face across its seam: {error}"
     if "jumps" in error:
         return (f"{name}'s orthogonal projection onto the base face jumps (the curve lies too far from a curved "
                 f"base for its nearest points to follow it): {error}. Project it along a direction instead: set "

@@ -216,6 +216,22 @@ TEST(BoundaryCurves, CylinderCirclesRunFromSeamToSeam) {
   EXPECT_LT(sheet_moves(base, circles), 1e-9);
 }
 
+// A circle starting a quarter turn from the seam goes around across it: refused with that cause.
+TEST(BoundaryCurves, CircleAcrossTheSeamSaysSo) {
+  const TopoDS_Shape cylinder = BRepPrimAPI_MakeCylinder(20.0, 50.0).Shape();
+  const BSplineSurface base = occ::surface_from_face(face_of(cylinder, GeomAbs_Cylinder));
+  const gp_Circ circle(gp_Ax2(gp_Pnt(0, 0, 25), gp::DZ()), 20.0);
+  const BSplineCurve target =
+      occ::curve_from_edge(BRepBuilderAPI_MakeEdge(circle, M_PI / 2, 2.5 * M_PI).Edge());
+  try {
+    occ::project_curve(base, target);
+    FAIL() << "no exception";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("crosses the seam of the closed face"), std::string::npos)
+        << e.what();
+  }
+}
+
 // The cylinder's seam line lies on both sides of its domain: the pre-image keeps to one.
 TEST(BoundaryCurves, SeamLineStaysOnOneSide) {
   const TopoDS_Shape cylinder = BRepPrimAPI_MakeCylinder(20.0, 50.0).Shape();

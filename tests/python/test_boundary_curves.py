@@ -180,3 +180,12 @@ def test_curve_off_a_kept_boundary_is_refused_by_name(native):
         model.solve_sheet_on_face(plane, [raised], names=["Raised"])
     out = model.solve_sheet_on_face(plane, [raised], fix_boundary=False)
     assert max(out.max_deviations) <= model.DEFAULT_TOLERANCE
+
+
+def test_circle_across_a_cylinders_seam_is_refused_with_the_cause(native):
+    """A full circle on the cylinder starting a quarter turn from its seam: on the face, but its
+    pre-image would have to run on both sides of the seam; the message says so."""
+    lateral = Part.makeCylinder(20, 50).Faces[0]
+    circle = Part.makeCircle(20, V(0, 0, 25), V(0, 0, 1), 90, 450)
+    with pytest.raises(model.SheetError, match=r"Ring goes around the closed base face across its seam.*split the curve"):
+        model.solve_sheet_on_face(lateral, [circle], names=["Ring"])

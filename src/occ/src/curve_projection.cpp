@@ -534,8 +534,21 @@ PreImage project_curve(const BSplineSurface& base, const BSplineCurve& target,
       std::ostringstream msg;
       msg << "the target curve's projection onto the sheet jumps at t = " << it->first
           << " from (u, v) = (" << it->second.uv(0) << ", " << it->second.uv(1) << ") to ("
-          << next->second.uv(0) << ", " << next->second.uv(1)
-          << "): it crosses a seam or fold of the sheet, or is equally close to two regions";
+          << next->second.uv(0) << ", " << next->second.uv(1) << "): ";
+      // From one side of a closed sheet's seam to the other: the curve goes around it.
+      int seam = -1;
+      for (int c = 0; c < 2; ++c) {
+        const bool around = std::abs(next->second.uv(c) - it->second.uv(c)) > 0.5 * width(c);
+        if (domain.closed(c) && around) seam = c;
+      }
+      if (seam >= 0) {
+        msg << "it crosses the seam of the closed face (where " << (seam == 0 ? "u" : "v") << " = "
+            << lo(seam) << " meets " << hi(seam)
+            << "), and one pre-image cannot run on both sides of it; split the curve at the "
+               "seam";
+      } else {
+        msg << "it crosses a seam or fold of the sheet, or is equally close to two regions";
+      }
       throw InvalidInput(msg.str());
     }
     samples.add(0.5 * (it->first + next->first));  // `it` stays valid: std::map
