@@ -8,7 +8,6 @@
 #include <STEPControl_Writer.hxx>
 
 #include <algorithm>
-#include <cstdio>
 #include <fstream>
 #include <string>
 
@@ -42,6 +41,22 @@ class StaticSetting {
   bool had_ = false;
 };
 
+// The same for a real-valued parameter, set as a number (no text, hence no locale involved).
+class RealSetting {
+ public:
+  RealSetting(const char* name, double value) : name_(name), old_(Interface_Static::RVal(name)) {
+    if (!Interface_Static::SetRVal(name, value))
+      throw GeometryError(std::string("writing STEP: cannot set ") + name);
+  }
+  ~RealSetting() { Interface_Static::SetRVal(name_, old_); }
+  RealSetting(const RealSetting&) = delete;
+  RealSetting& operator=(const RealSetting&) = delete;
+
+ private:
+  const char* name_;
+  double old_;
+};
+
 }  // namespace
 
 void write_step(const TopoDS_Shape& shape, const std::string& path) {
@@ -52,15 +67,13 @@ void write_step(const TopoDS_Shape& shape, const std::string& path) {
   const ExchangeShape ready = prepare_for_exchange(shape);
   // The file's uncertainty must cover the distance from a vertex to its edges' pcurves: OCCT's
   // reader drops (and re-projects, coarsely) a pcurve whose end lies farther from its vertex.
-  char uncertainty[32];
-  std::snprintf(uncertainty, sizeof uncertainty, "%.3g",
-                std::max(2.0 * ready.max_deviation, Precision::Confusion()));
+  const double uncertainty = std::max(2.0 * ready.max_deviation, Precision::Confusion());
   guarded("writing STEP", [&] {
     STEPControl_Controller::Init();  // registers the STEP settings changed below
     const StaticSetting schema("write.step.schema", "AP214IS");
     const StaticSetting surface_curves("write.surfacecurve.mode", "1");
     const StaticSetting precision_mode("write.precision.mode", "2");  // 2: the value below
-    const StaticSetting precision_value("write.precision.val", uncertainty);
+    const RealSetting precision_value("write.precision.val", uncertainty);
     STEPControl_Writer writer;  // after the settings: its model takes the schema when created
     if (writer.Transfer(ready.shape, STEPControl_AsIs) != IFSelect_RetDone)
       throw GeometryError("writing STEP: the shape could not be translated");
