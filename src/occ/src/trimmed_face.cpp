@@ -520,8 +520,10 @@ TopoDS_Face BaseTrim::bounded(const Handle(Geom_BSplineSurface) & sheet) const {
     out = fix.Face();
     check = check_shape(out);
     if (!check.valid)
-      throw GeometryError("the sheet bounded by its base face's boundary is not valid: " +
-                          check.message);
+      throw GeometryError(
+          "the sheet bounded by its base face's boundary is not valid (does the solved sheet fold "
+          "over itself or collapse?): " +
+          check.message);
   }
   out.Orientation(orientation_);
   return out;
@@ -607,7 +609,7 @@ TrimHit BaseTrim::place(double su, double sv, double tolerance) const {
   return guarded("placing a point on the base face", [&] {
     TrimHit hit;
     if (!(tolerance >= 0.0) || !std::isfinite(su) || !std::isfinite(sv))
-      throw InvalidInput("placing on the base face: (u, v) and the tolerance must be finite");
+      throw InvalidInput("placing on the base face: (u, v) must be finite and the tolerance >= 0");
     double u = su, v = sv;
     to_base(su, sv, u, v);
     if (whole_->Perform(gp_Pnt2d(u, v)) != TopAbs_OUT) return hit;
