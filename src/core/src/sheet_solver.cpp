@@ -134,7 +134,7 @@ Eigen::MatrixXd iterate_nonlinear(const SheetProblem& pb, const SolveOptions& op
       Sparse extra(3 * poles, 3 * poles);
       extra.setFromTriplets(model.coupled.begin(), model.coupled.end());
       step.q += extra;
-      if (step.rest.size()) step.f += extra * step.rest;  // the solve centres Q on the rest
+      if (step.rest.size()) step.f -= extra * step.rest;  // the solve centres Q on the rest
     }
     step.f += model.coupled_f;
     SolveReport inner;
@@ -255,7 +255,7 @@ Assembled assemble(const SheetProblem& pb, const SolveOptions& opt, SolveReport&
     extra.setFromTriplets(terms.separable.begin(), terms.separable.end());
     h += extra;
     // The solve centres all of Q on the rest shape; the operators' terms are not centred.
-    if (rest) terms.separable_f += extra * pb.rest_poles;
+    if (rest) terms.separable_f -= extra * pb.rest_poles;
   }
   if (!std::isfinite(pb.pressure)) throw InvalidInput("pressure must be finite");
   out.nonlinear = !pb.repellers.empty() || !pb.shape_attractors.empty() || pb.pressure != 0.0;
@@ -278,7 +278,7 @@ Assembled assemble(const SheetProblem& pb, const SolveOptions& opt, SolveReport&
       Sparse extra(3 * poles, 3 * poles);
       extra.setFromTriplets(terms.coupled.begin(), terms.coupled.end());
       quad.q += extra;
-      if (rest) quad.f += extra * quad.rest;
+      if (rest) quad.f -= extra * quad.rest;
     }
     quad.x0 = flatten(pb.initial_poles);
     quad.fixed.assign(static_cast<size_t>(3 * poles), false);
