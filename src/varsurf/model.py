@@ -391,7 +391,11 @@ def _mode_used(report, local) -> str:
 def _projection_failure(name, direction, error):
     """The message of a curve whose pre-image cannot be found, naming the real cause."""
     if direction is not None:
-        return f"{name} cannot be projected onto the base face along {tuple(round(c, 6) for c in direction)}: {error}"
+        seen = tuple(round(c, 6) for c in direction)
+        if "beyond the face" in error:
+            return (f"{name} runs beyond the base face seen along {seen} (the Sheet's Projection): {error}; "
+                    "move the curve over the face, or project it another way")
+        return f"{name} cannot be projected onto the base face along {seen}: {error}"
     if "crosses the seam of the closed face" in error:  # on the face, but around it
         return f"{name} goes around the closed base face across its seam: {error}"
     if "jumps" in error:
