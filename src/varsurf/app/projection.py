@@ -35,9 +35,13 @@ def sketch_normal(link_obj):
 
 
 def base_normal(face):
-    """The face's normal at the middle of its parameter range (orientation included)."""
+    """The face's normal at the middle of its parameter range (orientation included), or None
+    where it has none (a degenerate face: the solve refuses it with its own message)."""
     u0, u1, v0, v1 = face.ParameterRange
-    n = face.normalAt(0.5 * (u0 + u1), 0.5 * (v0 + v1))
+    try:
+        n = face.normalAt(0.5 * (u0 + u1), 0.5 * (v0 + v1))
+    except Exception:  # Part raises a bare Part.OCCError for "normal not defined"
+        return None
     return (n.x, n.y, n.z)
 
 
@@ -64,5 +68,6 @@ def directions(obj, face, links):
     found = []
     for link_obj, _sub in links:
         normal = sketch_normal(link_obj)
-        found.append(normal if normal is not None and _facing(normal, reference) else None)
+        facing = normal is not None and reference is not None and _facing(normal, reference)
+        found.append(normal if facing else None)
     return found
