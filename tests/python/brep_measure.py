@@ -1,0 +1,109 @@
+"""Measurements on a result's B-rep made with OpenCASCADE through Part alone, independently of
+what VarSurf reports: the angle between two faces across an edge, and an enclosed volume by the
+divergence theorem over sampled surfaces."""
+
+import math
+
+import FreeCAD
+
+V = FreeCAD.Vector
+
+
+def _normal_at(face, point):
+    """The face's oriented unit normal at its point nearest `point` (orthogonal projection onto
+    the face's surface), and how far that point is from `point`."""
+    u, v = face.Surface.parameter(point)
+    return face.normalAt(u, v), (face.Surface.value(u, v) - point).Length
+
+
+def seam_angles(face_a, face_b, edge, samples=101, skip_ends=True):
+    """Angles (degrees) between two faces across `edge` at `samples` points along it: 180 minus the
+    angle between their oriented normals, each found by projecting the edge's point onto that
+    face's surface. 180 is tangent-continuous. Returns (angles, largest projection distance)."""
+    t0, t1 = edge.FirstParameter, edge.LastParameter
+    ks = range(1, samples - 1) if skip_ends else range(samples)
+    angles, far = [], 0.0
+    for k in ks:
+        p = edge.valueAt(t0 + (t1 - t0) * k / (samples - 1))
+        na, da = _normal_at(face_a, p)
+        nb, db = _normal_at(face_b, p)
+        far = max(far, da, db)
+        angles.append(180.0 - angle_between(na, nb))
+    return angles, far
+
+
+def angle_between(a, b):
+    """Angle (degrees) between two vectors, accurate near 0 and 180 (atan2, not acos)."""
+    return math.degrees(math.atan2(a.cross(b).Length, a.dot(b)))
+
+
+def shared_edges(shape, i, j):
+    """The edges faces i and j of `shape` share."""
+    a = {e.hashCode() for e in shape.Faces[i].Edges}
+    return [e for e in shape.Faces[j].Edges if e.hashCode() in a]
+
+
+def surface_angles(face, other, edge, samples=101, skip_ends=True):
+    """Angle (degrees) between the tangent planes of `face` and `other` (unoriented: 0 when they
+    coincide) at points along `edge`, both found by projection; and the largest projection
+    distance."""
+    t0, t1 = edge.FirstParameter, edge.LastParameter
+    ks = range(1, samples - 1) if skip_ends else range(samples)
+    angles, far = [], 0.0
+    for k in ks:
+        p = edge.valueAt(t0 + (t1 - t0) * k / (samples - 1))
+        na, da = _normal_at(face, p)
+        nb, db = _normal_at(other, p)
+        far = max(far, da, db)
+        a = angle_between(na, nb)
+        angles.append(min(a, 180.0 - a))
+    return angles, far
+
+
+def enclosed_volume(shape, order=24):
+    """Volume enclosed by a closed shell, from its faces' surfaces and trimming curves alone (not
+    OCCT's volume properties): by the divergence theorem, V = sum over faces of the integral of
+    z * n_z dA, and by Green's theorem each face's integral over its trimmed (u, v) domain D is
+    the boundary integral of G dv, G(u, v) = integral from u0 to u of z * (S_u x S_v)_z. Both are
+    evaluated by Gauss-Legendre quadrature of `order` points (per edge, and along u), so the
+    result is exact up to quadrature on smooth faces. The wires' orientation (material on the
+    left in (u, v)) is taken from each wire's own (u, v) area, the side of the normal from the
+    face's orientation."""
+    import numpy
+
+    xs, ws = numpy.polynomial.legendre.leggauss(order)
+    total = 0.0
+    for face in shape.Faces:
+        s = face.Surface
+        u_ref = face.ParameterRange[0]
+
+        def g(u, v):
+            du, dv = s.getDN(u, v, 1, 0), s.getDN(u, v, 0, 1)
+            return s.value(u, v).z * (du.x * dv.y - du.y * dv.x)
+
+        def inner(u, v):  # integral of g from u_ref to u at this v
+            half = 0.5 * (u - u_ref)
+            return half * sum(w * g(u_ref + half * (1.0 + x), v) for x, w in zip(xs, ws))
+
+        face_total = 0.0
+        outer = face.OuterWire
+        for wire in face.Wires:
+            integral = area = 0.0
+            for edge in wire.OrderedEdges:
+                c2d, first, last = face.curveOnSurface(edge)[:3]
+                if edge.Orientation == "Reversed":
+                    first, last = last, first
+                half = 0.5 * (last - first)
+                h = 1e-6 * abs(last - first)
+                for x, w in zip(xs, ws):
+                    t = first + half * (1.0 + x)
+                    p = c2d.value(t)
+                    dv = (c2d.value(t + h).y - c2d.value(t - h).y) / (2.0 * h)  # dv/dt
+                    integral += w * half * inner(p.x, p.y) * dv
+                    area += w * half * (p.x - u_ref) * dv
+            # the outer wire runs counter-clockwise in (u, v), holes clockwise, whatever the
+            # orientation flags say: the sign of the wire's own (u, v) area tells
+            ccw = area > 0.0
+            face_total += integral if ccw == wire.isSame(outer) else -integral
+        total += -face_total if face.Orientation == "Reversed" else face_total
+    return total
