@@ -79,15 +79,80 @@ struct SurfaceInversion::Parts {
   double scale = 1.0;  // the surface's size: absolute tolerances are relative to it
   std::vector<double> breaks_u, breaks_v;
   std::vector<Node> nodes;
-  std::vector<std::vector<Seed>> seeds;  // per patch, index i * patches_v + j
+  std::vector<std::vector<Seed>> seeds;             // per patch, index i * patches_v + j
+  std::vector<Handle(Geom_BezierSurface)> patches;  // the same index
   int patches_v = 0;
   long fallbacks = 0;
 
   int build(const std::vector<Box>& patch_boxes, int i0, int i1, int j0, int j1);
-  // Newton on |S(u, v) - p|^2 / 2 inside the parameter box. `settled` says whether it converged.
-  SurfacePoint descend(const gp_XYZ& p, double u, double v, bool& settled);
+  // Newton on |S(u, v) - p|^2 / 2 inside the parameter box, or inside `within` (u0, u1, v0, v1).
+  // `settled` says whether it converged.
+  SurfacePoint descend(const gp_XYZ& p, double u, double v, bool& settled,
+                       const std::array<double, 4>* within = nullptr);
+  // Newton kept inside one piece of the surface first (on a folded surface a start inside the
+  // piece that holds the closest point can still wander off to another minimum), then over the
+  // whole surface from there.
+  // `interior` (optional) tells whether the piece's own minimum lies strictly inside it.
+  SurfacePoint descend_in(const gp_XYZ& p, double u, double v, const std::array<double, 4>& piece,
+                          bool& settled, bool* interior = nullptr);
   SurfacePoint global_search(const gp_Pnt& p);
+  // Quarters of a patch (its Bezier form over [ua, ub] x [va, vb]) whose boxes are nearer than the
+  // best point: Newton from each one's centre, and their quarters in turn, down to `depth` 0.
+  void subdivide(const gp_XYZ& p, const Handle(Geom_BezierSurface) & patch, double ua, double ub,
+                 double va, double vb, int depth, SurfacePoint& best, bool& best_settled);
 };
+
+namespace {
+
+Box box_of(const Handle(Geom_BezierSurface) & patch) {
+  // With positive weights a rational patch is a convex combination of its poles too.
+  Box box;
+  for (int a = 1; a <= patch->NbUPoles(); ++a)
+    for (int b = 1; b <= patch->NbVPoles(); ++b) box.add(patch->Pole(a, b).XYZ());
+  return box;
+}
+
+// A patch that may hold a closer point is split twice (into 16 pieces, each with its own box
+// and Newton start): wild patches hold several local minima, and the nearest start need not lead
+// to the closest (a random rational face measured 2 mm from its own edge with one start per patch).
+// Deeper splitting cost more than it found on such faces.
+constexpr int kSubdivisions = 3;
+
+}  // namespace
+
+void SurfaceInversion::Parts::subdivide(const gp_XYZ& p, const Handle(Geom_BezierSurface) & patch,
+                                        double ua, double ub, double va, double vb, int depth,
+                                        SurfacePoint& best, bool& best_settled) {
+  if (depth == 0) return;
+  const double margin = 1e-12 * scale;
+  struct Quarter {
+    Handle(Geom_BezierSurface) patch;
+    double bound, ua, ub, va, vb;
+  };
+  std::array<Quarter, 4> quarters;
+  for (int q = 0; q < 4; ++q) {
+    const double s0 = 0.5 * (q / 2), t0 = 0.5 * (q % 2);
+    Handle(Geom_BezierSurface) piece = Handle(Geom_BezierSurface)::DownCast(patch->Copy());
+    piece->Segment(s0, s0 + 0.5, t0, t0 + 0.5);  // a Bezier patch's own parameters are [0, 1]
+    const double qa = ua + (ub - ua) * s0, qc = va + (vb - va) * t0;
+    quarters[q] = Quarter{piece, std::sqrt(box_of(piece).square_distance(p)),
+                          qa,    qa + 0.5 * (ub - ua),
+                          qc,    qc + 0.5 * (vb - va)};
+  }
+  std::sort(quarters.begin(), quarters.end(),
+            [](const Quarter& a, const Quarter& b) { return a.bound < b.bound; });
+  for (const Quarter& q : quarters) {
+    if (q.bound >= best.distance - margin) break;
+    bool settled = false;
+    const SurfacePoint candidate =
+        descend_in(p, 0.5 * (q.ua + q.ub), 0.5 * (q.va + q.vb), {q.ua, q.ub, q.va, q.vb}, settled);
+    if (candidate.distance < best.distance) {
+      best = candidate;
+      best_settled = settled;
+    }
+    subdivide(p, q.patch, q.ua, q.ub, q.va, q.vb, depth - 1, best, best_settled);
+  }
+}
 
 int SurfaceInversion::Parts::build(const std::vector<Box>& patch_boxes, int i0, int i1, int j0,
                                    int j1) {
@@ -114,7 +179,10 @@ int SurfaceInversion::Parts::build(const std::vector<Box>& patch_boxes, int i0, 
   return id;
 }
 
-SurfacePoint SurfaceInversion::Parts::descend(const gp_XYZ& p, double u, double v, bool& settled) {
+SurfacePoint SurfaceInversion::Parts::descend(const gp_XYZ& p, double u, double v, bool& settled,
+                                              const std::array<double, 4>* within) {
+  const double u0 = within ? (*within)[0] : this->u0, u1 = within ? (*within)[1] : this->u1;
+  const double v0 = within ? (*within)[2] : this->v0, v1 = within ? (*within)[3] : this->v1;
   settled = false;
   u = std::min(std::max(u, u0), u1);
   v = std::min(std::max(v, v0), v1);
@@ -211,6 +279,16 @@ SurfacePoint SurfaceInversion::Parts::descend(const gp_XYZ& p, double u, double 
   return SurfacePoint{u, v, std::sqrt(f)};
 }
 
+SurfacePoint SurfaceInversion::Parts::descend_in(const gp_XYZ& p, double u, double v,
+                                                 const std::array<double, 4>& piece, bool& settled,
+                                                 bool* interior) {
+  const SurfacePoint inside = descend(p, u, v, settled, &piece);
+  if (interior != nullptr)
+    *interior = settled && inside.u > piece[0] && inside.u < piece[1] && inside.v > piece[2] &&
+                inside.v < piece[3];
+  return descend(p, inside.u, inside.v, settled);
+}
+
 SurfacePoint SurfaceInversion::Parts::global_search(const gp_Pnt& p) {
   ++fallbacks;
   SurfacePoint best{u0, v0, std::numeric_limits<double>::infinity()};
@@ -246,11 +324,10 @@ SurfaceInversion::SurfaceInversion(const Handle(Geom_BSplineSurface) & surface)
   Box all;
   for (int i = 0; i < nu; ++i) {
     for (int j = 0; j < nv; ++j) {
-      // With positive weights a rational patch is a convex combination of its poles too.
       const Handle(Geom_BezierSurface) patch = converter.Patch(i + 1, j + 1);
+      parts.patches.push_back(patch);
       Box& box = boxes[i * nv + j];
-      for (int a = 1; a <= patch->NbUPoles(); ++a)
-        for (int b = 1; b <= patch->NbVPoles(); ++b) box.add(patch->Pole(a, b).XYZ());
+      box = box_of(patch);
       all.add(box);
       std::vector<Parts::Seed>& seeds = parts.seeds[i * nv + j];
       for (int a = 0; a <= su; ++a) {
@@ -310,12 +387,33 @@ SurfacePoint SurfaceInversion::closest(const gp_Pnt& point, const SurfacePoint* 
           nearest = &seed;
         }
       }
-      bool settled = false;
-      const SurfacePoint candidate = parts.descend(p, nearest->u, nearest->v, settled);
+      const std::array<double, 4> piece{parts.breaks_u[node.i0], parts.breaks_u[node.i0 + 1],
+                                        parts.breaks_v[node.j0], parts.breaks_v[node.j0 + 1]};
+      bool settled = false, interior = false;
+      const SurfacePoint candidate =
+          parts.descend_in(p, nearest->u, nearest->v, piece, settled, &interior);
       if (candidate.distance < best.distance) {
         best = candidate;
         best_settled = settled;
       }
+      // A seed is a point of the surface: one nearer than the best point so far proves that
+      // Newton went to another local minimum, so Newton starts again from it.
+      for (const Parts::Seed& seed : seeds) {
+        if (std::sqrt((seed.point - p).SquareModulus()) >= best.distance - margin) continue;
+        const SurfacePoint again = parts.descend_in(p, seed.u, seed.v, piece, settled);
+        if (again.distance < best.distance) {
+          best = again;
+          best_settled = settled;
+        }
+      }
+      const int k = node.i0 * parts.patches_v + node.j0;
+      // Split only where the patch's own minimum was not found inside it, or is not the best:
+      // a smooth patch near its closest point is settled by Newton, a folded one may hide more.
+      const bool found_inside = interior && candidate.distance <= best.distance;
+      if (!found_inside && best.distance - std::sqrt(square_distance) > margin)
+        parts.subdivide(p, parts.patches[k], parts.breaks_u[node.i0], parts.breaks_u[node.i0 + 1],
+                        parts.breaks_v[node.j0], parts.breaks_v[node.j0 + 1], kSubdivisions, best,
+                        best_settled);
       continue;
     }
     for (int child : node.child) queue.emplace(parts.nodes[child].box.square_distance(p), child);

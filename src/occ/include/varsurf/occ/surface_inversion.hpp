@@ -17,8 +17,10 @@ struct SurfacePoint {
 
 // Bounding boxes of the surface's Bezier patches (their poles' hull holds each patch, rational or
 // not) in a tree pick every patch that may hold a closer point; Newton on the squared distance,
-// kept inside the parameter box (so boundary points count), converges from the best start in each.
-// OCCT's global extremum search is the fallback where Newton does not settle.
+// kept inside the parameter box (so boundary points count), converges from the best start in each,
+// again from any start nearer than its answer, and from the centres of the patch's quarters and
+// sixteenths whose boxes are still nearer. OCCT's global extremum search is the fallback where
+// Newton does not settle.
 class SurfaceInversion {
  public:
   // Throws Standard_Failure as OCCT does (callers wrap it with `guarded`).
