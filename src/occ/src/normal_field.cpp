@@ -83,6 +83,9 @@ BSplineCurve normal_field(const TopoDS_Face& reference, const BSplineCurve& curv
 
 BSplineCurve normal_field_between(const BSplineCurve& curve, const BSplineCurve& second,
                                   double angle_deg, int samples) {
+  // Checked before the scale below is taken from its poles (an empty matrix has no maximum).
+  curve.validate("ribbon curve");
+  if (curve.dim() != 3) throw InvalidInput("ribbon curve must be 3D");
   second.validate("ribbon's second curve");
   if (second.dim() != 3) throw InvalidInput("ribbon's second curve must be 3D");
   return guarded("normal_field_between", [&] {
