@@ -17,8 +17,23 @@ import hinge_pair  # noqa: E402
 import moving_curve  # noqa: E402
 import smooth_box  # noqa: E402
 
+import brep_measure  # noqa: E402
+
 V = FreeCAD.Vector
-HINGE_TOLERANCE = 0.05  # degrees, along the whole seam
+HINGE_TOLERANCE = 0.05  # degrees: the Solid warns beyond this
+CLAIMED = 0.005  # degrees: what the README says hinge_pair holds along its seam
+
+
+def brep_hinge_angles(solid, samples=201):
+    """The angle between the Solid's two faces across their shared edge, measured on the B-rep
+    with Part alone (each edge point projected onto each face's surface, 180 minus the angle
+    between the oriented normals there), independently of HingeAngles and SeamAngles."""
+    shape = solid.Shape
+    seams = brep_measure.shared_edges(shape, 0, 1)
+    assert len(seams) == 1, len(seams)
+    angles, far = brep_measure.seam_angles(shape.Faces[0], shape.Faces[1], seams[0], samples, skip_ends=False)
+    assert far <= solid.Tolerance.Value, far  # the edge lies on both faces
+    return angles
 
 
 def _hinge_ok(solid, angle):
@@ -33,14 +48,19 @@ def _hinge_ok(solid, angle):
     assert "joint solve" in solid.JointSolve
 
 
-# Measured: 90, 120, 150 and 180 degrees within 0.0041, 0.0035, 0.002 and 0.002 along the seam.
-@pytest.mark.parametrize("angle", [120.0, 180.0])
+# Measured on the B-rep (201 points along the seam, ends included): 90, 120, 150 and 180 degrees
+# within 0.0042, 0.0034, 0.0020 and 0.0028; the Solid's own HingeAngles within 0.0041, 0.0035,
+# 0.0021 and 0.0020.
+@pytest.mark.parametrize("angle", [90.0, 120.0, 150.0, 180.0])
 def test_hinge_pair_holds_its_angle_along_the_seam(doc, native, angle):
     solid = hinge_pair.build(doc, angle)
     _hinge_ok(solid, angle)
-    # Measured independently on the B-rep: 180 minus the angle between the faces' normals.
-    if angle == 180.0:
-        assert solid.SeamAngles and min(solid.SeamAngles) >= 180.0 - HINGE_TOLERANCE
+    measured = brep_hinge_angles(solid)
+    assert max(abs(a - angle) for a in measured) <= CLAIMED, (min(measured), max(measured))
+    lo, hi = solid.HingeAngles
+    assert abs(lo - angle) <= CLAIMED and abs(hi - angle) <= CLAIMED, (lo, hi)
+    assert solid.SeamAngles and max(abs(a - angle) for a in solid.SeamAngles) <= CLAIMED, list(solid.SeamAngles)
+    assert "in 1 iterations" in solid.JointSolve, solid.JointSolve  # the README: one iteration
 
 
 def test_editing_the_hinge_angle_and_a_round_trip(doc, native, tmp_path):
@@ -55,6 +75,8 @@ def test_editing_the_hinge_angle_and_a_round_trip(doc, native, tmp_path):
                                      hinge_pair._side(hinge_pair.LENGTH, sign, 150.0)])
     doc.recompute()
     _hinge_ok(solid, 150.0)
+    measured = brep_hinge_angles(solid)
+    assert max(abs(a - 150.0) for a in measured) <= CLAIMED, (min(measured), max(measured))
     area = solid.Shape.Area
     path = str(tmp_path / "hinge.step")
     varsurf.export_step([solid], path)
@@ -167,19 +189,37 @@ def _tilted_side(y, sign, tilt):
     return curve.toShape()
 
 
-def test_hinge_finds_where_the_fold_sits(doc, native):
-    """Where the sheets without the hinge would meet is not where the fold must sit: with the
-    sides leaning 5 degrees the bisector turns along the seam (measured: 120 +- 0.004 degrees,
-    28 iterations)."""
+def _leaning_pair(doc, tilt=5.0):
     solid = hinge_pair.build(doc, 120.0)
     for name, sign in (("Left", -1), ("Right", 1)):
         edges = doc.getObject(name + "Edges")
         far = edges.Shape.Edges[1].copy()
-        edges.Shape = Part.Compound([_tilted_side(0.0, sign, 5.0), far,
-                                     _tilted_side(hinge_pair.LENGTH, sign, 5.0)])
+        edges.Shape = Part.Compound([_tilted_side(0.0, sign, tilt), far,
+                                     _tilted_side(hinge_pair.LENGTH, sign, tilt)])
     doc.recompute()
+    return solid
+
+
+def test_hinge_finds_where_the_fold_sits(doc, native):
+    """Where the sheets without the hinge would meet is not where the fold must sit: with the
+    sides leaning 5 degrees the bisector turns along the seam (the README's figures: 120 within
+    0.004 degrees at the solver's nodes after 14 iterations)."""
+    solid = _leaning_pair(doc)
     _hinge_ok(solid, 120.0)
+    print(solid.JointSolve)
     assert "still turned" not in solid.JointSolve, solid.JointSolve
+    assert solid.HingeErrors[0] <= 0.004, list(solid.HingeErrors)
+    assert "in 14 iterations" in solid.JointSolve, solid.JointSolve
+
+
+@pytest.mark.xfail(strict=True, reason="the leaning pair's sheets crease beside the seam's middle (largest "
+                   "curvature 3.1 /mm there, 0.1 /mm without the lean), so across the B-rep's edge the angle is "
+                   "119.9919 degrees (0.0081 off) where the solver's nodes report 0.0037")
+def test_a_leaning_fold_holds_its_angle_on_the_brep(doc, native):
+    solid = _leaning_pair(doc)
+    assert solid.isValid(), solid.getStatusString()
+    measured = brep_hinge_angles(solid)
+    assert max(abs(a - 120.0) for a in measured) <= CLAIMED, (min(measured), max(measured))
 
 
 def test_bad_hinges_and_curves_are_reported(doc, native, console_errors):
