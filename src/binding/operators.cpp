@@ -109,6 +109,7 @@ void bind_operators(py::module_& m) {
   m.def(
       "region_quadrature",
       [](const SplineSpace& space, const Region& region) {
+        space.validate();  // before its domain is read (empty knots have none)
         check_region(space, region, "region");
         return region_quadrature(space, region);
       },
