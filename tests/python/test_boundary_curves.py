@@ -189,3 +189,25 @@ def test_circle_across_a_cylinders_seam_is_refused_with_the_cause(native):
     circle = Part.makeCircle(20, V(0, 0, 25), V(0, 0, 1), 90, 450)
     with pytest.raises(model.SheetError, match=r"Ring goes around the closed base face across its seam.*split the curve"):
         model.solve_sheet_on_face(lateral, [circle], names=["Ring"])
+
+
+def test_all_edges_of_a_tilted_cylinder(native):
+    """A tilted cylinder through its circles and its seam line: every sample of the seam line is
+    on both sides of the domain, and one side is kept for all of them."""
+    face = Part.makeCylinder(13.285526245206562, 45.70221525307818,
+                             V(-8.886992282996744, -83.94626090142185, 93.31127802138934),
+                             V(-0.6149462685763374, -0.6097680893334128, 0.5000239634204728)).Faces[0]
+    edges = [e for e in face.Edges if not e.Degenerated]
+    out = solve(face, edges)
+    assert_is_face(out.shape, face, edges, area=False)
+
+
+def test_meridian_from_pole_to_pole(native):
+    """A sphere through one of its meridians (a u iso line from pole to pole): at a pole the
+    surface has no u-derivative, so the projection of the next point starts afresh there. (The
+    boundary is free: a kept boundary through the poles is the trim's own business.)"""
+    face = Part.makeSphere(9.00192319358614, V(12.748340273008907, -1.733946368217957, 63.43910048959043),
+                           V(-0.6135081789830571, -0.7295477386550513, 0.30227108916367473)).Faces[0]
+    meridian = Part.Edge(face.Surface.uIso(4.240174437777185), -math.pi / 2, math.pi / 2)
+    out = solve(face, [meridian], fix_boundary=False)
+    assert_is_face(out.shape, face, [meridian], area=False)

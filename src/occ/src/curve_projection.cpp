@@ -60,7 +60,10 @@ class Projector {
     // the first sample, samples that newly reach the domain's edge, and wherever the distance
     // jumps by more than the step between samples allows. (Measured: OCCT's NextValueOfUV for every
     // sample cost 6 ms per curve on a 19 x 19 sheet, most of a sheet's set-up time.)
-    if (neighbour) {
+    // From a pole or apex Newton cannot start (the sheet has no u-derivative there and it would
+    // stay put): the global search decides.
+    if (previous && domain_.at_degenerate_side(*previous)) previous = nullptr;
+    if (previous) {
       Eigen::Vector2d uv = *previous;
       polish(p, uv);
       double d = (surface(uv, 0).row(0).transpose() - p).norm();
@@ -335,6 +338,9 @@ class Samples {
       for (Iterator k = std::next(added); k != points_.end(); ++k) {
         if (!free(k->second)) return assign(added->second, k->second);
       }
+      // None decided (a curve along the seam): the same as its neighbour, for one side only.
+      if (added != points_.begin()) return assign(added->second, std::prev(added)->second);
+      if (std::next(added) != points_.end()) assign(added->second, std::next(added)->second);
       return;
     }
     // Free samples at either end of the curve with no anchor on their far side follow this one.
@@ -568,6 +574,11 @@ PreImage project_curve(const BSplineSurface& base, const BSplineCurve& target,
   // (Clipping the poles instead bends the fit: a convex pre-image touching the boundary has its
   // control polygon beyond it; clipped, it was 0.007 mm off a circle touching a plane's side.)
   const double fit_tol = options.fit_tolerance * width.maxCoeff();
+  // Each direction's miss relative to its own side: u and v may be in different units (radians
+  // and mm on a cylinder), and a miss in the short one would otherwise count for little.
+  auto miss = [&](const Eigen::Vector2d& d) {
+    return d.cwiseQuotient(width).norm() * width.maxCoeff();
+  };
   const Eigen::Vector2d reach = 1e-8 * width;
   auto excursion = [&](const Eigen::Vector2d& uv) {
     const Eigen::Vector2d out = (lo - uv).cwiseMax(uv - hi).cwiseMax(0.0);
@@ -588,7 +599,7 @@ PreImage project_curve(const BSplineSurface& base, const BSplineCurve& target,
           std::clamp(static_cast<int>(std::upper_bound(kb.begin(), kb.end(), t) - kb.begin()) - 1,
                      0, static_cast<int>(kb.size()) - 2);
       const Eigen::Vector2d at = trial.evaluate(t);
-      const double e = std::max((at - s.uv).norm(), fit_tol * excursion(at));
+      const double e = std::max(miss(at - s.uv), fit_tol * excursion(at));
       span_error[span] = std::max(span_error[span], e);
       worst = std::max(worst, e);
     }

@@ -15,7 +15,8 @@ struct ProjectionOptions {
   // How far (model units) the target may pass beyond the sheet's boundary, measured in the
   // sheet's tangent plane at the closest boundary point.
   double tolerance = 1e-6;
-  // Wanted max |c(t_k) - uv_k| of the fit, relative to the larger side of the (u, v) domain. The
+  // Wanted max |c(t_k) - uv_k| of the fit, each direction relative to its side of the (u, v)
+  // domain (u and v may be in different units: radians and mm on a cylinder). The
   // solver makes the new sheet pass through the target at c(t) whatever c is, so this shapes the
   // parametrization more than the result; tighter costs poles (and constraint samples).
   double fit_tolerance = 1e-7;

@@ -28,6 +28,14 @@ class SheetDomain {
     return degenerate_[static_cast<size_t>(2 * c + (side > 0 ? 1 : 0))];
   }
 
+  // On a side that collapses to a point: the sheet point does not decide the other coordinate.
+  bool at_degenerate_side(const Eigen::Vector2d& uv) const {
+    for (int c = 0; c < 2; ++c) {
+      const int s = side(uv, c);
+      if (s != 0 && degenerate(c, s)) return true;
+    }
+    return false;
+  }
   // -1 at the lower bound of direction c, +1 at the upper, 0 inside (within the snap margin).
   int side(const Eigen::Vector2d& uv, int c) const;
   // On the seam of a closed direction c.
