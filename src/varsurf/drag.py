@@ -118,6 +118,10 @@ class PointDrag:
         except nat.InvalidInput as error:
             raise NotQuadratic(f"{sheet.Label} cannot be dragged by back-substitution: {error}") from error
         self.space = self.problem.space
+        self.trim = outcome.trim  # the base face's trim: a dragged sheet stays bounded like its base
+        #: The sheet covers its whole parameter rectangle, so a view may draw the solved surface
+        #: itself; else (a hole, a disc, a chamfered outline) only the Shape shows it bounded.
+        self.natural = self.trim is None or bool(self.trim.natural)
         self.last = None  # the last native SolveResult
         self.moves = 0
         self.seconds = 0.0  # spent in move(): solve and shape
@@ -125,7 +129,8 @@ class PointDrag:
 
     def move(self, target, update_shape=True):
         """Re-solve for the target at `target` (a vector); returns the solved native surface. With
-        update_shape the Sheet's Shape shows it (a view may draw the surface itself instead)."""
+        update_shape the Sheet's Shape shows it, bounded like its base face (a view may draw the
+        surface itself instead when the sheet is `natural`)."""
         target = FreeCAD.Vector(target)
         if not all(math.isfinite(c) for c in target):
             raise DragError("the dragged target is not finite")
@@ -142,7 +147,12 @@ class PointDrag:
             raise DragError(f"{self.sheet.Label}: {error}") from error
         surface = _build(nat.BSplineSurface, space=self.space, poles=self.last.poles)
         if update_shape:
-            self.sheet.Shape = _single_face(shape_from_brep(nat.face_brep(surface)))
+            try:  # bounded and oriented like the base face, as the Sheet's own result
+                brep = self.trim.face_brep(surface) if self.trim is not None else nat.face_brep(surface)
+            except (nat.InvalidInput, nat.GeometryError) as error:
+                raise DragError(f"{self.sheet.Label}: the dragged sheet cannot be bounded like its base "
+                                f"face: {error}") from error
+            self.sheet.Shape = _single_face(shape_from_brep(brep))
         self.moves += 1
         self.seconds += time.perf_counter() - began
         return surface

@@ -257,8 +257,10 @@ class ConstraintHandles:
         except drag.DragError as error:
             self._refuse(error)
             return False
+        # The preview draws the whole surface: a trimmed sheet (a hole, a disc) shows its Shape.
         self.preview = (DragPreview(sheet.ViewObject, self.session.space)
-                        if sheet.ViewObject and isinstance(self.session, drag.PointDrag) else None)
+                        if sheet.ViewObject and isinstance(self.session, drag.PointDrag)
+                        and self.session.natural else None)
         _dragging.append(self)
         return True
 
