@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import copy
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Dict, List, Sequence
 
 from varsurf.model import SheetError, _build, _single_face, native, shape_from_brep
@@ -89,8 +89,13 @@ def solve_joint(sheets: Sequence[JointSheet], variational: Dict[str, Variational
     problems = []
     for i, s in enumerate(sheets):
         problem = copy.copy(s.outcome.problem)
+        named = len(s.keys)
+        # The sheet's problem lists its named curves first (s.keys' order), then the curves of its
+        # own making: the base face's trimmed edges it keeps, G0 and G1 incidences. Those stay its
+        # own constraints; only named curves shared or variational become joins.
+        listed = list(s.outcome.problem.curves)
         own, mine = [], {}
-        for key, constraint in zip(s.keys, s.outcome.problem.curves):
+        for key, constraint in zip(s.keys, listed[:named]):
             if key not in joined:
                 own.append(constraint)
                 continue
@@ -99,7 +104,7 @@ def solve_joint(sheets: Sequence[JointSheet], variational: Dict[str, Variational
                 index[key] = len(curves)
                 curves.append(variational[key].native(nat) if key in variational
                               else _fixed_curve(nat, constraint.target))
-        problem.curves = own
+        problem.curves = own + listed[named:]
         problems.append(problem)
         space = problem.space
         gap = 1e-6 * max(space.knots_u[-1] - space.knots_u[0], space.knots_v[-1] - space.knots_v[0])
@@ -160,9 +165,15 @@ def solve_joint(sheets: Sequence[JointSheet], variational: Dict[str, Variational
         raise SheetError(CANCELLED) from error
 
     faces = []
-    for problem, poles in zip(problems, result.sheet_poles):
+    for s, problem, poles in zip(sheets, problems, result.sheet_poles):
         surface = _build(nat.BSplineSurface, space=problem.space, poles=poles)
-        faces.append(_single_face(shape_from_brep(nat.face_brep(surface))))
+        trim = getattr(s.outcome, "trim", None)
+        try:  # bounded and oriented like the sheet's base face, as its own result
+            brep = trim.face_brep(surface) if trim is not None else nat.face_brep(surface)
+        except (nat.InvalidInput, nat.GeometryError) as error:
+            raise SheetError(f"{s.label}: the jointly solved sheet cannot be bounded like its base face: "
+                             f"{error}") from error
+        faces.append(_single_face(shape_from_brep(brep)))
     edges = {}
     for key, i in index.items():
         if key not in variational:
