@@ -39,6 +39,43 @@ def test_gui_run_completed(smoke):
     assert smoke["ok"], smoke.get("error")
 
 
+#: The errors the smoke run provokes on purpose, each the message of one object in error: the
+#: Sheet panel's spans changed under an installed rest shape, a Ribbon command on a rail 5 mm above
+#: the face it references, a constraint command whose default asks what the rail forbids, and the
+#: Hinge panel's 150 and 90 degrees against side curves opening at 180.
+PROVOKED = (
+    "the installed rest shape does not match the sheet's spline space",
+    "ribbon: the curve passes 5.000000 from its reference face",
+    "the curves and constraints cannot all be met",
+    "from a join curve (more than the tolerance 0.002 mm) (with hinges Hinge",
+)
+
+
+def _failures(lines):
+    """(message, exception class) of each traceback in the report view lines."""
+    out = []
+    for k, line in enumerate(lines):
+        if line.endswith("Traceback (most recent call last):"):
+            cause = lines[k - 1] if k else ""
+            final = next((l for l in lines[k + 1:] if l.startswith("<class ")), "")
+            out.append((cause, final.split("'")[1] if final.count("'") >= 2 else final))
+    return out
+
+
+def test_report_view_shows_only_the_provoked_errors(smoke):
+    lines = smoke["report_view_at_end"]
+    failures = _failures(lines)
+    # every exception is VarSurf's own error of a named object (no AttributeError, TypeError ...)
+    assert failures and all(cls in ("varsurf.app.sheet.SheetComputeError", "varsurf.model.SheetError")
+                            for _cause, cls in failures), failures
+    assert all(" VarSurf: " in cause for cause, _cls in failures), failures
+    # and each is one of the errors the run provokes on purpose; the hinge's is there
+    unexpected = [cause for cause, _cls in failures if not any(p in cause for p in PROVOKED)]
+    assert not unexpected, unexpected
+    assert any(PROVOKED[-1] in cause for cause, _cls in failures), failures
+    assert len([l for l in lines if "Recompute failed" in l]) == len(failures), lines
+
+
 def test_workbench_and_command(smoke):
     assert smoke["workbench"] == "VarSurfWorkbench"
     assert smoke["command_registered"]
@@ -198,6 +235,9 @@ def test_every_constraint_command_on_a_prepared_selection(smoke):
 
     outcome = smoke["every_constraint_command"]
     assert sorted(outcome) == sorted(constraints.KINDS)
+    # each command's constraint was undone again: the Sheet has the constraints it had before
+    assert smoke["constraints_after_undos"] == smoke["constraints_before_every_command"], (
+        smoke["constraints_before_every_command"], smoke["constraints_after_undos"])
     icons = smoke["constraint_icons"]
     assert len(set(icons.values())) == len(constraints.KINDS), icons  # one icon per kind
     assert all(Path(p).is_file() for p in icons.values()), icons
