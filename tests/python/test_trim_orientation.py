@@ -92,14 +92,16 @@ def _farthest(points, shape):
 
 
 @pytest.mark.parametrize("scene", list(SCENES))
-def test_sheet_without_curves_is_its_trimmed_base_face(scene):
+def test_sheet_without_curves_is_its_trimmed_base_face(scene, native):
     base = SCENES[scene]()
     outcome = model.solve_sheet_on_face(base, [], rest="base")  # the Sheet feature's default
     result = outcome.shape
     size = base.BoundBox.DiagonalLength
     # The untrimmed sheet filled the hole (8,000 instead of 7,686 mm²), squared the disc and
-    # overhung the chamfer (by 21 mm) and the fillet (by 4.9 mm).
-    assert result.Area == pytest.approx(base.Area, rel=1e-6)
+    # overhung the chamfer (by 21 mm) and the fillet (by 4.9 mm). Areas integrated by OCCT to
+    # 1e-10: Part's Area is off by 2e-5 on the fillet's rational sheet.
+    area = [native.mass_properties(f.exportBrepToString(), 1e-10)[0] for f in (base, result)]
+    assert area[1] == pytest.approx(area[0], rel=1e-9)
     assert result.check(True) is None  # raises on any BRepCheck or BOP problem
     assert result.distToShape(base)[0] <= 1e-9 * size
     assert _farthest(_inside_points(result, 40, 1), base) <= 1e-9 * size

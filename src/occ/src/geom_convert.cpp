@@ -24,6 +24,7 @@
 #include "varsurf/core/errors.hpp"
 #include "varsurf/core/knot_vector.hpp"
 #include "varsurf/occ/occ_error.hpp"
+#include "varsurf/occ/revolved_surface.hpp"
 
 namespace varsurf::occ {
 
@@ -296,6 +297,8 @@ BSplineSurface surface_from_face(const TopoDS_Face& face) {
       throw InvalidInput("face is degenerate: its parameter range is empty");
 
     Handle(Geom_BSplineSurface) basis = bspline_under(geom);
+    // GeomConvert's circles are C0 by their knots, which OCCT's Boolean check refuses.
+    if (basis.IsNull()) basis = smooth_revolved_surface(geom, u1, u2, v1, v2);
     if (basis.IsNull()) {
       // Only the surface over the face's UV box is needed, not the face: converting the trimmed
       // surface skips BRepBuilderAPI_NurbsConvert's re-projection of every pcurve, which took

@@ -343,6 +343,19 @@ Pcurve mapped(const Handle(Geom2d_Curve) & c, double f, double l, const Handle(G
   const int n = 64;
   std::vector<gp_Pnt> pts;
   for (int k = 0; k <= n; ++k) pts.push_back(at(f + (l - f) * k / n));
+  // A point on a side of the face's (u, v) box (along a seam, at a cut of constant angle, a seam's
+  // end at a pole) lies on the same side of the sheet's box: the conversion maps the box's sides
+  // onto the sheet's. Inverted, such a point may land on either side of a seam (near a pole at any
+  // u), so that coordinate is taken from the base's pcurve.
+  const double base_tol = 1e-10 * face.span();
+  const double sides[4] = {face.u1, face.u2, face.v1, face.v2};
+  const double sheet_sides[4] = {box.u1, box.u2, box.v1, box.v2};
+  for (int k = 0; k <= n; ++k) {
+    const gp_Pnt2d q = c->Value(f + (l - f) * k / n);
+    for (int side = 0; side < 4; ++side)
+      if (std::abs(q.Coord(side / 2 + 1) - sides[side]) <= base_tol)
+        pts[static_cast<size_t>(k)].SetCoord(side / 2 + 1, sheet_sides[side]);
+  }
   double umin = pts[0].X(), umax = umin, vmin = pts[0].Y(), vmax = vmin;
   for (const gp_Pnt& p : pts) {
     umin = std::min(umin, p.X());

@@ -26,8 +26,10 @@ BSplineCurve from_geom(const Handle(Geom_BSplineCurve) & curve);
 BSplineCurve from_geom(const Handle(Geom2d_BSplineCurve) & curve);
 
 // The B-spline surface of any face, placed by the face's location and restricted to its UV bounds
-// (the face's trimming is otherwise ignored). Non-B-spline surfaces are
-// converted over that UV box by GeomConvert. InvalidInput for null, unbounded or degenerate faces.
+// (the face's trimming is otherwise ignored). Cylinders, cones, spheres and tori are converted
+// over that UV box with arcs smooth by their knots (smooth_revolved_surface), other surfaces by
+// GeomConvert; each direction is reparametrized on its own, the box's sides mapping onto the
+// result's. InvalidInput for null, unbounded or degenerate faces.
 BSplineSurface surface_from_face(const TopoDS_Face& face);
 
 // The 3D curve of an edge between its end parameters, placed by the edge's location, as a
