@@ -12,7 +12,7 @@ namespace varsurf::occ {
 
 // `surface` (possibly a rectangular trim of one) over [u1, u2] x [v1, v2], built as the tensor
 // product of its angular arc and its (radius, height) profile, both exact rational arcs of
-// OCCT's Convert_RationalC1 type (degree 4, interior knots of multiplicity 3: C1) or lines; the
+// OCCT's Convert_QuasiAngular type (degree 6, no interior knot) or lines; the
 // parameters are the surface's own on the box's sides. Null for any other surface, or a box
 // longer than a period: the caller converts those another way.
 Handle(Geom_BSplineSurface) smooth_revolved_surface(const Handle(Geom_Surface) & surface, double u1,
