@@ -127,3 +127,32 @@ def test_a_sheet_pulled_off_a_half_cylinder_passes_the_check(native):
     assert outcome.max_deviation < 0.01
     assert result.distToShape(arc)[0] < 0.01
     assert _check_errors(result) == ""
+
+
+@pytest.mark.parametrize("kind", ["cylinder", "cone"])
+def test_a_solid_of_sheets_on_a_half_primitive_passes_the_check(kind, doc, native):
+    """Sheets on the four faces of a half cylinder (or cone), joined along the edges they share
+    (half circles among them: a join curve along a circle was C0 too), make a solid that passes
+    check(True) and holds the primitive's volume."""
+    import varsurf
+
+    shape = (Part.makeCylinder(10, 30, Vector(), Vector(0, 0, 1), 180) if kind == "cylinder"
+             else Part.makeCone(10, 4, 20, Vector(), Vector(0, 0, 1), 180))
+    feature = doc.addObject("Part::Feature", "Half")
+    feature.Shape = shape
+    doc.recompute()
+
+    def shared_edges(face):
+        return [(feature, f"Edge{k + 1}") for k, edge in enumerate(shape.Edges)
+                if any(edge.isSame(own) for own in face.Edges)]
+
+    sheets = [varsurf.make_sheet((feature, f"Face{i + 1}"), shared_edges(face), name=f"S{i}")
+              for i, face in enumerate(shape.Faces)]
+    solid = varsurf.make_solid(sheets, name="HalfSolid")
+    doc.recompute()
+    assert solid.Status.startswith("OK: solid"), solid.Status
+    assert _check_errors(solid.Shape) == ""
+    volume = native.mass_properties(solid.Shape.exportBrepToString(), 1e-10)[1]
+    half = (math.pi * 10 ** 2 * 30 / 2 if kind == "cylinder"
+            else math.pi * 20 * (10 ** 2 + 10 * 4 + 4 ** 2) / 6)  # half a frustum
+    assert volume == pytest.approx(half, rel=1e-9)

@@ -341,8 +341,11 @@ BSplineCurve curve_from_edge(const TopoDS_Edge& edge) {
     GeomAdaptor_Curve adaptor(c, first, last);
     if (!(GCPnts_AbscissaPoint::Length(adaptor, first, last) > Precision::Confusion()))
       throw InvalidInput("edge has zero length");
-    Handle(Geom_BSplineCurve) b =
-        GeomConvert::CurveToBSplineCurve(new Geom_TrimmedCurve(c, first, last));
+    // Circles and ellipses as one knot-free rational span (as the faces' arcs): OCCT's default
+    // joins quadratic arcs at double knots, and an edge built on such a C0 curve (a Solid's
+    // join along a circle) fails its Boolean argument check. Other curves ignore the type.
+    Handle(Geom_BSplineCurve) b = GeomConvert::CurveToBSplineCurve(
+        new Geom_TrimmedCurve(c, first, last), Convert_QuasiAngular);
     if (b.IsNull()) throw GeometryError("edge: conversion to a B-spline curve failed");
     return b;
   });
