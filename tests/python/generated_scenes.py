@@ -538,12 +538,19 @@ def random_motion(name: str, size: float) -> FreeCAD.Placement:
 # measurement
 
 
+#: Sample grids stay this fraction of the parameter range inside it: on the boundary itself, a
+#: face's trim (its edges, built to OCCT's 1e-7 mm confusion) decides whether a point is in.
+INSET = 1e-6
+
+
 def sample_points(face, n: int = 9):
-    """(point, (u, v)) of ``face`` on an n x n grid of its parameter range, those inside its trim."""
+    """(point, (u, v)) of ``face`` on an n x n grid of its parameter range (INSET from its sides),
+    those inside its trim."""
     u0, u1, v0, v1 = face.ParameterRange
     points = []
-    for s in np.linspace(0.0, 1.0, n):
-        for t in np.linspace(0.0, 1.0, n):
+    grid = np.linspace(INSET, 1.0 - INSET, n)
+    for s in grid:
+        for t in grid:
             u, v = u0 + (u1 - u0) * s, v0 + (v1 - v0) * t
             if _inside(face, u, v):
                 points.append((face.valueAt(u, v), (u, v)))
