@@ -150,6 +150,7 @@ def run(result):
     result["sheet_state"] = list(sheet.State)
     result["sheet_valid"] = sheet.isValid() and not sheet.Shape.isNull()
     result["max_deviations"] = list(sheet.MaxDeviations)
+    result["tolerance"] = float(sheet.getPropertyByName("Tolerance"))
     result["curve_names"] = list(sheet.CurveNames)
     result["status"] = sheet.Status
     result["base_hidden"] = not surface.ViewObject.Visibility

@@ -388,7 +388,8 @@ def test_every_native_function_answers_hostile_arguments_with_an_exception(nativ
     and reaches the core, which returns or raises a Python exception; the process never dies and
     no call hangs; a solve that returns has finite poles."""
     run = subprocess.run(["/usr/bin/python3", str(HOSTILE), str(REPO / "src"), str(tmp_path)], capture_output=True,
-                         text=True, timeout=1200, env=dict(os.environ, VARSURF_HOSTILE_HANG="120"))
+                         text=True, timeout=1200, env=dict(os.environ, VARSURF_HOSTILE_HANG="120"),
+                         cwd=str(tmp_path))  # calls writing to relative paths ("garbage") write there
     assert run.returncode == 0, (run.returncode, run.stdout[-3000:], run.stderr[-3000:])
     totals = _hostile_totals(run.stdout)
     print("native boundary:", totals)
