@@ -338,7 +338,6 @@ void ConstrainedSolve::Impl::reduce(const std::vector<ConstraintSamples>& blocks
   ro.keep_tolerance = opt.keep_tolerance;
   ro.max_fit_factor = opt.max_fit_factor;
   ro.start_is_minimum = start_is_minimum;
-  ro.energy = &q_ff;
   ro.truncation = (mode == SolveMode::tsvd || mode == SolveMode::mtsvd) ? Truncation::lcurve
                                                                         : Truncation::discrepancy;
   red = reduce_constraints(blocks, free_index, x0, n, ro);
@@ -560,25 +559,10 @@ Eigen::MatrixXd ConstrainedSolve::Impl::solve_penalty(const Eigen::MatrixXd& g,
   double worst = 0.0;
   bool met = true;
   int it = 0;
-  // The refinement steps correct what the first penalty solve left; they reach weak directions
-  // late and dearly. Once correcting has added a tenth to the first fit's energy, it is no
-  // longer a correction: the space holds the rest of the data only by throwing poles (crossing
-  // curves asking slightly different things at one place), so the previous iterate is kept and
-  // what is left reported for a refining caller.
-  auto energy = [&](const Eigen::MatrixXd& y) {
-    return (y.cwiseProduct(q_ff * y)).sum() - 2.0 * (g.cwiseProduct(y)).sum();
-  };
-  const bool judged =
-      opt.fit_tolerance > 0.0 &&
-      std::none_of(block_exact.begin(), block_exact.end(), [](bool e) { return e; });
-  const double start_energy = energy(x);
-  double first_spent = -1.0, last_worst = 0.0;
-  Eigen::MatrixXd last_x = x, last_dk = dk;
   const int max_steps =
       opt.penalty_steps;  // beyond, the space is too coarse: the caller refines it
   for (it = 1; it <= max_steps; ++it) {
     check_keep_going(opt);
-    const Eigen::MatrixXd used_dk = dk;
     const Eigen::MatrixXd next = penalty_step(g + eps * center, dk);
     const double move = (next - x).cwiseAbs().maxCoeff();
     x = next;
@@ -597,20 +581,6 @@ Eigen::MatrixXd ConstrainedSolve::Impl::solve_penalty(const Eigen::MatrixXd& g,
       if (sample_weight[static_cast<size_t>(i)] > 0.0)
         far[b] = std::max(far[b], std::sqrt(r2 / sample_weight[static_cast<size_t>(i)]));
     }
-    if (judged) {
-      const double spent = energy(x) - start_energy;
-      if (it == 1) {
-        first_spent = spent;
-      } else if (first_spent > 0.0 && spent > 1.1 * first_spent) {
-        x = last_x;
-        dk = last_dk;  // a drag's warm start resumes from the kept iterate
-        worst = last_worst;
-        met = false;
-        break;
-      }
-    }
-    last_x = x;
-    last_dk = used_dk;
     met = true;
     bool stalled = true;
     worst = 0.0;
@@ -625,7 +595,6 @@ Eigen::MatrixXd ConstrainedSolve::Impl::solve_penalty(const Eigen::MatrixXd& g,
       if (rms < previous[b] * (1.0 - 1e-3) && rms > 1e-13 * scale) stalled = false;
       previous[b] = rms;
     }
-    last_worst = worst;
     if (met || (stalled && move <= 1e-12 * scale)) break;
     dk += res;
   }

@@ -69,25 +69,6 @@ struct Cluster {
   bool held = false;  // met by the start: kept rows hold the start's values
 };
 
-// v_i^T Q v_i / s_i^2 for the first `count` singular directions of a cluster: the energy that
-// fitting each costs per unit of squared residual it removes (Q restricted to the cluster's
-// columns: the cost with the rest of the sheet held).
-Eigen::VectorXd energy_per_fit(const Eigen::SparseMatrix<double>& q, const std::vector<int>& cols,
-                               const Eigen::MatrixXd& v, const Eigen::VectorXd& s,
-                               Eigen::Index count) {
-  const Eigen::Index n = static_cast<Eigen::Index>(cols.size());
-  Eigen::MatrixXd qcc = Eigen::MatrixXd::Zero(n, n);
-  for (Eigen::Index j = 0; j < n; ++j)
-    for (Eigen::SparseMatrix<double>::InnerIterator it(q, cols[static_cast<size_t>(j)]); it; ++it) {
-      const auto at = std::lower_bound(cols.begin(), cols.end(), static_cast<int>(it.row()));
-      if (at != cols.end() && *at == it.row()) qcc(at - cols.begin(), j) = it.value();
-    }
-  const Eigen::MatrixXd vk = v.leftCols(count);
-  return ((qcc * vk).cwiseProduct(vk).colwise().sum().transpose().array() /
-          s.head(count).array().square())
-      .matrix();
-}
-
 }  // namespace
 
 ReducedConstraints reduce_constraints(const std::vector<ConstraintSamples>& blocks,
@@ -219,19 +200,9 @@ ReducedConstraints reduce_constraints(const std::vector<ConstraintSamples>& bloc
       // <= |data| / (keep_tolerance s_max)), and dropping one that the start happens to meet
       // would let the solve drift off it. Only the weak ones are left to the discrepancy test.
       double residual = cl.start_sq;
-      const bool judged = !cl.exact && opt.fit_tolerance > 0.0;
-      const Eigen::VectorXd cost =
-          judged && opt.energy ? energy_per_fit(*opt.energy, cl.cols, cl.v, cl.s, cl.numeric_rank)
-                               : Eigen::VectorXd();
-      double cost_cap = 0.0;
       while (cl.rank < cl.numeric_rank) {
         const bool strong = cl.s(cl.rank) >= opt.keep_tolerance * cl.s(0);
-        if (!strong && judged && residual <= allowed) break;
-        if (strong && cost.size()) cost_cap = std::max(cost_cap, cost(cl.rank));
-        // Not worth its energy: the space holds this part of the data only by throwing poles.
-        if (!strong && cost.size() &&
-            cost(cl.rank) * opt.keep_tolerance * opt.keep_tolerance > cost_cap)
-          break;
+        if (!strong && !cl.exact && opt.fit_tolerance > 0.0 && residual <= allowed) break;
         residual -= cl.gain.row(cl.rank).squaredNorm();
         ++cl.rank;
       }

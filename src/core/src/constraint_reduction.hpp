@@ -30,11 +30,6 @@ struct ReductionOptions {
   // its data, only its motion from the prepared data (see reduce_constraints).
   bool start_is_minimum = false;
   Truncation truncation = Truncation::discrepancy;
-  // The energy on the free unknowns (free x free), or null. With it, the discrepancy truncation
-  // fits a weak direction only while fitting it costs no more energy per unit of residual removed
-  // than keep_tolerance^-2 times the dearest well-conditioned direction of its cluster (see
-  // reduce_constraints).
-  const Eigen::SparseMatrix<double>* energy = nullptr;
 };
 
 struct ReducedConstraints {
@@ -65,13 +60,6 @@ struct ReducedConstraints {
 // values (fixed.row(k) holds them for free columns too; an RMS distance, since sample weights sum
 // to each constraint's weight), is within fit_tolerance of the best the cluster can reach;
 // directions with singular values of at least keep_tolerance * s_max are kept regardless.
-// A weak direction v (singular value s) is fitted only while its energy per unit of residual it
-// removes, v^T Q v / s^2, is within keep_tolerance^-2 of the dearest kept strong direction's:
-// the generalized singular values of the rows against the energy are held to the same condition
-// bound as the singular values themselves. Near-dependent rows (curves crossing, a curve ending
-// just inside a span) ask for slightly different things; fitting their difference throws poles
-// hundreds of times farther than the data moves. What is left is reported by the fit, and a
-// refining caller adds the detail the space lacks.
 // Directions beyond it are left to the energy instead of being fitted to data the space cannot
 // hold, which is what makes coarse sheets go wild. With start_is_minimum, a cluster whose start
 // residual is already within the fit tolerance (the discrepancy principle's answer: no direction
