@@ -578,13 +578,58 @@ def distance(point, face, uv=None, enough: float = 0.0) -> float:
     best = min(best, face.distToShape(Part.Vertex(point))[0])
     if best <= enough:
         return best
-    try:
-        u, v = face.Surface.parameter(point)
-    except (Part.OCCError, RuntimeError):  # no projection found: distToShape stands
-        return best
-    if _on_face(face, u, v):
-        best = min(best, (face.valueAt(u, v) - point).Length)
+    # BRepExtrema also misses feet near a sphere's pole and on a torus closed around its tube; the
+    # surface's own projections, by Newton (parameter) and by its global extrema, are candidates,
+    # their parameters taken a period back into the face's range where the surface is periodic.
+    start = uv
+    for project in (lambda: face.Surface.parameter(point),
+                    lambda: face.Surface.projectPoint(point, "LowerDistanceParameters")):
+        try:
+            u, v = _into_range(face, *project())
+        except (Part.OCCError, RuntimeError, ValueError):  # no projection found
+            continue
+        if _on_face(face, u, v) and (face.valueAt(u, v) - point).Length < best:
+            best, start = (face.valueAt(u, v) - point).Length, (u, v)
+        if best <= enough:
+            return best
+    # Near a degenerate edge (a sphere's pole) OCCT's projections stop short (7.5e-8 mm where a
+    # point of the face lies 2e-14 away): a derivative-free descent from the best candidate.
+    if start is not None and _on_face(face, *start):
+        best = min(best, _pattern_search(face, point, start))
     return best
+
+
+def _pattern_search(face, point, start) -> float:
+    """Distance from ``point`` to the nearest face point found by compass search from ``start``
+    (steps halved from 1e-3 of the parameter range to 1e-15 of it; only points inside the face)."""
+    u0, u1, v0, v1 = face.ParameterRange
+
+    def gap(u, v):
+        return (face.valueAt(u, v) - point).Length if _on_face(face, u, v) else math.inf
+
+    (u, v), here = start, gap(*start)
+    du, dv = 1e-3 * (u1 - u0), 1e-3 * (v1 - v0)
+    while du > 1e-15 * (u1 - u0):
+        moves = [(u + a * du, v + b * dv) for a in (-1, 0, 1) for b in (-1, 0, 1) if a or b]
+        nearest = min(moves, key=lambda m: gap(*m))
+        if gap(*nearest) < here:
+            (u, v), here = nearest, gap(*nearest)
+        else:
+            du, dv = 0.5 * du, 0.5 * dv
+    return here
+
+
+def _into_range(face, u, v):
+    """(u, v) shifted by whole periods of a periodic surface toward the face's parameter range."""
+    u0, u1, v0, v1 = face.ParameterRange
+    surface = face.Surface
+    if surface.isUPeriodic():
+        period = surface.UPeriod()
+        u += period * math.floor((u1 - u) / period) if u > u1 else period * math.ceil((u0 - u) / period) if u < u0 else 0.0
+    if surface.isVPeriodic():
+        period = surface.VPeriod()
+        v += period * math.floor((v1 - v) / period) if v > v1 else period * math.ceil((v0 - v) / period) if v < v0 else 0.0
+    return u, v
 
 
 def max_distance(points, shape) -> float:
