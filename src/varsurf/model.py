@@ -190,8 +190,40 @@ def shape_from_brep(text: str):
     return shape
 
 
-def _energy(nat, stretch, bend, stretch_tensor, bend_tensor):
-    """The native ThinPlateWeights: isotropic, or from (11, 12, 22) tensors."""
+def _parameter_lengths(surface, samples=12):
+    """Mean |S_u| and |S_v| (mm per unit parameter) of a native surface over its domain, divided
+    by their geometric mean: how much longer a unit of u is than a unit of v.
+
+    The energy integrates over the base's parameters; a cylinder's or a cone's are an angle and a
+    length. Measured in those, scaling the model re-weighted the two directions (a 1 mm and a
+    100 mm scene gave shapes differing by 0.9 % of their size). Weights given per unit of these
+    relative lengths weigh both directions alike in any base; bases whose two parameters have one
+    speed (planes in mm, square [0, 1] B-spline faces) keep their energy exactly. Only the ratio is
+    taken, not the lengths themselves: the energy's overall size, which a Pressure is balanced
+    against, stays what it was for such bases."""
+    space = surface.space
+    u0, u1 = space.knots_u[0], space.knots_u[-1]
+    v0, v1 = space.knots_v[0], space.knots_v[-1]
+    total_u = total_v = 0.0
+    for i in range(samples):
+        u = u0 + (u1 - u0) * (i + 0.5) / samples
+        for j in range(samples):
+            v = v0 + (v1 - v0) * (j + 0.5) / samples
+            rows = surface.derivatives(u, v, 1)
+            total_u += math.sqrt(sum(float(x) ** 2 for x in rows[1]))
+            total_v += math.sqrt(sum(float(x) ** 2 for x in rows[2]))
+    if not (math.isfinite(total_u) and math.isfinite(total_v) and total_u > 0.0 and total_v > 0.0):
+        raise SheetError("the base face's parametrization is degenerate (no length along one direction)")
+    mean = math.sqrt(total_u * total_v)
+    return total_u / mean, total_v / mean
+
+
+def _energy(nat, stretch, bend, stretch_tensor, bend_tensor, lengths=(1.0, 1.0)):
+    """The native ThinPlateWeights: isotropic, or from (11, 12, 22) tensors, per unit of the
+    parameters u * lengths[0], v * lengths[1] (see _parameter_lengths).
+
+    With s = L_u u, t = L_v v: |x_s|^2 ds dt = (L_v / L_u) |x_u|^2 du dv, x_s . x_t ds dt = x_u . x_v
+    du dv, |x_ss|^2 ds dt = L_v / L_u^3 |x_uu|^2 du dv, |x_st|^2 ds dt = |x_uv|^2 / (L_u L_v) du dv."""
     import numpy as np
 
     alpha = float(stretch) * np.eye(2)
@@ -206,6 +238,9 @@ def _energy(nat, stretch, bend, stretch_tensor, bend_tensor):
             alpha = m
         else:
             beta = m
+    lu, lv = lengths
+    alpha = alpha * np.array([[lv / lu, 1.0], [1.0, lu / lv]])
+    beta = beta * np.array([[lv / lu ** 3, 1.0 / (lu * lv)], [1.0 / (lu * lv), lu / lv ** 3]])
     try:
         return nat.ThinPlateWeights(alpha=alpha, beta=beta)
     except nat.InvalidInput as error:
@@ -231,6 +266,20 @@ def _rest_poles_in(rest_surface, space, nat, spans, degree):
 
 def _close(a, b, tol=1e-9):
     return len(a) == len(b) and all(abs(x - y) <= tol * (1.0 + abs(x)) for x, y in zip(a, b))
+
+
+def _canonical_direction(nat, curve):
+    """``curve`` run from the lexicographically smaller of its two end poles (x, then y, then z).
+
+    A curve and its reverse ask the same of the sheet, but the pre-image's adaptive fit samples
+    and splits them differently, and its 1e-7 fit error moved the solved sheet by up to 7e-5 mm
+    between the two; one direction for both makes them the same solve."""
+    poles = curve.poles
+    if not tuple(poles[-1]) < tuple(poles[0]):
+        return curve
+    a, b = curve.knots[0], curve.knots[-1]
+    weights = curve.weights[::-1] if len(curve.weights) else curve.weights
+    return nat.BSplineCurve(curve.degree, [a + b - k for k in reversed(curve.knots)], poles[::-1], weights)
 
 
 def _spans(space) -> int:
@@ -520,7 +569,7 @@ def solve_sheet_on_face(
         if getattr(edge, "ShapeType", None) != "Edge":
             raise SheetError(f"{name} is not an edge")
         try:
-            curve = nat.curve_from_edge_brep(edge.exportBrepToString())
+            curve = _canonical_direction(nat, nat.curve_from_edge_brep(edge.exportBrepToString()))
         except (nat.InvalidInput, nat.GeometryError) as error:
             raise SheetError(f"{name} cannot be converted to a B-spline curve: {error}") from error
         try:
@@ -567,7 +616,7 @@ def solve_sheet_on_face(
         except (nat.InvalidInput, nat.GeometryError, AttributeError) as error:
             raise SheetError(f"the installed rest shape cannot be used: {error}") from error
 
-    energy = _energy(nat, stretch, bend, stretch_tensor, bend_tensor)
+    energy = _energy(nat, stretch, bend, stretch_tensor, bend_tensor, _parameter_lengths(base))
 
     # Pre-images and constraint (u, v) stay valid on every refinement: knot insertion keeps the
     # parametrization.

@@ -56,16 +56,13 @@ ALL_SETS = ("none", "boundary", "edge", "edge-piece", "u-iso", "iso-grid", "free
 #: match marks a case as an expected failure; delete a row when its defect is fixed. Fixed
 #: already: trimmed bases (defect 5), the base's own edges, closed curves across a seam and
 #: curves through an apex (defect 1), curves on rational faces (defect 7), degree 5 and 7 drift
-#: (defect 13), the sphere face read back from STEP (its latitude 4e-13 beyond the pole). The full
-#: sphere and the ring torus were measurement misses (OCCT's projections near a pole and across a
-#: periodic seam), not sheet defects: generated_scenes.distance now finds those feet.
+#: (defect 13), the sphere face read back from STEP (its latitude 4e-13 beyond the pole), scaled
+#: cylinders, cones and fillets (the energy weighs the base's two parameters by their relative
+#: speed, not as an angle against a length), curves reversed as geometry (one direction for both
+#: before projection). The full sphere and the ring torus were measurement misses (OCCT's projections near
+#: a pole and across a periodic seam), not sheet defects: generated_scenes.distance now finds them.
 KNOWN_DEFECTS = [
-    (ids("scale", ("cylinder-partial-a", "cone-partial", "fillet-edge")),
-     "not a listed defect: the thin-plate energy is measured in the base's own parameters; a cylinder's "
-     "or a cone's are an angle and a length, so scaling the model re-weights the two directions (the "
-     "1 mm scene differs by 0.9 % of its size; with the knots normalized it is the same to 2e-13)"),
-    (ids("order", ("bspline-3x3", "bspline-4x3"), ("reversed-curves",))
-     + ids("rigid", ("bspline-4x3",), ("geometry", "location")),
+    (ids("rigid", ("bspline-4x3",), ("geometry", "location")),
      "defect 7: the fit amplifies differences far below the tolerance (a reversed curve's other "
      "samples, a rigid motion's rounding) into 2e-5 to 7e-5 mm"),
 ]
