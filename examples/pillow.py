@@ -20,14 +20,20 @@ import varsurf  # noqa: E402
 V = FreeCAD.Vector
 
 
-def build(doc):
-    """The rim (an ellipse 80 x 50 mm with a 4 mm wave in z), two flat bases and the Solid."""
+def add_rim(doc):
+    """The rim: a closed B-spline through an ellipse 80 x 50 mm with a 4 mm wave in z."""
     rim_points = [V(40 * math.cos(t), 25 * math.sin(t), 4 * math.sin(2 * t))
                   for t in (2 * math.pi * k / 64 for k in range(64))]
     curve = Part.BSplineCurve()
     curve.interpolate(rim_points, PeriodicFlag=True)
     rim = doc.addObject("Part::Feature", "Rim")
     rim.Shape = curve.toShape()
+    return rim
+
+
+def build(doc):
+    """The rim, two flat bases and the Solid."""
+    rim = add_rim(doc)
     sheets = []
     for name, pressure in (("Top", 0.1), ("Bottom", -0.1)):
         base = doc.addObject("Part::Feature", name + "Base")

@@ -3,8 +3,10 @@ what VarSurf reports: the angle between two faces across an edge, and an enclose
 divergence theorem over sampled surfaces."""
 
 import math
+import random
 
 import FreeCAD
+import Part
 
 V = FreeCAD.Vector
 
@@ -107,3 +109,20 @@ def enclosed_volume(shape, order=24):
             face_total += integral if ccw == wire.isSame(outer) else -integral
         total += -face_total if face.Orientation == "Reversed" else face_total
     return total
+
+
+def inside_points(face, count, seed):
+    """Points of `face` (inside its trim), sampled at random over its parameter range."""
+    rng = random.Random(seed)
+    u0, u1, v0, v1 = face.ParameterRange
+    points = []
+    while len(points) < count:
+        u, v = u0 + (u1 - u0) * rng.random(), v0 + (v1 - v0) * rng.random()
+        if face.isPartOfDomain(u, v):
+            points.append(face.valueAt(u, v))
+    return points
+
+
+def farthest(points, shape):
+    """Largest distance from `points` to `shape` (OCCT's distToShape)."""
+    return max(Part.Vertex(p).distToShape(shape)[0] for p in points)

@@ -31,6 +31,8 @@ if FREECAD_LIB not in sys.path:
 import FreeCAD  # noqa: E402  (after HOME)
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
+# The examples are scenes the tests build too.
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "examples"))
 
 
 def pytest_sessionfinish(session, exitstatus):

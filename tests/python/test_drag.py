@@ -80,10 +80,7 @@ def test_cancel_writes_nothing_and_bad_drags_are_refused(sheet):
 
 
 def test_dragging_a_space_curve_handle_moves_the_joined_sheets(doc, native):
-    import sys
-    from pathlib import Path
-
-    sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "examples"))
+        
     import moving_curve
 
     solid, curve = moving_curve.build(doc)

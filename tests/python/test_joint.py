@@ -3,8 +3,6 @@ curve moved by its handle (the moving-curve example, Welch & Witkin Figure 2); S
 round trips, edits, commands and bad inputs."""
 
 import math
-import sys
-from pathlib import Path
 
 import FreeCAD
 import Part
@@ -12,7 +10,6 @@ import pytest
 
 import varsurf
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "examples"))
 import hinge_pair  # noqa: E402
 import moving_curve  # noqa: E402
 import smooth_box  # noqa: E402

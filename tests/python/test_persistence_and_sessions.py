@@ -6,7 +6,6 @@ import json
 import os
 import re
 import subprocess
-import sys
 import zipfile
 from pathlib import Path
 
@@ -21,7 +20,6 @@ from varsurf.persistence import STATE_VERSION
 import scenes
 from scenes import Sel
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "examples"))
 import hinge_pair  # noqa: E402
 
 V = FreeCAD.Vector

@@ -67,10 +67,7 @@ def test_a_cancelled_sheet_is_in_error_and_solves_again(doc, native, cancelling)
 
 
 def test_a_cancelled_joint_solve_leaves_the_solid_in_error(doc, native, cancelling):
-    import sys
-    from pathlib import Path
-
-    sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "examples"))
+        
     import hinge_pair
 
     progress.factory = progress.SolveProgress

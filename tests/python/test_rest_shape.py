@@ -3,8 +3,6 @@
 import math
 
 import FreeCAD
-import Part
-import pytest
 
 import varsurf
 from scenes import add_face, flat_face, poles_of

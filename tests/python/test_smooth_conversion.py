@@ -9,13 +9,13 @@ distToShape from points sampled on each onto the other), the same area (integrat
 """
 
 import math
-import random
 
 import pytest
 
 import Part
 from FreeCAD import Vector
 
+from brep_measure import farthest, inside_points
 from varsurf import model
 
 
@@ -65,21 +65,6 @@ def _check_errors(shape):
     return ""
 
 
-def _inside_points(face, count, seed):
-    rng = random.Random(seed)
-    u0, u1, v0, v1 = face.ParameterRange
-    points = []
-    while len(points) < count:
-        u, v = u0 + (u1 - u0) * rng.random(), v0 + (v1 - v0) * rng.random()
-        if face.isPartOfDomain(u, v):
-            points.append(face.valueAt(u, v))
-    return points
-
-
-def _farthest(points, shape):
-    return max(shape.distToShape(Part.Vertex(p))[0] for p in points)
-
-
 def _area(native, face):
     return native.mass_properties(face.exportBrepToString(), 1e-10)[0]
 
@@ -95,8 +80,8 @@ def test_sheet_on_a_partial_or_trimmed_face_is_the_face_and_passes_the_check(sce
     result = model.solve_sheet_on_face(base, [], rest="base").shape
     assert _check_errors(result) == ""
     size = base.BoundBox.DiagonalLength
-    assert _farthest(_inside_points(result, 30, 1), base) <= 1e-9 * size
-    assert _farthest(_inside_points(base, 30, 2), result) <= 1e-9 * size
+    assert farthest(inside_points(result, 30, 1), base) <= 1e-9 * size
+    assert farthest(inside_points(base, 30, 2), result) <= 1e-9 * size
     assert _area(native, result) == pytest.approx(_area(native, base), rel=1e-9)
     assert len(result.Wires) == len(base.Wires)
 
@@ -112,8 +97,8 @@ def test_whole_faces_are_not_c0(scene, native):
         assert max(mults[1:-1]) < degree
     assert "GeomAbs_C0" not in _check_errors(result)
     size = base.BoundBox.DiagonalLength
-    assert _farthest(_inside_points(result, 30, 1), base) <= 1e-9 * size
-    assert _farthest(_inside_points(base, 30, 2), result) <= 1e-9 * size
+    assert farthest(inside_points(result, 30, 1), base) <= 1e-9 * size
+    assert farthest(inside_points(base, 30, 2), result) <= 1e-9 * size
     assert _area(native, result) == pytest.approx(_area(native, base), rel=1e-9)
 
 

@@ -3,8 +3,6 @@ pillow example, STEP and save/reopen round trips, edits, and bad inputs."""
 
 import itertools
 import math
-import sys
-from pathlib import Path
 
 import FreeCAD
 import Part
@@ -12,7 +10,6 @@ import pytest
 
 import varsurf
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "examples"))
 import brep_measure  # noqa: E402
 import pillow  # noqa: E402
 import rounded_box  # noqa: E402

@@ -10,8 +10,6 @@ pillow, 30 % on the smooth box), which check(True) reports as BOPAlgo_InvalidCur
 The check itself (and why area and volume are integrated adaptively) is in step_check.py.
 """
 
-import sys
-from pathlib import Path
 
 import FreeCAD
 import Part
@@ -20,7 +18,6 @@ import pytest
 import varsurf
 from step_check import assert_reads_back
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "examples"))
 import demo  # noqa: E402
 import freecad_env  # noqa: E402
 import hinge_pair  # noqa: E402

@@ -8,8 +8,6 @@ measured on the B-rep with OCCT's distToShape, not taken from the solver's own r
 """
 
 import math
-import sys
-from pathlib import Path
 
 import FreeCAD
 import Part
@@ -19,7 +17,6 @@ from varsurf import drag, joint, model
 from varsurf import space_curve as space_curves
 from scenes import add_line_sketch, add_vertex
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "examples"))
 import hinge_pair  # noqa: E402
 
 V = FreeCAD.Vector

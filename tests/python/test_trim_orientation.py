@@ -10,7 +10,6 @@ refused with a message naming them. Pressure > 0 inflates every face of a box ou
 """
 
 import math
-import random
 
 import pytest
 
@@ -18,7 +17,9 @@ import FreeCAD
 import Part
 from FreeCAD import Vector
 
+import pillow
 import varsurf
+from brep_measure import farthest, inside_points
 from varsurf import model
 from varsurf.constraints import ConstraintSpec
 
@@ -75,22 +76,6 @@ SCENES = {
 }
 
 
-def _inside_points(face, count, seed):
-    """Points of `face` (inside its trim), sampled at random over its parameter range."""
-    rng = random.Random(seed)
-    u0, u1, v0, v1 = face.ParameterRange
-    points = []
-    while len(points) < count:
-        u, v = u0 + (u1 - u0) * rng.random(), v0 + (v1 - v0) * rng.random()
-        if face.isPartOfDomain(u, v):
-            points.append(face.valueAt(u, v))
-    return points
-
-
-def _farthest(points, shape):
-    return max(Part.Vertex(p).distToShape(shape)[0] for p in points)
-
-
 @pytest.mark.parametrize("scene", list(SCENES))
 def test_sheet_without_curves_is_its_trimmed_base_face(scene, native):
     base = SCENES[scene]()
@@ -104,10 +89,10 @@ def test_sheet_without_curves_is_its_trimmed_base_face(scene, native):
     assert area[1] == pytest.approx(area[0], rel=1e-9)
     assert result.check(True) is None  # raises on any BRepCheck or BOP problem
     assert result.distToShape(base)[0] <= 1e-9 * size
-    assert _farthest(_inside_points(result, 40, 1), base) <= 1e-9 * size
-    assert _farthest(_inside_points(base, 40, 2), result) <= 1e-9 * size
+    assert farthest(inside_points(result, 40, 1), base) <= 1e-9 * size
+    assert farthest(inside_points(base, 40, 2), result) <= 1e-9 * size
     # Both boundaries coincide: every vertex of the base is a vertex of the result.
-    assert _farthest([v.Point for v in base.Vertexes], Part.Compound(result.Vertexes)) <= 1e-7 * size
+    assert farthest([v.Point for v in base.Vertexes], Part.Compound(result.Vertexes)) <= 1e-7 * size
     assert len(result.Wires) == len(base.Wires)
 
 
@@ -120,11 +105,11 @@ def test_converted_surfaces_keep_their_trim(scene, native):
     area = [native.mass_properties(f.exportBrepToString(), 1e-10)[0] for f in (base, result)]
     assert area[1] == pytest.approx(area[0], rel=1e-6)  # measured: 1e-11
     assert result.isValid()
-    assert _farthest(_inside_points(result, 30, 1), base) <= 1e-9 * size
-    assert _farthest(_inside_points(base, 30, 2), result) <= 1e-9 * size
+    assert farthest(inside_points(result, 30, 1), base) <= 1e-9 * size
+    assert farthest(inside_points(base, 30, 2), result) <= 1e-9 * size
     # The boundary is the base's: points along each base edge lie on the result's edges.
     along = [p for e in base.Edges if not e.Degenerated for p in e.discretize(20)]
-    assert _farthest(along, Part.Compound(result.Edges)) <= 1e-7 * size
+    assert farthest(along, Part.Compound(result.Edges)) <= 1e-7 * size
 
 
 def test_curves_over_the_hole_are_refused_and_others_met():
@@ -220,7 +205,7 @@ def test_pressure_inflates_a_reversed_holed_face_outward():
     assert base.Orientation == "Reversed"
     result = model.solve_sheet_on_face(base, [], pressure=0.001, stretch=1.0).shape
     assert result.Orientation == "Reversed" and len(result.Wires) == 2
-    z = [p.z for p in _inside_points(result, 200, 4)]
+    z = [p.z for p in inside_points(result, 200, 4)]
     assert min(z) < -0.05 and max(z) <= 0.01  # measured: -0.11 mm; the rims stay at z = 0 (Tolerance)
     u, v = result.Surface.parameter(Vector(20, 20, 0))
     assert result.normalAt(u, v).z < -0.99
@@ -247,12 +232,7 @@ def test_sheet_feature_on_a_cut_box_keeps_the_hole(doc):
 def test_solid_joins_sheets_on_trimmed_faces(doc):
     """The pillow on two discs (radius 50) instead of rectangles: each Sheet is a trimmed disc, and
     the Solid trims the sheets to their shared rim all the same. Its faces lie on the sheets."""
-    rim_points = [Vector(40 * math.cos(t), 25 * math.sin(t), 4 * math.sin(2 * t))
-                  for t in (2 * math.pi * k / 64 for k in range(64))]
-    curve = Part.BSplineCurve()
-    curve.interpolate(rim_points, PeriodicFlag=True)
-    rim = doc.addObject("Part::Feature", "Rim")
-    rim.Shape = curve.toShape()
+    rim = pillow.add_rim(doc)  # the pillow example's rim
     sheets = []
     for name, pressure in (("Top", 0.1), ("Bottom", -0.1)):
         base = doc.addObject("Part::Feature", name + "Base")
@@ -272,5 +252,5 @@ def test_solid_joins_sheets_on_trimmed_faces(doc):
     assert len(shape.Faces) == 2
     top, bottom = sorted(shape.Faces, key=lambda f: -f.CenterOfMass.z)
     for face, sheet in ((top, sheets[0]), (bottom, sheets[1])):
-        assert _farthest(_inside_points(face, 30, 3), sheet.Shape) <= 1e-6
+        assert farthest(inside_points(face, 30, 3), sheet.Shape) <= 1e-6
         assert face.Area < sheet.Shape.Area  # trimmed to the rim, inside the disc
