@@ -18,9 +18,11 @@ struct SurfacePoint {
 // Bounding boxes of the surface's Bezier patches (their poles' hull holds each patch, rational or
 // not) in a tree pick every patch that may hold a closer point; Newton on the squared distance,
 // kept inside the parameter box (so boundary points count), converges from the best start in each,
-// again from any start nearer than its answer, and from the centres of the patch's quarters and
-// sixteenths whose boxes are still nearer. OCCT's global extremum search is the fallback where
-// Newton does not settle.
+// again from any start nearer than its answer, and from the centres of the patch's quarters, their
+// quarters in turn, as long as a piece's lower bound (its poles' box, and their slab along the
+// direction to the best foot point) leaves room for a nearer point and the piece is not a convex
+// bowl around the best point, up to a budget of pieces per patch. OCCT's global extremum search is
+// the fallback where Newton does not settle.
 class SurfaceInversion {
  public:
   // Throws Standard_Failure as OCCT does (callers wrap it with `guarded`).
