@@ -24,14 +24,13 @@ status=0
 ctest --test-dir build-san --output-on-failure -j2 -R '^core[.]' || status=1
 # OCCT is built without frame pointers: leak stacks through it need the slow unwinder to reach
 # the frames tools/lsan.supp names.
+# One deviation test is left out here: in this clang build one rational face reads 4.9e-5
+# relative above OCCT's 600-sample reference (0.883674 vs 0.883631 mm; the GCC build above is
+# within its 1e-5), and under ASan it takes over four minutes. Whether the reference misses the
+# peak between its samples or the search settles short is not known yet: an open question.
 ASAN_OPTIONS=$ASAN_OPTIONS:fast_unwind_on_malloc=0 \
-  # Two deviation tests fail in this clang build only (the GCC build above passes them): on one
-  # random folded face the closest-point search misses (0.16 where 1.7e-7 is allowed), and one
-  # rational face is over-reported by 5e-5 relative. A known, open defect of the search; the
-  # rest of the bridge runs here.
   ctest --test-dir build-san --output-on-failure -j2 -R '^occ[.]' \
-    -E '^occ[.]MaxDeviation[.](IsZeroForTheOwnEdgesOfFoldedFaces|AgreesWithOcctsDistanceOnRationalNonUniformFaces)$' \
-    || status=1
+  -E '^occ[.]MaxDeviation[.]AgreesWithOcctsDistanceOnRationalNonUniformFaces$' || status=1
 
 # Both harnesses at once (one core each). One input may take up to a minute: the bridge's
 # deviation measurement needs ~15 s on the wildest random degree-6 faces (OCCT's global
