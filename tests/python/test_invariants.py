@@ -45,11 +45,6 @@ SHORT_CUT = 0.1
 SPANS = dict(min_spans=model.DEFAULT_MIN_SPANS, max_spans=model.DEFAULT_MIN_SPANS)
 
 
-def ids(prefix, names, kinds=("*",)):
-    """Case-id patterns: prefix/name/kind for every name and kind."""
-    return tuple(f"{prefix}/{name}/{kind}" for name in names for kind in kinds)
-
-
 #: Cases failing because of a known defect: (case-id patterns (fnmatch), the defect). The first
 #: match marks a case as an expected failure; delete a row when its defect is fixed. None is
 #: left. Fixed: trimmed bases (defect 5), the base's own edges, closed curves across a seam and

@@ -147,21 +147,16 @@ constexpr double kRelative = 1e-7;
 
 double SurfaceInversion::Parts::lower_bound(const Handle(Geom_BezierSurface) & piece,
                                             const gp_XYZ& p, const SurfacePoint& best) const {
-  Box box;
+  const double from_box = std::sqrt(box_of(piece).square_distance(p));
+  if (!(std::isfinite(best.distance) && best.distance > 1e-12 * scale)) return from_box;
+  const gp_XYZ n = (p - adaptor.Value(best.u, best.v).XYZ()) / best.distance;
   double low = std::numeric_limits<double>::infinity(), high = -low;
-  const bool slab = std::isfinite(best.distance) && best.distance > 1e-12 * scale;
-  gp_XYZ n(0.0, 0.0, 0.0);
-  if (slab) n = (p - adaptor.Value(best.u, best.v).XYZ()) / best.distance;
   for (int a = 1; a <= piece->NbUPoles(); ++a)
     for (int b = 1; b <= piece->NbVPoles(); ++b) {
-      const gp_XYZ pole = piece->Pole(a, b).XYZ();
-      box.add(pole);
-      const double along = n.Dot(p - pole);
+      const double along = n.Dot(p - piece->Pole(a, b).XYZ());
       low = std::min(low, along);
       high = std::max(high, along);
     }
-  const double from_box = std::sqrt(box.square_distance(p));
-  if (!slab) return from_box;
   const double from_slab = low > 0.0 ? low : high < 0.0 ? -high : 0.0;
   return std::max(from_box, from_slab);
 }
