@@ -7,6 +7,9 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 FUZZ_SECONDS=${FUZZ_SECONDS:-60}
+# A fixed seed makes one commit's fuzzing repeatable (CI); FUZZ_SEED=0 draws a new one each run,
+# for exploring (a finding goes into tests/fuzz/corpus/ as a regression input).
+FUZZ_SEED=${FUZZ_SEED:-1}
 
 # RelWithDebInfo: optimized like the shipped build (the sanitizers check every access anyway; a
 # Debug build ran the C++ tests about 5x slower, too slow for CI on two cores).
@@ -42,7 +45,7 @@ fuzz() {
   shift
   mkdir -p "$corpus"
   build-san/tests/fuzz/fuzz_$harness -max_total_time="$FUZZ_SECONDS" -timeout=60 -rss_limit_mb=3000 \
-    -print_final_stats=1 -artifact_prefix=build-san/fuzz_$harness- "$@" \
+    -seed="$FUZZ_SEED" -print_final_stats=1 -artifact_prefix=build-san/fuzz_$harness- "$@" \
     "$corpus" "tests/fuzz/corpus/${harness%%_*}" > "build-san/fuzz_$harness.log" 2>&1
 }
 fuzz core_solver & core=$!

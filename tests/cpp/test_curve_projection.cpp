@@ -317,6 +317,21 @@ TEST(BoundaryCurves, CircleTouchingTheBoundary) {
   EXPECT_LT(sheet_moves(base, {target}), 1e-9);
 }
 
+// A fit tolerance beyond the domain (found by the fuzzer as 1e300) made every fit's error
+// overflow; the projection then evaluated a curve it never fitted.
+TEST(ProjectionOptions, FitToleranceOutsideTheDomainIsRefused) {
+  const BSplineSurface base = occ::surface_from_face(interpolated_face());
+  const BSplineCurve target = occ::curve_from_edge(
+      BRepBuilderAPI_MakeEdge(gp_Pnt(5, 5, 0), gp_Pnt(60, 50, 0)).Edge());
+  occ::ProjectionOptions opt;
+  for (double bad : {0.0, -1e-6, 0.5, 1e300, double(INFINITY), double(NAN)}) {
+    opt.fit_tolerance = bad;
+    EXPECT_THROW(occ::project_curve(base, target, opt), InvalidInput) << bad;
+  }
+  opt.fit_tolerance = 0.1;
+  EXPECT_NO_THROW(occ::project_curve(base, target, opt));
+}
+
 // A picked vertex or point of a boundary edge is placed exactly on the boundary.
 TEST(BoundaryPoints, VerticesAndEdgePointsLandExactlyOnTheBoundary) {
   const BSplineSurface base = occ::surface_from_face(interpolated_face());

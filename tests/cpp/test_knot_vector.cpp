@@ -98,6 +98,9 @@ TEST(KnotVector, RejectsBadKnotVectors) {
   EXPECT_THROW(validate_knots({0, 0, 0, .5, .5, .5, 1, 1, 1}, 2, 6, "t"), InvalidInput);
   EXPECT_THROW(flat_knots({0.0, 1.0}, {2}), InvalidInput);
   EXPECT_THROW(find_span(uniform_clamped_knots(3, 4), 3, NAN), InvalidInput);
+  // An empty spline (default-constructed) and a knot vector too short for its degree.
+  EXPECT_THROW(find_span({}, 3, 0.5), InvalidInput);
+  EXPECT_THROW(find_span({0, 0, 1, 1}, 3, 0.5), InvalidInput);
 }
 
 TEST(GaussLegendre, IntegratesPolynomialsExactly) {

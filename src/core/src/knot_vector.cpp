@@ -72,6 +72,9 @@ void validate_knots(const std::vector<double>& k, int degree, int pole_count, co
 int find_span(const std::vector<double>& k, int degree, double t) {
   // A NaN would fall through every comparison and index outside the knot vector.
   if (!std::isfinite(t)) throw InvalidInput("parameter value is not finite");
+  // An empty (default-constructed) spline would index before its knot vector.
+  if (degree < 1 || k.size() < 2 * static_cast<size_t>(degree) + 2)
+    throw InvalidInput("evaluating a spline whose knot vector is too short for its degree");
   const int n = static_cast<int>(k.size()) - degree - 2;  // index of last pole
   if (t >= k[static_cast<size_t>(n + 1)]) return n;
   if (t <= k[static_cast<size_t>(degree)]) {

@@ -471,8 +471,10 @@ PreImage project_curve(const BSplineSurface& base, const BSplineCurve& target,
       options.samples_per_span > 10000 || options.min_samples < 2 || options.min_samples > 1000000)
     throw InvalidInput("projection: sample counts out of range");
   if (!(options.tolerance >= 0.0) || !std::isfinite(options.tolerance) ||
-      !(options.fit_tolerance > 0.0) || !std::isfinite(options.fit_tolerance))
-    throw InvalidInput("projection: tolerances must be finite, fit_tolerance positive");
+      !(options.fit_tolerance > 0.0) || !(options.fit_tolerance <= 0.1))
+    throw InvalidInput(
+        "projection: tolerance must be finite and not negative, fit_tolerance in (0, 0.1] "
+        "(a fraction of the sheet's parameter domain)");
   if (options.degree < 1 || options.degree > 9)
     throw InvalidInput("projection: pre-image degree must be in 1..9");
   if (options.max_poles < 4) throw InvalidInput("projection: max_poles must be at least 4");
@@ -616,6 +618,9 @@ PreImage project_curve(const BSplineSurface& base, const BSplineCurve& target,
     if (breaks.poles() + static_cast<int>(inserts.size()) > options.max_poles) break;
     for (double t : inserts) breaks.add(t, degree - 1);
   }
+  // No fit with a finite error: the samples (or the sheet's domain) overflow the arithmetic.
+  if (curve.pole_count() == 0)
+    throw InvalidInput("projection: no pre-image fit has a finite error (coordinates too large)");
 
   // Poles within the snap margin of a bound go onto it: where the samples run along the
   // boundary, the fit's rounding would otherwise leave the pre-image a hair off it (see
