@@ -1,7 +1,9 @@
-// Curves on the base face's own boundary: their pre-images are the boundary exactly (not a
-// rounding error inside it), closed faces' seams are entered from the right side, and a sheet
-// through its base's boundary edges, with the boundary kept and the base as rest shape, is the
-// base. The faces and edges are built as a modeller builds them: primitives and their own edges.
+// Curves projected onto sheets: known pre-images recovered across knot lines and a cylinder's C0
+// knots, curves above or beyond a sheet or across its seam, and bad input. Curves on the base
+// face's own boundary: their pre-images are the boundary exactly (not a rounding error inside it),
+// closed faces' seams are entered from the right side, and a sheet through its base's boundary
+// edges, with the boundary kept and the base as rest shape, is the base. The faces and edges are
+// built as a modeller builds them: primitives and their own edges.
 #include <gtest/gtest.h>
 #include <BRepAdaptor_Surface.hxx>
 #include <BRepBuilderAPI_MakeEdge.hxx>
@@ -18,13 +20,18 @@
 #include <TColgp_Array2OfPnt.hxx>
 #include <TopExp_Explorer.hxx>
 #include <TopoDS.hxx>
+#include <gp_Circ.hxx>
+#include <gp_Cylinder.hxx>
 #include <gp_Pln.hxx>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
 
+#include "occ_test_support.hpp"
 #include "test_support.hpp"
+#include "varsurf/core/constraints.hpp"
 #include "varsurf/core/errors.hpp"
 #include "varsurf/core/sheet_solver.hpp"
 #include "varsurf/core/spline_space.hpp"
@@ -321,8 +328,8 @@ TEST(BoundaryCurves, CircleTouchingTheBoundary) {
 // overflow; the projection then evaluated a curve it never fitted.
 TEST(ProjectionOptions, FitToleranceOutsideTheDomainIsRefused) {
   const BSplineSurface base = occ::surface_from_face(interpolated_face());
-  const BSplineCurve target = occ::curve_from_edge(
-      BRepBuilderAPI_MakeEdge(gp_Pnt(5, 5, 0), gp_Pnt(60, 50, 0)).Edge());
+  const BSplineCurve target =
+      occ::curve_from_edge(BRepBuilderAPI_MakeEdge(gp_Pnt(5, 5, 0), gp_Pnt(60, 50, 0)).Edge());
   occ::ProjectionOptions opt;
   for (double bad : {0.0, -1e-6, 0.5, 1e300, double(INFINITY), double(NAN)}) {
     opt.fit_tolerance = bad;
@@ -344,6 +351,138 @@ TEST(BoundaryPoints, VerticesAndEdgePointsLandExactlyOnTheBoundary) {
   EXPECT_NEAR(side.v, 0.3, 1e-9);
   const occ::PointOnSheet inside = occ::project_point(base, base.evaluate(1.0 - 1e-4, 0.3));
   EXPECT_NEAR(inside.u, 1.0 - 1e-4, 1e-12);
+}
+
+// On a curved sheet, the target is the image of a known straight pre-image crossing knot lines;
+// D = S o c0 is a polynomial of degree 6 between crossings, so the target is exact.
+TEST(ProjectCurve, RecoversTheParameterOfACurveOnTheSheet) {
+  const BSplineSurface sheet = test::curved_sheet();
+  const double t0 = 0.5, t1 = 2.5;
+  auto c0 = [&](double t) {
+    const double s = (t - t0) / (t1 - t0);
+    return Eigen::Vector2d(0.05 + 0.9 * s, 0.15 + 0.7 * s);
+  };
+  // Knot-line crossings: u = 1/3, 2/3 and v = 1/2.
+  std::vector<double> breaks = {t0, t1};
+  for (double u : {1.0 / 3.0, 2.0 / 3.0}) breaks.push_back(t0 + (t1 - t0) * (u - 0.05) / 0.9);
+  breaks.push_back(t0 + (t1 - t0) * (0.5 - 0.15) / 0.7);
+  std::sort(breaks.begin(), breaks.end());
+  const BSplineCurve target = test::fit_piecewise_curve(breaks, 6, 3, [&](double t) {
+    const Eigen::Vector2d uv = c0(t);
+    return Eigen::VectorXd(sheet.evaluate(uv(0), uv(1)));
+  });
+
+  const occ::PreImage pre = occ::project_curve(sheet, target);
+  EXPECT_EQ(pre.curve.dim(), 2);
+  EXPECT_EQ(pre.curve.first(), t0);
+  EXPECT_EQ(pre.curve.last(), t1);
+  EXPECT_LT(pre.max_distance, 1e-10);
+  EXPECT_LT(pre.fit_error, 1e-8);
+  double worst = 0.0, worst_uv = 0.0;
+  for (int k = 0; k <= 1000; ++k) {
+    const double t = t0 + (t1 - t0) * k / 1000.0;
+    const Eigen::Vector2d uv = pre.curve.evaluate(t);
+    worst = std::max(worst,
+                     (sheet.evaluate(uv(0), uv(1)) - Eigen::Vector3d(target.evaluate(t))).norm());
+    worst_uv = std::max(worst_uv, (uv - c0(t)).norm());
+  }
+  EXPECT_LT(worst, 1e-8);
+  EXPECT_LT(worst_uv, 1e-8);
+  // The solver's own view of the constraint agrees.
+  const CurveConstraint cc{pre.curve, target, 1.0};
+  EXPECT_LT(incidence_error(sheet.space, sheet.poles, cc, 500), 1e-8);
+}
+
+TEST(ProjectCurve, CurveAboveAPlaneProjectsAtItsHeight) {
+  const BSplineSurface sheet = test::plane_sheet(10.0);
+  Eigen::VectorXd a(3), b(3);
+  a << 1, 2, 4;
+  b << 9, 7, 4;
+  const BSplineCurve target = test::line_curve(a, b, -1.0, 3.0);
+  const occ::PreImage pre = occ::project_curve(sheet, target);
+  EXPECT_NEAR(pre.max_distance, 4.0, 1e-12);
+  EXPECT_EQ(pre.curve.first(), -1.0);
+  EXPECT_EQ(pre.curve.last(), 3.0);
+  EXPECT_LT((Eigen::Vector2d(pre.curve.evaluate(-1.0)) - Eigen::Vector2d(0.1, 0.2)).norm(), 1e-12);
+  EXPECT_LT((Eigen::Vector2d(pre.curve.evaluate(1.0)) - Eigen::Vector2d(0.5, 0.45)).norm(), 1e-10);
+}
+
+TEST(ProjectCurve, CurveFromEdgeToEdgeStaysInsideTheDomain) {
+  const BSplineSurface sheet = test::plane_sheet(10.0);
+  Eigen::VectorXd a(3), b(3);
+  a << 0, 3, 0;
+  b << 10, 3, 0;
+  const occ::PreImage pre = occ::project_curve(sheet, test::line_curve(a, b));
+  EXPECT_LT(pre.max_distance, 1e-12);
+  for (int i = 0; i < pre.curve.pole_count(); ++i) {
+    EXPECT_GE(pre.curve.poles(i, 0), 0.0);
+    EXPECT_LE(pre.curve.poles(i, 0), 1.0);
+  }
+  EXPECT_NEAR(pre.curve.evaluate(0.0)(0), 0.0, 1e-15);
+  EXPECT_NEAR(pre.curve.evaluate(1.0)(0), 1.0, 1e-15);
+}
+
+TEST(ProjectCurve, CurveBeyondTheFaceThrows) {
+  const BSplineSurface sheet = test::plane_sheet(10.0);
+  Eigen::VectorXd a(3), b(3);
+  a << 5, 5, 1;
+  b << 15, 5, 1;
+  try {
+    occ::project_curve(sheet, test::line_curve(a, b));
+    FAIL() << "no exception";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("leaves the face"), std::string::npos) << e.what();
+  }
+}
+
+// The cylinder's NURBS form has C0 knot lines (double knots of a quadratic); the pre-image of an
+// arc crossing them has kinks there, which must become breakpoints for the fit to converge.
+TEST(ProjectCurve, ArcAroundACylinderConvergesWithFewPoles) {
+  BRepBuilderAPI_MakeFace maker(gp_Cylinder(gp::XOY(), 2.0), 0.0, 2 * M_PI, 0.0, 5.0);
+  const BSplineSurface sheet = occ::surface_from_face(maker.Face());
+  BRepBuilderAPI_MakeEdge arc(gp_Circ(gp_Ax2(gp_Pnt(0, 0, 2), gp::DZ()), 3.0), 0.2, 6.0);
+  const BSplineCurve target = occ::curve_from_edge(arc.Edge());
+  const occ::PreImage pre = occ::project_curve(sheet, target);
+  EXPECT_NEAR(pre.max_distance, 1.0, 1e-12);
+  EXPECT_LT(pre.fit_error, 1e-7 * 2 * M_PI);
+  EXPECT_LT(pre.curve.pole_count(), 60);
+  EXPECT_EQ(pre.curve.first(), target.first());
+  EXPECT_EQ(pre.curve.last(), target.last());
+  for (int k = 0; k <= 200; ++k) {
+    const double t = target.first() + (target.last() - target.first()) * k / 200.0;
+    const Eigen::Vector2d uv = pre.curve.evaluate(t);
+    const Eigen::Vector3d d = target.evaluate(t);
+    // The foot point of (x, y, 2) on the cylinder is 2/3 of the way out, at the same height.
+    EXPECT_LT(
+        (sheet.evaluate(uv(0), uv(1)) - Eigen::Vector3d(d.x() * 2 / 3, d.y() * 2 / 3, 2)).norm(),
+        1e-5);
+  }
+}
+
+TEST(ProjectCurve, CrossingTheSeamOfAClosedSheetThrows) {
+  BRepBuilderAPI_MakeFace maker(gp_Cylinder(gp::XOY(), 2.0), 0.0, 2 * M_PI, 0.0, 5.0);
+  const BSplineSurface sheet = occ::surface_from_face(maker.Face());
+  BRepBuilderAPI_MakeEdge arc(gp_Circ(gp_Ax2(gp_Pnt(0, 0, 2), gp::DZ()), 3.0), 3.0, 4.0 + M_PI);
+  try {
+    occ::project_curve(sheet, occ::curve_from_edge(arc.Edge()));
+    FAIL() << "no exception";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("jumps"), std::string::npos) << e.what();
+  }
+}
+
+TEST(ProjectCurve, RejectsBadInput) {
+  const BSplineSurface sheet = test::plane_sheet(10.0);
+  BSplineCurve flat = test::line_curve(Eigen::Vector2d(0, 0), Eigen::Vector2d(1, 1));
+  EXPECT_THROW(occ::project_curve(sheet, flat), InvalidInput);  // 2D target
+  Eigen::VectorXd a(3), b(3);
+  a << 1, 1, std::nan("");
+  b << 2, 2, 0;
+  EXPECT_THROW(occ::project_curve(sheet, test::line_curve(a, b)), InvalidInput);
+  BSplineSurface broken = sheet;
+  broken.poles(0, 0) = INFINITY;
+  a << 1, 1, 0;
+  EXPECT_THROW(occ::project_curve(broken, test::line_curve(a, b)), InvalidInput);
 }
 
 }  // namespace

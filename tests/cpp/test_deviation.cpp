@@ -1,6 +1,7 @@
 // The deviation of a curve from a sheet, checked against OCCT's own distance (BRepExtrema, as the
 // distToShape of FreeCAD measures it) densely along the curve and against analytic distances, on
-// rational, non-uniform, periodic and high-degree surfaces, and on curves that wiggle.
+// rational, non-uniform, periodic and high-degree surfaces, and on curves that wiggle; too few
+// samples and an empty curve are refused.
 #include <gtest/gtest.h>
 #include <BRepBuilderAPI_MakeFace.hxx>
 #include <BRepBuilderAPI_MakeVertex.hxx>
@@ -34,6 +35,9 @@
 #include <random>
 #include <vector>
 
+#include "occ_test_support.hpp"
+#include "test_support.hpp"
+#include "varsurf/core/errors.hpp"
 #include "varsurf/occ/deviation.hpp"
 #include "varsurf/occ/geom_convert.hpp"
 #include "varsurf/occ/surface_inversion.hpp"
@@ -349,6 +353,31 @@ TEST(SurfaceInversion, FindsTheGlobalClosestPointFromAnyStart) {
     EXPECT_NEAR(found.distance, reference.Value(), 1e-7) << k;
     EXPECT_NEAR(geom->Value(found.u, found.v).Distance(p), found.distance, 1e-9);
   }
+}
+
+TEST(MaxDeviation, CurveAtAKnownOffsetFromAPlane) {
+  const BSplineSurface sheet = test::plane_sheet(10.0, 1.0);
+  Eigen::VectorXd a(3), b(3);
+  a << 1, 1, 3.5;
+  b << 8, 9, 3.5;
+  EXPECT_NEAR(occ::max_deviation(sheet, test::line_curve(a, b), 50), 2.5, 1e-9);
+  // Beyond the boundary the closest point is on the edge x = 10.
+  a << 5, 5, 1;
+  b << 15, 5, 1;
+  EXPECT_NEAR(occ::max_deviation(sheet, test::line_curve(a, b), 51), 5.0, 1e-9);
+  // On the sheet.
+  a << 0, 0, 1;
+  b << 10, 7, 1;
+  EXPECT_LT(occ::max_deviation(sheet, test::line_curve(a, b), 51), 1e-9);
+}
+
+TEST(MaxDeviation, RejectsBadInput) {
+  const BSplineSurface sheet = test::plane_sheet(10.0);
+  Eigen::VectorXd a(3), b(3);
+  a << 1, 1, 0;
+  b << 2, 2, 0;
+  EXPECT_THROW(occ::max_deviation(sheet, test::line_curve(a, b), 1), InvalidInput);
+  EXPECT_THROW(occ::max_deviation(sheet, BSplineCurve(), 10), InvalidInput);
 }
 
 }  // namespace

@@ -1,13 +1,16 @@
 // STEP exchange of sheets that meet within a tolerance: a pillow whose top dome waves 1e-4 above
 // the shared rim. OCCT's reader re-derives edge tolerances from samples; the written file must
 // read back with tolerances that cover what OCCT's curve-on-surface check (the one its Boolean
-// operations run) measures, and with the analytic volume.
+// operations run) measures, and with the analytic volume. A single face's round trip keeps its
+// area; unreadable paths and null shapes are refused.
 #include <gtest/gtest.h>
 #include <TopoDS_Edge.hxx>
 #include <TopoDS_Face.hxx>
 // (after the shapes it takes)
+#include <BRepGProp.hxx>
 #include <BRepLib_CheckCurveOnSurface.hxx>
 #include <BRep_Tool.hxx>
+#include <GProp_GProps.hxx>
 #include <Geom2dConvert.hxx>
 #include <Geom2d_Circle.hxx>
 #include <Geom2d_TrimmedCurve.hxx>
@@ -33,17 +36,23 @@
 #include <sstream>
 #include <string>
 
+#include "occ_test_support.hpp"
 #include "test_support.hpp"
 #include "varsurf/core/errors.hpp"
 #include "varsurf/occ/exchange_edges.hpp"
+#include "varsurf/occ/face_builder.hpp"
 #include "varsurf/occ/geom_convert.hpp"
 #include "varsurf/occ/mass_properties.hpp"
+#include "varsurf/occ/occ_error.hpp"
+#include "varsurf/occ/shape_check.hpp"
 #include "varsurf/occ/shell_builder.hpp"
 #include "varsurf/occ/step_io.hpp"
 
 using namespace varsurf;
 
 namespace {
+
+using occ::GeometryError;
 
 constexpr double kHalf = 1.2;   // the sheets span [-1.2, 1.2]^2
 constexpr double kWave = 1e-4;  // the top dome's height over the rim: kWave sin(3 theta)
@@ -213,4 +222,31 @@ TEST(MassProperties, PillowOfTwoDomesHasTheAnalyticAreaAndVolume) {
   EXPECT_THROW(occ::mass_properties(TopoDS_Shape()), InvalidInput);
   EXPECT_THROW(occ::mass_properties(pillow(0.0).shape, 0.0), InvalidInput);
   EXPECT_THROW(occ::mass_properties(pillow(0.0).shape, std::nan("")), InvalidInput);
+}
+
+TEST(StepIo, RoundTripKeepsTheArea) {
+  const TopoDS_Face face = occ::make_face(test::curved_sheet());
+  GProp_GProps before, after;
+  BRepGProp::SurfaceProperties(face, before);
+  const std::string path =
+      ::testing::TempDir() + "varsurf_step_" + std::to_string(::getpid()) + ".step";
+  occ::write_step(face, path);
+  const TopoDS_Shape back = occ::read_step(path);
+  std::remove(path.c_str());
+  ASSERT_FALSE(back.IsNull());
+  int faces = 0;
+  for (TopExp_Explorer ex(back, TopAbs_FACE); ex.More(); ex.Next()) ++faces;
+  EXPECT_EQ(faces, 1);
+  BRepGProp::SurfaceProperties(back, after);
+  EXPECT_GT(before.Mass(), 1.0);
+  EXPECT_NEAR(after.Mass() / before.Mass(), 1.0, 1e-6);
+  EXPECT_TRUE(occ::check_shape(back).valid);
+}
+
+TEST(StepIo, ReportsBadPathsAndShapes) {
+  EXPECT_THROW(occ::read_step("/nonexistent/dir/file.step"), GeometryError);
+  EXPECT_THROW(occ::read_step(""), InvalidInput);
+  EXPECT_THROW(occ::write_step(TopoDS_Shape(), "/tmp/x.step"), InvalidInput);
+  const TopoDS_Face face = occ::make_face(test::curved_sheet());
+  EXPECT_THROW(occ::write_step(face, "/nonexistent/dir/file.step"), GeometryError);
 }
