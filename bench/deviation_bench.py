@@ -23,10 +23,11 @@ sys.path.append("/usr/lib/freecad-python3/lib")
 import FreeCAD  # noqa: E402
 import Part  # noqa: E402
 
-from varsurf import model  # noqa: E402
+from varsurf.solve.native import native
+from varsurf.solve.sheet import solve_sheet_on_face
 
 V = FreeCAD.Vector
-nat = model.native()
+nat = native()
 
 
 def timed(f, *args):
@@ -97,7 +98,7 @@ def fine_sheet():
          for s in (i / 500 for i in range(501))]
     )
     edge = curve.toShape()
-    outcome = model.solve_sheet_on_face(Part.makePlane(100, 100), [edge])
+    outcome = solve_sheet_on_face(Part.makePlane(100, 100), [edge])
     target = brep(edge, False)
     print(f"poles {outcome.pole_count_u} x {outcome.pole_count_v}")
     print(f"{'samples':>7} {'max_deviation (mm)':>19} {'time (s)':>9}")

@@ -185,7 +185,7 @@ def _fairness(face, n=60):
 def filling_comparison():
     FreeCAD, Part = _freecad()
     V = FreeCAD.Vector
-    from varsurf import model
+    from varsurf.solve.sheet import solve_sheet_on_face
 
     print("\n## 2. VarSurf against FreeCAD's Surface Filling (GeomPlate), same curves, same run\n")
     print("| case | VarSurf ms | Filling ms | time ratio | VarSurf max dev mm | Filling max dev mm | dev ratio "
@@ -202,7 +202,7 @@ def filling_comparison():
         edges = boundary + inner
         base = _flat_square(Part, V)
         t = time.perf_counter()
-        ours = model.solve_sheet_on_face(base, edges, fix_boundary=False, tolerance=tolerance)
+        ours = solve_sheet_on_face(base, edges, fix_boundary=False, tolerance=tolerance)
         ours_s = time.perf_counter() - t
         objs = []
         for k, e in enumerate(edges):
@@ -259,7 +259,7 @@ def drag_scene():
 def live_drag(moves=60):
     print("\n## 5. Live drag: a 64 x 64 pole Sheet through 10 curves, one Point dragged\n")
     FreeCAD, _Part = _freecad()
-    from varsurf import drag
+    from varsurf.app import drag
 
     V = FreeCAD.Vector
     began = time.perf_counter()

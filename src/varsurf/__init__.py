@@ -1,6 +1,8 @@
 """VarSurf: variational B-spline surface modeling for FreeCAD.
 
-App-side public API (importable headless, without any GUI module):
+The package has one folder per tier: ``varsurf.solve`` (the computation, without FreeCAD),
+``varsurf.app`` (document features and the scripting API, headless) and ``varsurf.gui``. The
+public API (importable headless, without any GUI module):
 
     make_sheet(base, curves, stretch=0.0, bend=1.0, fix_boundary=True)  -> Sheet object
     make_constraint(sheet, kind, location=None, uv=None, vector=None, ...) -> Constraint object
@@ -11,40 +13,101 @@ App-side public API (importable headless, without any GUI module):
     install_rest_shape(sheet), melt(sheet)                              -> sheet
     export_step(objects, path)                                           -> path
     selection_to_sheet_args(selection_ex)                                -> (base, curves)
-    solve_sheet_on_face(face, edges, ...)                                -> SheetOutcome
-    solve_sheet_from_curves(edges, ...)                                  -> SheetOutcome
+    solve_sheet_on_face(face, edges, settings, ...)                      -> SheetOutcome
+    solve_sheet_from_curves(edges, settings, ...)                        -> SheetOutcome
+    SheetSettings(stretch=..., tolerance=..., ...)                       a sheet's settings
 """
+
+import importlib
+import importlib.abc
+import importlib.util
+import sys
 
 __version__ = "0.1.0"
 
-from varsurf.model import (  # noqa: E402
+from varsurf.solve.errors import SheetError  # noqa: E402
+from varsurf.solve.outcome import SheetOutcome  # noqa: E402
+from varsurf.solve.plane_fit import plane_face_for_curves  # noqa: E402
+from varsurf.solve.settings import (  # noqa: E402
     DEFAULT_BEND,
-    DEFAULT_RANK_TOLERANCE,
-    DEFAULT_TOLERANCE,
-    DEFAULT_MIN_SPANS,
     DEFAULT_MAX_SPANS,
+    DEFAULT_MIN_SPANS,
+    DEFAULT_RANK_TOLERANCE,
     DEFAULT_STRETCH,
-    SheetError,
-    SheetOutcome,
-    solve_sheet_on_face,
-    solve_sheet_from_curves,
-    plane_face_for_curves,
+    DEFAULT_TOLERANCE,
+    SheetSettings,
+)
+from varsurf.solve.sheet import solve_sheet_from_curves, solve_sheet_on_face  # noqa: E402
+
+#: Modules of earlier releases, now elsewhere: scripts and recorded macros that import them (for
+#: instance ``import varsurf.analysis`` before ``varsurf.analysis.plot_lcurve(...)``) keep working.
+#: An old name with several new homes gets a module that looks its names up in each, in order.
+MOVED = {
+    "varsurf.model": ("varsurf.solve.sheet", "varsurf.solve.settings", "varsurf.solve.errors",
+                      "varsurf.solve.native", "varsurf.solve.outcome", "varsurf.solve.plane_fit"),
+    "varsurf.constraints": ("varsurf.solve.constraints",),
+    "varsurf.assembly": ("varsurf.solve.assembly",),
+    "varsurf.joint": ("varsurf.solve.joint",),
+    "varsurf.space_curve": ("varsurf.solve.space_curve", "varsurf.solve.shapes"),
+    "varsurf.analysis": ("varsurf.app.analysis", "varsurf.solve.analysis"),
+    "varsurf.persistence": ("varsurf.app.persistence",),
+    "varsurf.api": ("varsurf.app.api", "varsurf.app.macro", "varsurf.app.actions"),
+    "varsurf.joints_api": ("varsurf.app.api", "varsurf.app.actions"),
+    "varsurf.drag": ("varsurf.app.drag",),
+    "varsurf.progress": ("varsurf.app.progress",),
+    "varsurf.preferences": ("varsurf.app.preferences",),
+}
+
+
+class _Moved(importlib.abc.Loader):
+    """Loads an old module name as its new module, or as a module looking names up in several."""
+
+    def create_module(self, spec):
+        homes = [importlib.import_module(name) for name in MOVED[spec.name]]
+        if len(homes) == 1:
+            return homes[0]
+        module = type(sys)(spec.name, homes[0].__doc__)
+
+        def find(name):
+            for home in homes:
+                if hasattr(home, name):
+                    return getattr(home, name)
+            raise AttributeError(f"module {spec.name!r} has no attribute {name!r}")
+
+        module.__getattr__ = find
+        return module
+
+    def exec_module(self, module):
+        pass
+
+
+class _MovedFinder(importlib.abc.MetaPathFinder):
+    def find_spec(self, fullname, path=None, target=None):
+        if fullname in MOVED:
+            return importlib.util.spec_from_loader(fullname, _Moved())
+        return None
+
+
+if not any(isinstance(f, _MovedFinder) for f in sys.meta_path):
+    sys.meta_path.insert(0, _MovedFinder())
+
+
+#: The document-level API (varsurf.app.api), which needs FreeCAD.
+APP_API = (
+    "make_sheet", "make_constraint", "make_solid", "install_rest_shape", "melt", "export_step",
+    "make_space_curve", "make_hinge", "move_handle", "selection_to_sheet_args", "selection_problem",
+    "create_sheet_from_selection", "sheet_command_lines", "is_sheet", "run_sheet_command",
+    "run_space_curve_command", "run_hinge_command",
 )
 
 
 def __getattr__(name):
-    # The document-level API needs FreeCAD; load it on first use so that `import varsurf` also
-    # works where only the native extension and the math are wanted.
-    if name in ("make_sheet", "make_constraint", "make_solid", "install_rest_shape", "melt", "export_step", "selection_to_sheet_args", "selection_problem",
-                "create_sheet_from_selection", "sheet_command_lines", "is_sheet",
-                "run_sheet_command"):
-        from varsurf import api
+    if name in APP_API:
+        # Loaded on first use, so that `import varsurf` also works where only the native
+        # extension and the math are wanted (no FreeCAD).
+        from varsurf.app import api
 
         return getattr(api, name)
-    if name in ("make_space_curve", "make_hinge", "move_handle", "run_space_curve_command", "run_hinge_command"):
-        from varsurf import joints_api
-
-        return getattr(joints_api, name)
     raise AttributeError(f"module 'varsurf' has no attribute {name!r}")
 
 
@@ -58,6 +121,7 @@ __all__ = [
     "DEFAULT_STRETCH",
     "SheetError",
     "SheetOutcome",
+    "SheetSettings",
     "solve_sheet_on_face",
     "solve_sheet_from_curves",
     "plane_face_for_curves",

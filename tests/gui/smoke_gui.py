@@ -349,7 +349,7 @@ def run(result):
     result["rest_commands"] = rest
 
     # 4f. FreeCAD's progress indicator during a solve (shown at once here: no delay)
-    from varsurf import progress
+    from varsurf.app import progress
 
     shown = []
 
@@ -494,7 +494,7 @@ def every_constraint_command(result, doc, sheet, surface, rail):
     """Each constraint command on a selection prepared for its kind: active, creates one
     constraint of that kind in one undoable step (undone again)."""
     import varsurf.gui.commands as commands
-    from varsurf import constraints
+    from varsurf.solve import constraints
 
     vertex = doc.addObject("Part::Vertex", "PickedPoint")
     face = sheet.Shape.Faces[0]

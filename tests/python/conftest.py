@@ -47,9 +47,9 @@ def home():
 @pytest.fixture(scope="session")
 def native():
     """The compiled extension; the tests that need it fail loudly without a build."""
-    from varsurf import model
+    from varsurf.solve.native import native
 
-    return model.native()
+    return native()
 
 
 @pytest.fixture

@@ -6,7 +6,8 @@ import math
 import Part
 import pytest
 
-from varsurf import analysis
+from varsurf.app import analysis as sheet_analysis
+from varsurf.solve import analysis
 from scenes import railed_sheet
 
 
@@ -22,7 +23,7 @@ def test_curvature_of_a_sphere():
 
 def test_deviation_from_the_base_is_the_height(doc, native):
     sheet = railed_sheet(doc)  # flat base at z = 0, a rail 5 mm up
-    base = analysis.reference_of(sheet)
+    base = sheet_analysis.reference_of(sheet)
     grid = analysis.analyse(sheet.Shape, "Deviation", reference=base, n=20)
     assert max(abs(v - p[2]) for v, p in zip(grid.values, grid.points)) < 1e-7
     assert grid.range[1] > 4.9  # the sheet reaches the rail
@@ -52,11 +53,11 @@ def test_zebra_stripes_and_bad_requests(doc, native):
 def test_l_curve_plot_marks_the_corner(doc, native, tmp_path):
     sheet = railed_sheet(doc)
     with pytest.raises(ValueError, match="no L-curve"):
-        analysis.plot_lcurve(sheet, str(tmp_path / "none.png"))
+        sheet_analysis.plot_lcurve(sheet, str(tmp_path / "none.png"))
     sheet.SolveMode = "TSVD"
     doc.recompute()
     assert sheet.isValid(), sheet.getStatusString()
-    path = analysis.plot_lcurve(sheet, str(tmp_path / "lcurve.png"))
+    path = sheet_analysis.plot_lcurve(sheet, str(tmp_path / "lcurve.png"))
     from PySide2 import QtGui  # noqa: F401  (Qt reads the PNG back: a real picture)
 
     image = QtGui.QImage(path)

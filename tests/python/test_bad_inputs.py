@@ -11,7 +11,8 @@ import Part
 import pytest
 
 import varsurf
-from varsurf import api, preferences
+from varsurf.app import actions
+from varsurf.app import preferences
 
 import scenes
 
@@ -339,7 +340,7 @@ def case_cyclic_through_another(sc):
 
 def case_empty_selection(sc):
     shown = []
-    assert api.run_sheet_command([], on_error=shown.append) is None
+    assert actions.run_sheet_command([], on_error=shown.append) is None
     return None, shown + ["Select exactly one face"], None
 
 

@@ -13,7 +13,8 @@ import Part
 import pytest
 
 import varsurf
-from varsurf import model
+from varsurf.solve import errors, settings
+from varsurf.solve.sheet import solve_sheet_on_face
 
 V = FreeCAD.Vector
 #: Relative to the base face's size: the result must be the base to rounding.
@@ -46,7 +47,7 @@ def assert_is_face(result, face, curves=(), area=True):
 
 def solve(face, edges, **options):
     options.setdefault("rest", "base")
-    out = model.solve_sheet_on_face(face, edges, **options)
+    out = solve_sheet_on_face(face, edges, **options)
     size = face.BoundBox.DiagonalLength
     assert max(out.max_deviations) <= SAME * size, out.max_deviations
     return out
@@ -176,10 +177,10 @@ def test_curve_off_a_kept_boundary_is_refused_by_name(native):
     plane = Part.makePlane(100, 60)
     raised = plane.Edges[1].copy()
     raised.translate(V(0, 0, 5))
-    with pytest.raises(model.SheetError, match=r"Raised is 5 mm from the base face .* kept boundary"):
-        model.solve_sheet_on_face(plane, [raised], names=["Raised"])
-    out = model.solve_sheet_on_face(plane, [raised], fix_boundary=False)
-    assert max(out.max_deviations) <= model.DEFAULT_TOLERANCE
+    with pytest.raises(errors.SheetError, match=r"Raised is 5 mm from the base face .* kept boundary"):
+        solve_sheet_on_face(plane, [raised], names=["Raised"])
+    out = solve_sheet_on_face(plane, [raised], fix_boundary=False)
+    assert max(out.max_deviations) <= settings.DEFAULT_TOLERANCE
 
 
 def test_circle_across_a_cylinders_seam_is_refused_with_the_cause(native):
@@ -187,8 +188,8 @@ def test_circle_across_a_cylinders_seam_is_refused_with_the_cause(native):
     pre-image would have to run on both sides of the seam; the message says so."""
     lateral = Part.makeCylinder(20, 50).Faces[0]
     circle = Part.makeCircle(20, V(0, 0, 25), V(0, 0, 1), 90, 450)
-    with pytest.raises(model.SheetError, match=r"Ring goes around the closed base face across its seam.*split the curve"):
-        model.solve_sheet_on_face(lateral, [circle], names=["Ring"])
+    with pytest.raises(errors.SheetError, match=r"Ring goes around the closed base face across its seam.*split the curve"):
+        solve_sheet_on_face(lateral, [circle], names=["Ring"])
 
 
 def test_all_edges_of_a_tilted_cylinder(native):

@@ -4,7 +4,8 @@ import FreeCAD
 import pytest
 
 import varsurf
-from varsurf import api, constraints
+from varsurf.app import actions, macro, selection
+from varsurf.solve import constraints
 from scenes import Sel, add_face, add_line_sketch, flat_face
 
 
@@ -19,13 +20,13 @@ def sheet(doc, native):
     return s
 
 
-@pytest.mark.parametrize("kind", [k for k in constraints.KINDS if k not in api.VERTEX_KINDS
+@pytest.mark.parametrize("kind", [k for k in constraints.KINDS if k not in selection.VERTEX_KINDS
                                   and k not in constraints.CURVE_KINDS and k not in constraints.SHAPE_KINDS
                                   and k != "G0"])
 def test_every_kind_from_a_selected_sheet(sheet, kind):
     doc = sheet.Document
     lines = []
-    c = api.run_constraint_command(kind, [Sel(sheet, "Face1")], do_command=lambda l: (lines.append(l), api._exec_line(l)))
+    c = actions.run_constraint_command(kind, [Sel(sheet, "Face1")], do_command=lambda l: (lines.append(l), macro.exec_line(l)))
     assert c is not None and c.Kind == kind
     assert c in sheet.Constraints
     assert any("varsurf.make_constraint(" in l and repr(kind) in l for l in lines), lines
@@ -48,7 +49,7 @@ def test_point_from_a_sheet_and_a_vertex(sheet):
     pin = doc.addObject("Part::Vertex", "Pin")
     pin.X, pin.Y, pin.Z = 60.0, 50.0, 9.0
     doc.recompute()
-    c = api.run_constraint_command("Point", [Sel(sheet), Sel(pin, "Vertex1")])
+    c = actions.run_constraint_command("Point", [Sel(sheet), Sel(pin, "Vertex1")])
     assert c is not None and c.Location[0] == pin
     assert sheet.ConstraintResiduals[0] < 1e-6
 
@@ -62,7 +63,7 @@ def test_point_from_a_whole_point_object(sheet):
     point = doc.addObject("Part::Feature", "Point")
     point.Shape = Part.Vertex(FreeCAD.Vector(60.0, 50.0, 9.0))
     doc.recompute()
-    c = api.run_constraint_command("Point", [Sel(sheet), Sel(point)])
+    c = actions.run_constraint_command("Point", [Sel(sheet), Sel(point)])
     assert c is not None and c.Location[0] == point
     assert sheet.isValid(), sheet.getStatusString()
     assert sheet.ConstraintResiduals[0] < 1e-6
@@ -81,7 +82,7 @@ def test_bad_selections_create_nothing(sheet, selection, text, console_errors):
     doc.recompute()
     before = len(doc.Objects)
     messages = []
-    c = api.run_constraint_command("Point", selection(sheet, pin), on_error=messages.append)
+    c = actions.run_constraint_command("Point", selection(sheet, pin), on_error=messages.append)
     assert c is None and len(doc.Objects) == before
     assert text in messages[0]
     assert text in console_errors()
@@ -97,14 +98,14 @@ def test_g1_from_a_sheet_an_edge_and_a_face(sheet):
     face.Shape = Part.makePlane(30, 40, FreeCAD.Vector(60, 20, 0))
     doc.recompute()
     lines = []
-    c = api.run_constraint_command("G1", [Sel(sheet), Sel(seam, "Edge1"), Sel(face, "Face1")],
-                                   do_command=lambda l: (lines.append(l), api._exec_line(l)))
+    c = actions.run_constraint_command("G1", [Sel(sheet), Sel(seam, "Edge1"), Sel(face, "Face1")],
+                                   do_command=lambda l: (lines.append(l), macro.exec_line(l)))
     assert c is not None and c.Kind == "G1" and c.Curve[0] == seam and c.Reference[0] == face
     assert any("curve=" in l and "reference=" in l for l in lines), lines
     assert sheet.isValid(), sheet.getStatusString()
     assert sheet.ConstraintResiduals[0] < 1.0
     messages = []
-    assert api.run_constraint_command("G1", [Sel(sheet), Sel(seam, "Edge1")], on_error=messages.append) is None
+    assert actions.run_constraint_command("G1", [Sel(sheet), Sel(seam, "Edge1")], on_error=messages.append) is None
     assert "exactly one edge and one face" in messages[0]
 
 
@@ -149,8 +150,8 @@ def test_kinds_that_take_edges_and_faces(sheet, kind, picks, expect):
     doc = sheet.Document
     o = _scene(doc)
     lines = []
-    c = api.run_constraint_command(kind, [Sel(sheet)] + picks(o),
-                                   do_command=lambda l: (lines.append(l), api._exec_line(l)))
+    c = actions.run_constraint_command(kind, [Sel(sheet)] + picks(o),
+                                   do_command=lambda l: (lines.append(l), macro.exec_line(l)))
     assert c is not None and c.Kind == kind
     for prop, label in dict(curve="Curve", reference="Reference", region_loop="RegionLoop").items():
         link = getattr(c, label)
@@ -177,6 +178,6 @@ def test_bad_selections_of_edge_and_face_kinds(sheet, kind, picks, text):
     o = _scene(doc)
     before = len(doc.Objects)
     messages = []
-    assert api.run_constraint_command(kind, [Sel(sheet)] + picks(o), on_error=messages.append) is None
+    assert actions.run_constraint_command(kind, [Sel(sheet)] + picks(o), on_error=messages.append) is None
     assert len(doc.Objects) == before
     assert text in messages[0], messages

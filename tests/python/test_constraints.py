@@ -8,7 +8,7 @@ import Part
 import pytest
 
 import varsurf
-from varsurf import constraints
+from varsurf.solve import constraints
 import brep_measure
 from scenes import add_vertex, poles_of, railed_sheet, residual_of
 

@@ -13,14 +13,16 @@ import FreeCAD
 import Part
 import pytest
 
-from varsurf import model
+from varsurf.solve import settings
+from varsurf.solve.native import native
+from varsurf.solve.sheet import solve_sheet_on_face
 
 V = FreeCAD.Vector
 
 
 @pytest.fixture(scope="module")
 def nat():
-    return model.native()
+    return native()
 
 
 def sheet_of(nat, face):
@@ -223,7 +225,7 @@ def test_wiggly_curves_through_a_sheet(nat, waves, amplitude):
     from the result (it said 13.9 mm where the truth was 0.00092 mm, and under-reported a 5-wave
     curve by 12 %), whatever the sample count, and no false figure refines the sheet."""
     edge = wavy_curve(waves, amplitude)
-    outcome = model.solve_sheet_on_face(Part.makePlane(100, 60), [edge], fix_boundary=False)
+    outcome = solve_sheet_on_face(Part.makePlane(100, 60), [edge], fix_boundary=False)
     face = outcome.shape.Faces[0]
     # On ShapeAnalysis' foot points alone (distToShape misses and is slow on such a sheet).
     reference = independent_max(face, edge, samples=300, refined=4, shape_distance=False)
@@ -231,7 +233,7 @@ def test_wiggly_curves_through_a_sheet(nat, waves, amplitude):
     for samples in (37, 2001):
         measured = nat.max_deviation(outcome.surface, target_of(nat, edge), samples)
         assert measured == pytest.approx(reference, rel=1e-4)
-    assert outcome.max_deviations[0] <= model.DEFAULT_TOLERANCE
+    assert outcome.max_deviations[0] <= settings.DEFAULT_TOLERANCE
     assert max(outcome.pole_count_u, outcome.pole_count_v) < 67
 
 
@@ -262,7 +264,7 @@ def test_sample_count_on_a_finely_divided_sheet(nat):
          for s in (i / 500 for i in range(501))]
     )
     edge = edge.toShape()
-    outcome = model.solve_sheet_on_face(Part.makePlane(100, 100), [edge])
+    outcome = solve_sheet_on_face(Part.makePlane(100, 100), [edge])
     face = outcome.shape.Faces[0]
     reference = independent_max(face, edge, samples=200, refined=4, shape_distance=False)
     assert outcome.max_deviations[0] == pytest.approx(reference, rel=1e-4)

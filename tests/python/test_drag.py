@@ -8,7 +8,7 @@ import Part
 import pytest
 
 import varsurf
-from varsurf import drag
+from varsurf.app import drag
 from varsurf.app import sheet as sheet_feature
 from scenes import add_vertex, railed_sheet
 
@@ -123,7 +123,7 @@ def test_dragging_an_attractor_origin_re_solves_its_sheet(sheet):
     recorded = []
 
     def record(line):  # what FreeCADGui.doCommand does: run the line, and a macro keeps it
-        from varsurf.api import _exec_line
+        from varsurf.app.macro import exec_line as _exec_line
 
         recorded.append(line)
         _exec_line(line)

@@ -8,7 +8,7 @@ import Part
 import pytest
 
 import varsurf
-from varsurf import constraints
+from varsurf.solve import constraints
 from scenes import add_shape, add_vertex, poles_of, railed_sheet
 
 V = FreeCAD.Vector

@@ -5,7 +5,8 @@ import Part
 import pytest
 
 import varsurf
-from varsurf import model
+from varsurf.solve import errors, settings
+from varsurf.solve.sheet import solve_sheet_from_curves
 
 V = FreeCAD.Vector
 
@@ -34,7 +35,7 @@ def test_sheet_from_a_saddle_frame_meets_it_and_respects_its_symmetry(doc, nativ
     doc.recompute()
     assert sheet.isValid(), sheet.getStatusString()
     assert len(sheet.MaxDeviations) == 4
-    assert max(sheet.MaxDeviations) <= model.DEFAULT_TOLERANCE, list(sheet.MaxDeviations)
+    assert max(sheet.MaxDeviations) <= settings.DEFAULT_TOLERANCE, list(sheet.MaxDeviations)
     face = sheet.Shape.Faces[0]
     assert face.isValid()
     # The frame is antisymmetric under x -> 100 - x (z -> -z), so the fair sheet is too: zero at
@@ -76,14 +77,14 @@ def test_chosen_degree_and_span_count(doc, native, degree, spans):
     assert (sheet.DegreeU, sheet.DegreeV) == (degree, degree)
     # The frame's straight edges are met on any span count, so the spans are not doubled.
     assert (sheet.PoleCountU, sheet.PoleCountV) == (spans + degree, spans + degree)
-    assert max(sheet.MaxDeviations) <= model.DEFAULT_TOLERANCE, list(sheet.MaxDeviations)
+    assert max(sheet.MaxDeviations) <= settings.DEFAULT_TOLERANCE, list(sheet.MaxDeviations)
     surface = sheet.Shape.Faces[0].Surface
     assert (surface.UDegree, surface.VDegree) == (degree, degree)
 
 
 def test_degree_out_of_range_is_refused(doc, native):
     obj = frame(doc)
-    with pytest.raises(model.SheetError, match="Degree must be an integer in 2..9"):
-        model.solve_sheet_from_curves(list(obj.Shape.Edges), degree=1)
+    with pytest.raises(errors.SheetError, match="Degree must be an integer in 2..9"):
+        solve_sheet_from_curves(list(obj.Shape.Edges), degree=1)
     sheet = varsurf.make_sheet(None, [obj], degree=40)
-    assert sheet.Degree == model.MAX_DEGREE  # the property clamps to its range
+    assert sheet.Degree == settings.MAX_DEGREE  # the property clamps to its range

@@ -66,7 +66,7 @@ def test_report_view_shows_only_the_provoked_errors(smoke):
     lines = smoke["report_view_at_end"]
     failures = _failures(lines)
     # every exception is VarSurf's own error of a named object (no AttributeError, TypeError ...)
-    assert failures and all(cls in ("varsurf.app.sheet.SheetComputeError", "varsurf.model.SheetError")
+    assert failures and all(cls in ("varsurf.app.sheet.SheetComputeError", "varsurf.solve.errors.SheetError")
                             for _cause, cls in failures), failures
     assert all(" VarSurf: " in cause for cause, _cls in failures), failures
     # and each is one of the errors the run provokes on purpose; the hinge's is there
@@ -119,7 +119,7 @@ def test_screenshot_is_not_blank(smoke):
 
 
 def test_constraint_commands_work_in_the_gui(smoke):
-    from varsurf import constraints
+    from varsurf.solve import constraints
 
     assert len(smoke["constraint_commands"]) == len(constraints.KINDS), smoke["constraint_commands"]
     assert smoke["normal_active"]
@@ -185,12 +185,12 @@ def test_preferences_page_binds_the_defaults(smoke):
     assert smoke["preference_entries"] == {"degreeSpin": "Degree", "minSpansSpin": "MinSpans", "bendSpin": "Bend",
                                            "toleranceSpin": "Tolerance", "solveModeCombo": "SolveMode",
                                            "timeLimitSpin": "SolveTimeLimit", "memoryLimitSpin": "SolveMemoryLimit"}
-    from varsurf import preferences
+    from varsurf.app import preferences
 
     assert {"SolveTimeLimit", "SolveMemoryLimit"} <= set(preferences._ENTRIES)  # read back by the solve
-    from varsurf import model
+    from varsurf.solve import settings
 
-    assert smoke["preference_modes"] == list(model.SOLVE_MODES)  # the stored index means a mode
+    assert smoke["preference_modes"] == list(settings.SOLVE_MODES)  # the stored index means a mode
 
 
 def test_sheet_panel_edits_space_mode_and_rest_shape(smoke):
@@ -234,7 +234,7 @@ def test_progress_indicator_shows_during_a_solve(smoke):
 
 
 def test_every_constraint_command_on_a_prepared_selection(smoke):
-    from varsurf import constraints
+    from varsurf.solve import constraints
 
     outcome = smoke["every_constraint_command"]
     assert sorted(outcome) == sorted(constraints.KINDS)

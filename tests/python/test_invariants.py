@@ -32,7 +32,8 @@ import FreeCAD
 import pytest
 
 import generated_scenes as scenes
-from varsurf import model
+from varsurf.solve import settings
+from varsurf.solve.sheet import solve_sheet_on_face
 
 #: The result is the base face to this fraction of its size.
 ON_BASE = 1e-9
@@ -42,7 +43,7 @@ SAME = 1e-3
 #: further search (generated_scenes.distance); the measured figure stays an upper bound.
 SHORT_CUT = 0.1
 #: No spans are added: the base face meets every curve already (scenes 1) or at MinSpans (2).
-SPANS = dict(min_spans=model.DEFAULT_MIN_SPANS, max_spans=model.DEFAULT_MIN_SPANS)
+SPANS = dict(min_spans=settings.DEFAULT_MIN_SPANS, max_spans=settings.DEFAULT_MIN_SPANS)
 
 
 #: Cases failing because of a known defect: (case-id patterns (fnmatch), the defect). The first
@@ -68,7 +69,7 @@ def case(case_id, *values):
 
 def tolerance_of(shape) -> float:
     """The tolerance a new Sheet gets for a model of this size."""
-    return model.tolerance_for_size(scenes.size_of(shape))
+    return settings.tolerance_for_size(scenes.size_of(shape))
 
 
 def assert_curves_on(face, edges):
@@ -83,13 +84,13 @@ def solve(face, edges, tolerance=None, **options):
     """The sheet over ``face`` through ``edges``, the base as rest shape (the Sheet's default), at
     the tolerance a new Sheet gets unless one is given."""
     tolerance = tolerance_of(face) if tolerance is None else tolerance
-    return model.solve_sheet_on_face(face, edges, rest="base", tolerance=tolerance, **SPANS, **options)
+    return solve_sheet_on_face(face, edges, rest="base", tolerance=tolerance, **SPANS, **options)
 
 
 # --------------------------------------------------------------------------------------------
 # 1. curves on the base return the base
 
-IDENTITY = [case(f"on-base/{name}/{kind}", name, kind, model.SHEET_MIN_DEGREE)
+IDENTITY = [case(f"on-base/{name}/{kind}", name, kind, settings.SHEET_MIN_DEGREE)
             for name in scenes.FACES for kind in scenes.CURVE_SETS]
 # Higher sheet degrees on a few bases: the elevation is exact, so must the sheet be.
 IDENTITY += [case(f"on-base-degree{degree}/{name}/{kind}", name, kind, degree)

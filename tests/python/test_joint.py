@@ -153,7 +153,7 @@ def test_moving_a_handle_moves_the_curve_and_both_joined_sheets(doc, native, tmp
 
 def test_commands_make_space_curves_and_hinges(doc, native):
     from scenes import Sel
-    from varsurf import api, joints_api
+    from varsurf.app import actions, macro, selection
 
     solid = hinge_pair.build(doc, 120.0)
     doc.UndoMode = 1
@@ -161,26 +161,26 @@ def test_commands_make_space_curves_and_hinges(doc, native):
 
     def run(line):
         lines.append(line)
-        api._exec_line(line)
+        macro.exec_line(line)
 
     seam = doc.getObject("Seam")
-    c = joints_api.run_space_curve_command([Sel(seam, "Edge1")], do_command=run)
+    c = actions.run_space_curve_command([Sel(seam, "Edge1")], do_command=run)
     assert c is not None and c.isValid() and any("make_space_curve" in l for l in lines)
     left, right = solid.Sheets
-    h = joints_api.run_hinge_command([Sel(left), Sel(right), Sel(seam, "Edge1")], do_command=run)
+    h = actions.run_hinge_command([Sel(left), Sel(right), Sel(seam, "Edge1")], do_command=run)
     assert h is not None and h in solid.Hinges and any("make_hinge" in l for l in lines)
     # From the Solid's edge between its two faces: the same sheets and curve.
     mid = seam.Shape.Edges[0].valueAt(0.5 * (seam.Shape.Edges[0].FirstParameter + seam.Shape.Edges[0].LastParameter))
     edge = min(range(len(solid.Shape.Edges)),
                key=lambda i: solid.Shape.Edges[i].distToShape(Part.Vertex(mid))[0])
-    args = joints_api.hinge_selection_to_args([Sel(solid, f"Edge{edge + 1}")])
+    args = selection.hinge_selection_to_args([Sel(solid, f"Edge{edge + 1}")])
     assert args[0] is solid and {args[1], args[2]} == {left, right} and args[3] == (seam, "Edge1")
     n = len(doc.Objects)
     doc.undo()
     assert len(doc.Objects) == n - 1
     errors = []
-    assert joints_api.run_hinge_command([Sel(left)], on_error=errors.append) is None
-    assert joints_api.run_space_curve_command([Sel(left)], on_error=errors.append) is None
+    assert actions.run_hinge_command([Sel(left)], on_error=errors.append) is None
+    assert actions.run_space_curve_command([Sel(left)], on_error=errors.append) is None
     assert len(errors) == 2 and "Select" in errors[0]
 
 

@@ -66,7 +66,7 @@ def test_manual_regions_and_bad_settings(two_sheets, console_errors):
 def test_refined_spans_are_reported_and_outlined(two_sheets):
     import Part
 
-    from varsurf import analysis
+    from varsurf.solve import analysis
 
     uniform, local = two_sheets
     spans = list(local.RefinedSpans)

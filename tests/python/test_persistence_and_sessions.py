@@ -14,8 +14,8 @@ import Part
 import pytest
 
 import varsurf
-from varsurf import api, joints_api
-from varsurf.persistence import STATE_VERSION
+from varsurf.app import actions, macro, selection, transaction
+from varsurf.app.persistence import STATE_VERSION
 
 import scenes
 from scenes import Sel
@@ -294,9 +294,9 @@ def _undo_scene(doc):
 def _constraint_picks(kind, sheet, pin, o):
     from test_constraint_commands import LOOP_EDGES
 
-    from varsurf import constraints
+    from varsurf.solve import constraints
 
-    if kind in api.VERTEX_KINDS:
+    if kind in selection.VERTEX_KINDS:
         return [Sel(sheet), Sel(pin, "Vertex1")]
     special = {"Ribbon": [Sel(o.seam, "Edge1")], "CurveAttractor": [Sel(o.second, "Edge1")],
                "G0": [Sel(o.second, "Edge1")], "G1": [Sel(o.second, "Edge1"), Sel(o.flat, "Face1")],
@@ -310,17 +310,17 @@ def _constraint_picks(kind, sheet, pin, o):
 
 def _commands(doc, surface, rail, pin, sheet, o):
     """(name, run) for every document-changing command, as its GUI command runs it."""
-    from varsurf import constraints
+    from varsurf.solve import constraints
 
-    run = api._exec_line
-    out = [("Sheet", lambda: api.run_sheet_command([Sel(surface, "Face1"), Sel(rail, "Edge1")], do_command=run))]
+    run = macro.exec_line
+    out = [("Sheet", lambda: actions.run_sheet_command([Sel(surface, "Face1"), Sel(rail, "Edge1")], do_command=run))]
     for kind in constraints.KINDS:
         picks = _constraint_picks(kind, sheet, pin, o)
-        out.append((kind, lambda kind=kind, picks=picks: api.run_constraint_command(kind, picks, do_command=run)))
+        out.append((kind, lambda kind=kind, picks=picks: actions.run_constraint_command(kind, picks, do_command=run)))
     for function in ("install_rest_shape", "melt"):
-        lines = ["import varsurf", f"varsurf.{function}({api._ref(sheet)})"]
-        out.append((function, lambda lines=lines, f=function: api.run_in_transaction(doc, f"VarSurf {f}", lines, run)))
-    out.append(("SpaceCurve", lambda: joints_api.run_space_curve_command([Sel(o.second, "Edge1")], do_command=run)))
+        lines = ["import varsurf", f"varsurf.{function}({macro.ref(sheet)})"]
+        out.append((function, lambda lines=lines, f=function: transaction.run_in_transaction(doc, f"VarSurf {f}", lines, run)))
+    out.append(("SpaceCurve", lambda: actions.run_space_curve_command([Sel(o.second, "Edge1")], do_command=run)))
     return out
 
 
@@ -349,12 +349,12 @@ def test_undo_and_redo_of_joining_and_hinging(doc, native):
     for obj in [o for o in doc.Objects if o.TypeId == "App::FeaturePython" and "Hinge" in o.Name] + [solid]:
         doc.removeObject(obj.Name)
     doc.recompute()
-    run = api._exec_line
+    run = macro.exec_line
     before = snapshot(doc)
-    made = api.run_solid_command([Sel(s) for s in sheets], do_command=run)
+    made = actions.run_solid_command([Sel(s) for s in sheets], do_command=run)
     assert made is not None and made.isValid(), made and made.getStatusString()
     after_solid = snapshot(doc)
-    hinge = joints_api.run_hinge_command([Sel(sheets[0]), Sel(sheets[1]), Sel(seam, "Edge1")], do_command=run,
+    hinge = actions.run_hinge_command([Sel(sheets[0]), Sel(sheets[1]), Sel(seam, "Edge1")], do_command=run,
                                          angle=120.0)
     assert hinge is not None
     after_hinge = snapshot(doc)
@@ -479,7 +479,7 @@ def test_soak_of_drag_and_recompute_cycles_keeps_memory_flat(doc, native):
     memory after the warm-up and at the end differ by less than 5 %."""
     import gc
 
-    from varsurf import drag
+    from varsurf.app import drag
 
     base = scenes.add_face(doc, scenes.flat_face(), "Base")
     rail = doc.addObject("Part::Feature", "Rail")

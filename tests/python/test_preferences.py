@@ -3,7 +3,8 @@
 import pytest
 
 import varsurf
-from varsurf import model, preferences
+from varsurf.solve import settings
+from varsurf.app import preferences
 from scenes import add_face, flat_face
 
 
@@ -21,14 +22,14 @@ def test_new_sheets_take_the_preferences(doc, native, prefs):
     base = add_face(doc, flat_face())
     built_in = varsurf.make_sheet((base, "Face1"), name="BuiltIn")
     assert (built_in.Degree, built_in.MinSpans, built_in.Bend, built_in.SolveMode) == (
-        model.SHEET_MIN_DEGREE, model.DEFAULT_MIN_SPANS, model.DEFAULT_BEND, "Automatic")
+        settings.SHEET_MIN_DEGREE, settings.DEFAULT_MIN_SPANS, settings.DEFAULT_BEND, "Automatic")
     prefs.SetInt("Degree", 5)
     prefs.SetInt("MinSpans", 8)
     prefs.SetInt("MaxSpans", 32)
     prefs.SetFloat("Stretch", 0.25)
     prefs.SetFloat("Bend", 2.0)
     prefs.SetFloat("Tolerance", 0.002)
-    prefs.SetInt("SolveMode", model.SOLVE_MODES.index("MTSVD"))
+    prefs.SetInt("SolveMode", settings.SOLVE_MODES.index("MTSVD"))
     s = varsurf.make_sheet((base, "Face1"), name="Preferred")
     assert (s.Degree, s.MinSpans, s.MaxSpans, s.Stretch, s.Bend, s.SolveMode) == (5, 8, 32, 0.25, 2.0, "MTSVD")
     assert abs(float(s.Tolerance) - 0.002) < 1e-12
@@ -43,7 +44,7 @@ def test_new_sheets_take_the_preferences(doc, native, prefs):
     prefs.SetInt("SolveMode", 99)
     bad = varsurf.make_sheet((base, "Face1"), name="Fallback")
     assert (bad.Degree, float(bad.Tolerance), bad.SolveMode) == (
-        model.SHEET_MIN_DEGREE, model.DEFAULT_TOLERANCE, "Automatic")
+        settings.SHEET_MIN_DEGREE, settings.DEFAULT_TOLERANCE, "Automatic")
     with pytest.raises(ValueError, match="solve_mode"):
         varsurf.make_sheet((base, "Face1"), solve_mode="Magic")
 
@@ -55,5 +56,5 @@ def test_without_a_stored_tolerance_it_follows_the_model_size(doc, native, prefs
     sizes = {o.Name: float(varsurf.make_sheet((o, "Face1"), name=f"S{o.Name}").Tolerance)
              for o in (small, usual, large)}
     assert sizes == {"Small": 0.001, "Usual": 0.01, "Large": 0.1}, sizes
-    assert model.tolerance_for_size(250.0) == 0.02 and model.tolerance_for_size(600.0) == 0.05
-    assert model.tolerance_for_size(float("nan")) == model.DEFAULT_TOLERANCE
+    assert settings.tolerance_for_size(250.0) == 0.02 and settings.tolerance_for_size(600.0) == 0.05
+    assert settings.tolerance_for_size(float("nan")) == settings.DEFAULT_TOLERANCE

@@ -3,7 +3,7 @@ with a clear message and changes nothing else; the next recompute solves again."
 
 import pytest
 
-from varsurf import progress
+from varsurf.app import progress
 from scenes import railed_sheet
 
 

@@ -12,7 +12,7 @@ import FreeCAD
 import Part
 import pytest
 
-from varsurf import model
+from varsurf.solve.sheet import solve_sheet_on_face
 
 V = FreeCAD.Vector
 MODES = ("Automatic", "Exact", "Penalty", "CG", "TSVD", "MTSVD")
@@ -76,7 +76,7 @@ def test_curve_within_tolerance_leaves_the_sheet_on_its_base(scene, mode, tolera
     edge = noisy_curve_on(base, noise)
     off = curve_off_face(edge, base)
     assert 0.5 * noise < off < 3 * noise  # the scene is what it says (and not trivially on it)
-    out = model.solve_sheet_on_face(base, [edge], tolerance=tolerance, rest="base", solve_mode=mode)
+    out = solve_sheet_on_face(base, [edge], tolerance=tolerance, rest="base", solve_mode=mode)
     # The sheet stays on its base to a millionth of the tolerance (before: 1.5-330 times the
     # curve's own distance), and the curve is as close to the sheet as it was to the base.
     assert sheet_off_base(out.shape, base) <= 1e-6 * tolerance
@@ -110,7 +110,7 @@ def test_fillet_face_solves_in_automatic_and_penalty_modes(kind, mode):
     face = fillet_faces()[kind]
     size = face.BoundBox.DiagonalLength
     edges = interior_isolines(face)
-    out = model.solve_sheet_on_face(face, edges, tolerance=0.01, rest="base", solve_mode=mode, degree=6)
+    out = solve_sheet_on_face(face, edges, tolerance=0.01, rest="base", solve_mode=mode, degree=6)
     poles = out.shape.Surface.getPoles()
     assert all(math.isfinite(c) for row in poles for p in row for c in (p.x, p.y, p.z))
     assert out.degree_u >= 6 and out.degree_v >= 6
@@ -125,7 +125,7 @@ def test_fillet_face_solves_in_automatic_and_penalty_modes(kind, mode):
 @pytest.mark.parametrize("fix_boundary", (True, False))
 def test_sheet_without_curves_is_its_base_at_every_degree(degree, fix_boundary):
     for face in (loft_face(), cylinder_face()):
-        out = model.solve_sheet_on_face(face, [], tolerance=0.01, rest="base", degree=degree,
+        out = solve_sheet_on_face(face, [], tolerance=0.01, rest="base", degree=degree,
                                         fix_boundary=fix_boundary)
         assert out.degree_u >= degree and out.degree_v >= degree
         # Before: degree 5-7 drifted 1e-3 mm, a free boundary 5e-4 mm at any degree.

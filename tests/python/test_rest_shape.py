@@ -52,11 +52,11 @@ def same_weights_as(native, base, other):
     """The BendTensor that gives a sheet on ``base`` the native bend weights an isotropic sheet on
     ``other`` has: the weights follow the ratio of each base's two parameter speeds, which the
     ripple changes a little."""
-    from varsurf import model
+    from varsurf.solve import energy
 
     def weights(shape):
-        lengths = model._parameter_lengths(native.surface_from_face_brep(shape.Faces[0].exportBrepToString()))
-        return model._energy(native, 0.0, 1.0, None, None, lengths).beta
+        lengths = energy.parameter_lengths(native.surface_from_face_brep(shape.Faces[0].exportBrepToString()))
+        return energy.energy_weights(native, 0.0, 1.0, None, None, lengths).beta
 
     mine, wanted = weights(base), weights(other)
     return [wanted[0][0] / mine[0][0], wanted[0][1] / mine[0][1], wanted[1][1] / mine[1][1]]

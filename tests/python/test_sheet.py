@@ -10,7 +10,9 @@ import Part
 import pytest
 
 import varsurf
-from varsurf import api, model
+from varsurf.solve import errors, settings
+from varsurf.solve.sheet import solve_sheet_on_face
+from varsurf.app import actions
 from scenes import (
     Sel,
     add_arc_sketch,
@@ -23,7 +25,7 @@ from scenes import (
 )
 
 # Deviations are measured by the extension on the result face, independently of the solver.
-SMALL = model.DEFAULT_TOLERANCE  # mm: "the sheet passes through the curve" within its tolerance
+SMALL = settings.DEFAULT_TOLERANCE  # mm: "the sheet passes through the curve" within its tolerance
 
 
 @pytest.fixture
@@ -82,12 +84,12 @@ def test_command_selection_path_makes_the_same_sheet(scene):
     selection = [Sel(surface, "Face1"), Sel(rail, "Edge1"), Sel(side, "Edge1")]
     base, curves = varsurf.selection_to_sheet_args(selection)
     assert base == (surface, "Face1")
-    by_command = api.run_sheet_command(selection)  # what VarSurf_Sheet.Activated runs
+    by_command = actions.run_sheet_command(selection)  # what VarSurf_Sheet.Activated runs
     assert by_command is not None and by_command.Name != by_api.Name
     assert_ok(by_command)
     assert max_pole_shift(poles_of(by_api), poles_of(by_command)) < 1e-12
     # one undo step removes exactly what the command made
-    assert doc.UndoNames[0] == api.TRANSACTION_CREATE
+    assert doc.UndoNames[0] == actions.TRANSACTION_CREATE
     name = by_command.Name
     doc.undo()
     assert doc.getObject(name) is None and doc.getObject(by_api.Name) is not None
@@ -271,14 +273,14 @@ def test_weights_change_the_shape_and_are_validated(scene):
 def test_solve_sheet_on_face_without_a_document(native):
     face = flat_face()
     edge = Part.LineSegment(FreeCAD.Vector(20, 20, 12), FreeCAD.Vector(80, 60, 12)).toShape()
-    outcome = model.solve_sheet_on_face(face, [edge], names=["rail"])
+    outcome = solve_sheet_on_face(face, [edge], names=["rail"])
     assert outcome.curve_names == ["rail"]
     assert outcome.max_deviation < SMALL
     assert outcome.shape.ShapeType == "Face" and outcome.shape.isValid()
     assert "rail: max deviation" in outcome.summary()
     off = Part.LineSegment(FreeCAD.Vector(300, 20, 12), FreeCAD.Vector(380, 60, 12)).toShape()
-    with pytest.raises(model.SheetError, match="offside runs beyond the base face"):
-        model.solve_sheet_on_face(face, [edge, off], names=["rail", "offside"])
+    with pytest.raises(errors.SheetError, match="offside runs beyond the base face"):
+        solve_sheet_on_face(face, [edge, off], names=["rail", "offside"])
 
 
 def test_curved_base_sheet_is_fair(doc, native):

@@ -16,7 +16,7 @@ import Part
 from FreeCAD import Vector
 
 from brep_measure import farthest, inside_points
-from varsurf import model
+from varsurf.solve.sheet import solve_sheet_on_face
 
 
 def _lateral(shape, kind):
@@ -77,7 +77,7 @@ def test_occts_own_conversion_is_refused_by_its_check():
 @pytest.mark.parametrize("scene", sorted(FACES))
 def test_sheet_on_a_partial_or_trimmed_face_is_the_face_and_passes_the_check(scene, native):
     base = FACES[scene]()
-    result = model.solve_sheet_on_face(base, [], rest="base").shape
+    result = solve_sheet_on_face(base, [], rest="base").shape
     assert _check_errors(result) == ""
     size = base.BoundBox.DiagonalLength
     assert farthest(inside_points(result, 30, 1), base) <= 1e-9 * size
@@ -89,7 +89,7 @@ def test_sheet_on_a_partial_or_trimmed_face_is_the_face_and_passes_the_check(sce
 @pytest.mark.parametrize("scene", sorted(WHOLE))
 def test_whole_faces_are_not_c0(scene, native):
     base = WHOLE[scene]()
-    result = model.solve_sheet_on_face(base, [], rest="base").shape
+    result = solve_sheet_on_face(base, [], rest="base").shape
     surface = result.Faces[0].Surface
     # Knot-smooth in both directions: no interior knot as multiple as the degree.
     for mults, degree in ((surface.getUMultiplicities(), surface.UDegree),
@@ -107,7 +107,7 @@ def test_a_sheet_pulled_off_a_half_cylinder_passes_the_check(native):
     # An arc 1.5 mm outside the cylinder (radius 10 about (5, -3)), half-way up, over 40..140 deg.
     arc = Part.ArcOfCircle(Part.Circle(Vector(5, -3, 17), Vector(0, 0, 1), 11.5),
                            math.radians(40), math.radians(140)).toShape()
-    outcome = model.solve_sheet_on_face(base, [arc], rest="base")
+    outcome = solve_sheet_on_face(base, [arc], rest="base")
     result = outcome.shape
     assert outcome.max_deviation < 0.01
     assert result.distToShape(arc)[0] < 0.01

@@ -130,25 +130,25 @@ def test_bad_inputs_are_reported(doc, native, console_errors):
 
 
 def test_solid_command_joins_selected_sheets_in_one_transaction(doc, native):
-    from varsurf import api
+    from varsurf.app import actions, macro
     from scenes import Sel
 
     pillow.build(doc)  # makes a Pillow already; the command adds a second Solid of the same Sheets
     doc.UndoMode = 1
     top, bottom = doc.getObject("Top"), doc.getObject("Bottom")
     lines = []
-    s = api.run_solid_command([Sel(top), Sel(bottom, "Face1")],
-                              do_command=lambda l: (lines.append(l), api._exec_line(l)))
+    s = actions.run_solid_command([Sel(top), Sel(bottom, "Face1")],
+                              do_command=lambda l: (lines.append(l), macro.exec_line(l)))
     assert s is not None and s.isValid() and s.Closed, s.Status
     assert any("varsurf.make_solid(" in l for l in lines), lines
     name = s.Name
     doc.undo()
     assert name not in [o.Name for o in doc.Objects]
     messages = []
-    assert api.run_solid_command([Sel(top)], on_error=messages.append) is None
+    assert actions.run_solid_command([Sel(top)], on_error=messages.append) is None
     assert "select two or more" in messages[0]
     rim = doc.getObject("Rim")
-    assert api.run_solid_command([Sel(top), Sel(rim)], on_error=messages.append) is None
+    assert actions.run_solid_command([Sel(top), Sel(rim)], on_error=messages.append) is None
     assert "is not a Sheet" in messages[1]
 
 

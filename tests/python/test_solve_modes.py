@@ -7,7 +7,8 @@ import FreeCAD
 import pytest
 
 import varsurf
-from varsurf import model
+from varsurf.solve import errors
+from varsurf.solve.sheet import solve_sheet_on_face
 from scenes import add_arc_sketch, poles_of, railed_sheet
 
 
@@ -83,5 +84,5 @@ def test_prepared_sheet_drag_equals_a_fresh_solve(native):
 
 def test_unknown_mode_is_refused(sheet):
     face = sheet.Base[0].Shape.Faces[0]
-    with pytest.raises(model.SheetError, match="SolveMode must be one of"):
-        model.solve_sheet_on_face(face, [], solve_mode="Magic")
+    with pytest.raises(errors.SheetError, match="SolveMode must be one of"):
+        solve_sheet_on_face(face, [], solve_mode="Magic")

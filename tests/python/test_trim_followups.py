@@ -13,8 +13,10 @@ import FreeCAD
 import Part
 
 import varsurf
-from varsurf import drag, joint, model
-from varsurf import space_curve as space_curves
+from varsurf.solve.sheet import solve_sheet_on_face
+from varsurf.app import drag
+from varsurf.solve import joint
+from varsurf.solve import space_curve as space_curves
 from scenes import add_line_sketch, add_vertex
 
 import hinge_pair  # noqa: E402
@@ -109,7 +111,7 @@ def test_a_joint_solve_keeps_the_trimmed_edges_of_a_sheets_base(doc, native):
     base = plate.Shape.getElement(top)
     rail = line.Shape.Edges[0]
     tolerance = 1e-3
-    outcome = model.solve_sheet_on_face(base, [rail], names=["Rail:Edge1"], tolerance=tolerance,
+    outcome = solve_sheet_on_face(base, [rail], names=["Rail:Edge1"], tolerance=tolerance,
                                         rest="base")
     assert len(outcome.problem.curves) > 1  # the rim is kept as curves of the sheet's own
     rest = space_curves.rest_curve(rail)

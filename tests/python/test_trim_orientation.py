@@ -20,8 +20,9 @@ from FreeCAD import Vector
 import pillow
 import varsurf
 from brep_measure import farthest, inside_points
-from varsurf import model
-from varsurf.constraints import ConstraintSpec
+from varsurf.solve import errors
+from varsurf.solve.sheet import solve_sheet_on_face
+from varsurf.solve.constraints import ConstraintSpec
 
 
 def plate_top():
@@ -79,7 +80,7 @@ SCENES = {
 @pytest.mark.parametrize("scene", list(SCENES))
 def test_sheet_without_curves_is_its_trimmed_base_face(scene, native):
     base = SCENES[scene]()
-    outcome = model.solve_sheet_on_face(base, [], rest="base")  # the Sheet feature's default
+    outcome = solve_sheet_on_face(base, [], rest="base")  # the Sheet feature's default
     result = outcome.shape
     size = base.BoundBox.DiagonalLength
     # The untrimmed sheet filled the hole (8,000 instead of 7,686 mm²), squared the disc and
@@ -100,7 +101,7 @@ def test_sheet_without_curves_is_its_trimmed_base_face(scene, native):
 def test_converted_surfaces_keep_their_trim(scene, native):
     """Area integrated by OCCT to 1e-10 (Part's Area is off by ~2e-4 on these rational faces)."""
     base = CONVERTED[scene]()
-    result = model.solve_sheet_on_face(base, [], rest="base").shape
+    result = solve_sheet_on_face(base, [], rest="base").shape
     size = base.BoundBox.DiagonalLength
     area = [native.mass_properties(f.exportBrepToString(), 1e-10)[0] for f in (base, result)]
     assert area[1] == pytest.approx(area[0], rel=1e-6)  # measured: 1e-11
@@ -115,21 +116,21 @@ def test_converted_surfaces_keep_their_trim(scene, native):
 def test_curves_over_the_hole_are_refused_and_others_met():
     base = plate_top()
     across = Part.makeLine(Vector(20, 40, 45), Vector(80, 40, 45))  # crosses the hole
-    with pytest.raises(model.SheetError, match=r"Sketch:Edge2 lies over a hole of the base face"):
-        model.solve_sheet_on_face(base, [across], names=["Sketch:Edge2"])
+    with pytest.raises(errors.SheetError, match=r"Sketch:Edge2 lies over a hole of the base face"):
+        solve_sheet_on_face(base, [across], names=["Sketch:Edge2"])
     beside = Part.makeLine(Vector(20, 20, 43), Vector(80, 20, 43))  # on the plate, beside it
-    outcome = model.solve_sheet_on_face(base, [beside], names=["Sketch:Edge1"])
+    outcome = solve_sheet_on_face(base, [beside], names=["Sketch:Edge1"])
     assert outcome.max_deviation < 0.01
     assert outcome.shape.distToShape(beside)[0] < 0.01
     assert len(outcome.shape.Wires) == 2  # still holed
     assert outcome.shape.check(True) is None
     # Constraints over the hole are refused too: a point, and a join along an edge across it.
     point = ConstraintSpec(kind="Point", name="Lift", location=(50.0, 43.0, 45.0))
-    with pytest.raises(model.SheetError, match=r"Lift lies over a hole of the base face"):
-        model.solve_sheet_on_face(base, [], constraints=[point])
+    with pytest.raises(errors.SheetError, match=r"Lift lies over a hole of the base face"):
+        solve_sheet_on_face(base, [], constraints=[point])
     join = ConstraintSpec(kind="G0", name="Join", edge=across)
-    with pytest.raises(model.SheetError, match=r"Join lies over a hole of the base face \(up to 10 mm"):
-        model.solve_sheet_on_face(base, [], constraints=[join])
+    with pytest.raises(errors.SheetError, match=r"Join lies over a hole of the base face \(up to 10 mm"):
+        solve_sheet_on_face(base, [], constraints=[join])
 
 
 def _hole_rim(shape):
@@ -142,21 +143,21 @@ def test_a_kept_boundary_keeps_the_holes_rim():
     """FixBoundary keeps the base face's boundary: the hole's rim too, not only the rectangle's."""
     base = plate_top()
     ridge = Part.makeLine(Vector(20, 25, 45), Vector(80, 25, 45))  # 5 mm above the plate, beside the hole
-    kept = model.solve_sheet_on_face(base, [ridge], rest="base", tolerance=0.01)
+    kept = solve_sheet_on_face(base, [ridge], rest="base", tolerance=0.01)
     rim = _hole_rim(kept.shape)
     assert rim and max(abs(p.z - 40) for p in rim) <= 0.01  # measured: 0.0013 mm
     assert max(abs(math.hypot(p.x - 50, p.y - 40) - 10) for p in rim) < 1e-6
-    free = model.solve_sheet_on_face(base, [ridge], rest="base", tolerance=0.01, fix_boundary=False)
+    free = solve_sheet_on_face(base, [ridge], rest="base", tolerance=0.01, fix_boundary=False)
     assert max(p.z for p in _hole_rim(free.shape)) > 41  # without it the rim lifts with the ridge
 
 
 def test_curves_outside_the_disc_are_refused():
     base = disc()
     corner = Part.makeLine(Vector(20, 24, 2), Vector(28, 28, 2))  # in the square, not the disc
-    with pytest.raises(model.SheetError, match=r"Sketch:Edge1 lies outside the base face's boundary"):
-        model.solve_sheet_on_face(base, [corner], names=["Sketch:Edge1"])
+    with pytest.raises(errors.SheetError, match=r"Sketch:Edge1 lies outside the base face's boundary"):
+        solve_sheet_on_face(base, [corner], names=["Sketch:Edge1"])
     inside = Part.makeLine(Vector(-10, -10, 3), Vector(10, 10, 3))
-    outcome = model.solve_sheet_on_face(base, [inside])
+    outcome = solve_sheet_on_face(base, [inside])
     assert outcome.max_deviation < 0.01
     assert outcome.shape.check(True) is None
     # Its boundary is still the circle, kept in place (FixBoundary) within the tolerance.
@@ -170,12 +171,12 @@ def test_a_curve_within_the_tolerance_of_the_holes_edge_is_accepted():
     base = plate_top()
     arc = Part.Edge(Part.ArcOfCircle(Part.Circle(Vector(50, 40, 40), Vector(0, 0, 1), 10.0 - 0.005),
                                      0.2, 1.2))
-    outcome = model.solve_sheet_on_face(base, [arc], tolerance=0.01, names=["Arc"])
+    outcome = solve_sheet_on_face(base, [arc], tolerance=0.01, names=["Arc"])
     assert outcome.max_deviation <= 0.01
     deeper = Part.Edge(Part.ArcOfCircle(Part.Circle(Vector(50, 40, 40), Vector(0, 0, 1), 10.0 - 0.05),
                                         0.2, 1.2))
-    with pytest.raises(model.SheetError, match=r"Arc lies over a hole of the base face \(up to 0.05 mm"):
-        model.solve_sheet_on_face(base, [deeper], tolerance=0.01, names=["Arc"])
+    with pytest.raises(errors.SheetError, match=r"Arc lies over a hole of the base face \(up to 0.05 mm"):
+        solve_sheet_on_face(base, [deeper], tolerance=0.01, names=["Arc"])
 
 
 @pytest.mark.parametrize("index", range(6))
@@ -187,7 +188,7 @@ def test_pressure_inflates_every_box_face_outward(index):
     outward = base.normalAt(*base.Surface.parameter(centre))
     inward_point = box.BoundBox.Center
     assert (centre - inward_point).dot(outward) > 0  # the face's normal is the box's outward one
-    outcome = model.solve_sheet_on_face(base, [], pressure=0.001, stretch=1.0)
+    outcome = solve_sheet_on_face(base, [], pressure=0.001, stretch=1.0)
     result = outcome.shape
     assert result.Orientation == base.Orientation
     uv = result.Surface.parameter(centre)
@@ -203,7 +204,7 @@ def test_pressure_inflates_a_reversed_holed_face_outward():
     plate = Part.makeBox(100, 80, 40).cut(Part.makeCylinder(10, 60, Vector(50, 40, -10)))
     base = next(f for f in plate.Faces if abs(f.CenterOfMass.z) < 1e-9 and len(f.Wires) == 2)
     assert base.Orientation == "Reversed"
-    result = model.solve_sheet_on_face(base, [], pressure=0.001, stretch=1.0).shape
+    result = solve_sheet_on_face(base, [], pressure=0.001, stretch=1.0).shape
     assert result.Orientation == "Reversed" and len(result.Wires) == 2
     z = [p.z for p in inside_points(result, 200, 4)]
     assert min(z) < -0.05 and max(z) <= 0.01  # measured: -0.11 mm; the rims stay at z = 0 (Tolerance)

@@ -24,7 +24,11 @@ def test_varsurf_is_found_through_the_mod_folder(home):
 def test_app_side_imports_no_gui():
     code = (
         "import sys; sys.path.append('/usr/lib/freecad-python3/lib'); import FreeCAD\n"
-        "import varsurf, varsurf.api, varsurf.app.sheet, varsurf.model\n"
+        "import importlib, pkgutil, varsurf, varsurf.app, varsurf.solve\n"
+        "for tier in (varsurf.solve, varsurf.app):\n"
+        "    for info in pkgutil.iter_modules(tier.__path__, tier.__name__ + '.'):\n"
+        "        importlib.import_module(info.name)\n"
+        "import varsurf.api, varsurf.model, varsurf.analysis  # the names of earlier releases\n"
         "bad = [m for m in sys.modules if m.startswith(('FreeCADGui', 'PySide', 'varsurf.gui'))]\n"
         "print('GUI-MODULES', bad)\n"
         "assert not bad, bad\n"

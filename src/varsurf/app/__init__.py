@@ -1,1 +1,3 @@
-"""App-side (document) objects of VarSurf; no GUI imports here."""
+"""The App tier: document features, make-functions, selections, macro lines, transactions,
+drags, progress, preferences and persistence. Needs FreeCAD but not its GUI (imports varsurf.gui
+only under ``if FreeCAD.GuiUp:``, for the view providers of new objects)."""

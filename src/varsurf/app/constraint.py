@@ -9,9 +9,10 @@ side only: no GUI import.
 from __future__ import annotations
 
 import FreeCAD
+import Part
 
-from varsurf import constraints
 from varsurf.app.feature import FeatureProxy, value
+from varsurf.solve import constraints
 
 TYPE = "VarSurf::Constraint"
 
@@ -54,8 +55,6 @@ def _location_point(obj):
         return None
     link, subs = obj.Location
     subs = [s for s in subs if s]
-    import Part
-
     shape = Part.getShape(link, subs[0], needSubElement=True) if subs else link.Shape
     if shape.isNull() or not shape.Vertexes:
         raise constraints.ConstraintError(f"{obj.Label}: Location must be a vertex")
@@ -70,8 +69,6 @@ def _sub_shape(obj, prop, kinds):
         return None
     target, subs = link
     subs = [s for s in subs if s]
-    import Part
-
     what = " or ".join(k.lower() for k in kinds)
     if not subs:
         raise constraints.ConstraintError(f"{obj.Label}: {prop} must name one {what} of {target.Label}")
@@ -88,8 +85,6 @@ def _loop_shape(obj):
         return None
     target, subs = link
     subs = [s for s in subs if s]
-    import Part
-
     if not subs:
         shape = target.Shape
     else:

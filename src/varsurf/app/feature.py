@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
-from varsurf.persistence import STATE_VERSION, VersionedState
+import FreeCAD
+
+from varsurf.app.persistence import STATE_VERSION, VersionedState
 
 # Property status bits (App::PropertyType): read-only in the editor, output (does not touch).
 PROP_READONLY = 1
@@ -60,8 +62,6 @@ class FeatureProxy(VersionedState):
         def execute(self, obj):
             problem = self.state_problem()
             if problem is not None:
-                import FreeCAD
-
                 FreeCAD.Console.PrintError(f"VarSurf: {obj.Label}: {problem}\n")
                 raise StateError(f"{obj.Label}: {problem}")
             return inner(self, obj)

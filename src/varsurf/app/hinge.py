@@ -7,8 +7,11 @@ and holds each hinge's angle all along the curve; it reports the angles reached.
 
 from __future__ import annotations
 
-from varsurf import model
+import FreeCAD
+
 from varsurf.app.feature import FeatureProxy, value
+from varsurf.solve import errors
+from varsurf.solve.joint import HingeSpec
 
 TYPE = "VarSurf::Hinge"
 DEFAULT_ANGLE = 180.0
@@ -28,21 +31,19 @@ def is_hinge(obj) -> bool:
 
 def curve_key(obj) -> str:
     if obj.Curve is None:
-        raise model.SheetError(f"{obj.Label}: Curve is empty: select the shared edge")
+        raise errors.SheetError(f"{obj.Label}: Curve is empty: select the shared edge")
     link, subs = obj.Curve
     subs = [s for s in subs if s]
     if len(subs) != 1 or not subs[0].startswith("Edge"):
-        raise model.SheetError(f"{obj.Label}: Curve must reference exactly one edge")
+        raise errors.SheetError(f"{obj.Label}: Curve must reference exactly one edge")
     return f"{link.Name}:{subs[0]}"
 
 
 def spec_of(obj):
     """The joint solve's HingeSpec of a Hinge (SheetError if its links are wrong)."""
-    from varsurf.joint import HingeSpec
-
     sheets = list(obj.Sheets or [])
     if len(sheets) != 2:
-        raise model.SheetError(f"{obj.Label}: a hinge needs exactly two Sheets (has {len(sheets)})")
+        raise errors.SheetError(f"{obj.Label}: a hinge needs exactly two Sheets (has {len(sheets)})")
     angle = value(obj, "Angle")
     angle = float(angle.Value if hasattr(angle, "Value") else angle)
     return HingeSpec(name=obj.Label, key=curve_key(obj), sheet_a=sheets[0].Label,
@@ -58,10 +59,8 @@ class HingeFeature(FeatureProxy):
     DEFAULTS = {"Angle": DEFAULT_ANGLE, "Enabled": True}
 
     def execute(self, obj):
-        import FreeCAD
-
         try:
             spec_of(obj)  # a broken link is reported on the hinge itself
-        except model.SheetError as error:
+        except errors.SheetError as error:
             FreeCAD.Console.PrintError(f"VarSurf: {error}\n")
             raise

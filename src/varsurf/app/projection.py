@@ -12,8 +12,8 @@ import math
 
 import FreeCAD
 
-from varsurf import model
 from varsurf.app.feature import value
+from varsurf.solve import errors
 
 #: Projection property values: Automatic (planar sketches facing the base along their normal,
 #: other curves orthogonally), Normal (every curve orthogonally), Direction (every curve along
@@ -61,7 +61,7 @@ def directions(obj, face, links):
     if mode == "Direction":
         d = value(obj, "ProjectionDirection")
         if not all(math.isfinite(c) for c in (d.x, d.y, d.z)) or d.Length == 0.0:
-            raise model.SheetError("Projection is Direction but ProjectionDirection is zero: give the direction "
+            raise errors.SheetError("Projection is Direction but ProjectionDirection is zero: give the direction "
                                    "the curves are projected along (e.g. 0, 0, 1 for a plan view)")
         return [(d.x, d.y, d.z)] * len(links)
     reference = base_normal(face)

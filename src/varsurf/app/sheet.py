@@ -9,11 +9,13 @@ boundary). App side only: no GUI import, so it computes in freecadcmd and headle
 from __future__ import annotations
 
 import FreeCAD
+import Part
 
-from varsurf import model
-from varsurf.app.feature import FeatureProxy, value
-from varsurf.app import projection
+from varsurf.app import preferences, progress, projection
 from varsurf.app.constraint import spec_of
+from varsurf.app.feature import FeatureProxy, value
+from varsurf.solve import errors, settings
+from varsurf.solve.sheet import solve_sheet_from_curves, solve_sheet_on_face
 
 TYPE = "VarSurf::Sheet"
 REST_SHAPES = ("Base", "None", "Installed")
@@ -79,20 +81,20 @@ def _set_rest_shapes(obj):
 
 
 _DEFAULTS = {
-    "Stretch": (model.DEFAULT_STRETCH, 0.0, _FLOAT_MAX, 0.1),
-    "Bend": (model.DEFAULT_BEND, 0.0, _FLOAT_MAX, 0.1),
+    "Stretch": (settings.DEFAULT_STRETCH, 0.0, _FLOAT_MAX, 0.1),
+    "Bend": (settings.DEFAULT_BEND, 0.0, _FLOAT_MAX, 0.1),
     "FixBoundary": True,
     "RestShape": _set_rest_shapes,
     "Projection": list(projection.MODES),
     "ProjectionDirection": FreeCAD.Vector(0, 0, 1),
-    "Tolerance": model.DEFAULT_TOLERANCE,
-    "SolveMode": list(model.SOLVE_MODES),
-    "Refinement": list(model.REFINEMENTS),
-    "MaxDepth": model.DEFAULT_MAX_DEPTH,
+    "Tolerance": settings.DEFAULT_TOLERANCE,
+    "SolveMode": list(settings.SOLVE_MODES),
+    "Refinement": list(settings.REFINEMENTS),
+    "MaxDepth": settings.DEFAULT_MAX_DEPTH,
     "AutoRefine": True,
-    "Degree": (model.SHEET_MIN_DEGREE, 2, model.MAX_DEGREE, 1),
-    "MinSpans": (model.DEFAULT_MIN_SPANS, 1, 512, 1),
-    "MaxSpans": (model.DEFAULT_MAX_SPANS, 1, 512, 1),
+    "Degree": (settings.SHEET_MIN_DEGREE, 2, settings.MAX_DEGREE, 1),
+    "MinSpans": (settings.DEFAULT_MIN_SPANS, 1, 512, 1),
+    "MaxSpans": (settings.DEFAULT_MAX_SPANS, 1, 512, 1),
     "Status": "Not computed",
 }
 
@@ -107,7 +109,7 @@ def _restore_constraints(obj):
         if name in obj.PropertiesList:
             setattr(obj, name, (min(max(int(getattr(obj, name)), 1), 512), 1, 512, 1))
     if "Degree" in obj.PropertiesList:
-        obj.Degree = (min(max(int(obj.Degree), 2), model.MAX_DEGREE), 2, model.MAX_DEGREE, 1)
+        obj.Degree = (min(max(int(obj.Degree), 2), settings.MAX_DEGREE), 2, settings.MAX_DEGREE, 1)
     for name, _kind, _group, _tip, output in _PROPERTIES:
         if output and name in obj.PropertiesList:
             obj.setEditorMode(name, 1)
@@ -115,14 +117,12 @@ def _restore_constraints(obj):
 
 def resolve_inputs(obj):
     """(face, edges, names) of a Sheet's links, with placements applied; SheetError if broken."""
-    import Part
-
     face = None  # no base: the sheet starts from the curves' best-fit plane
     if obj.Base is not None:
         base_obj, base_subs = obj.Base
         base_subs = [s for s in base_subs if s]
         if len(base_subs) != 1 or not base_subs[0].startswith("Face"):
-            raise model.SheetError(f"Base must reference exactly one face of {base_obj.Label}")
+            raise errors.SheetError(f"Base must reference exactly one face of {base_obj.Label}")
         _check_not_cyclic(obj, base_obj)
         face = _element(Part, base_obj, base_subs[0])
     edges, names = [], []
@@ -132,7 +132,7 @@ def resolve_inputs(obj):
                 continue
             name = f"{link_obj.Label}:{sub}"
             if not sub.startswith("Edge"):
-                raise model.SheetError(f"{name} is not an edge")
+                raise errors.SheetError(f"{name} is not an edge")
             _check_not_cyclic(obj, link_obj)
             edges.append(_element(Part, link_obj, sub))
             names.append(name)
@@ -147,7 +147,7 @@ def _rest_of(obj, face):
     if mode == "Installed":
         shape = obj.InstalledRest
         if shape.isNull() or len(shape.Faces) != 1:
-            raise model.SheetError("RestShape is Installed but no rest shape was installed")
+            raise errors.SheetError("RestShape is Installed but no rest shape was installed")
         return shape.Faces[0]
     return None
 
@@ -160,7 +160,7 @@ def _check_not_cyclic(obj, link_obj):
     while stack:
         current = stack.pop()
         if current is obj:
-            raise model.SheetError(f"cyclic dependency: {link_obj.Label} is built from {obj.Label} itself; "
+            raise errors.SheetError(f"cyclic dependency: {link_obj.Label} is built from {obj.Label} itself; "
                                    "link curves and faces that do not depend on the sheet")
         if current.Name not in seen:
             seen.add(current.Name)
@@ -171,9 +171,9 @@ def _element(Part, link_obj, sub):
     try:
         shape = Part.getShape(link_obj, sub, needSubElement=True)
     except Exception as error:
-        raise model.SheetError(f"{link_obj.Label}:{sub} cannot be found ({error})") from error
+        raise errors.SheetError(f"{link_obj.Label}:{sub} cannot be found ({error})") from error
     if shape.isNull():
-        raise model.SheetError(f"{link_obj.Label}:{sub} does not exist (anymore)")
+        raise errors.SheetError(f"{link_obj.Label}:{sub} does not exist (anymore)")
     return shape
 
 
@@ -195,45 +195,62 @@ def _clear_results(obj, status):
     obj.Status = status
 
 
-def compute(obj):
-    """The SheetOutcome of a Sheet's inputs (model.SheetError naming what is wrong)."""
-    face, edges, names = resolve_inputs(obj)
-    options = dict(
+def settings_of(obj) -> settings.SheetSettings:
+    """The SheetSettings a Sheet's properties hold (with the preferences' solve limits); older
+    files that lack a property get its default."""
+    tensor = lambda name: list(getattr(obj, name, []) or []) or None  # noqa: E731
+    return settings.SheetSettings(
         stretch=float(obj.Stretch),
         bend=float(obj.Bend),
+        stretch_tensor=tensor("StretchTensor"),
+        bend_tensor=tensor("BendTensor"),
+        pressure=float(getattr(obj, "Pressure", 0.0)),
         fix_boundary=bool(obj.FixBoundary),
         tolerance=float(value(obj, "Tolerance")),
+        exact_curves=tuple(getattr(obj, "ExactCurves", []) or []),
+        degree=int(getattr(obj, "Degree", settings.SHEET_MIN_DEGREE)),
         min_spans=int(obj.MinSpans),
-        degree=int(getattr(obj, "Degree", model.SHEET_MIN_DEGREE)),
-        solve_mode=str(obj.SolveMode),
         max_spans=int(obj.MaxSpans),
-        names=names,
+        solve_mode=str(obj.SolveMode),
         refinement=str(getattr(obj, "Refinement", "Uniform")),
-        max_depth=int(getattr(obj, "MaxDepth", model.DEFAULT_MAX_DEPTH)),
-        refine_regions=_regions(list(getattr(obj, "RefineRegions", []) or [])),
+        max_depth=int(getattr(obj, "MaxDepth", settings.DEFAULT_MAX_DEPTH)),
+        refine_regions=tuple(_regions(list(getattr(obj, "RefineRegions", []) or []))),
         auto_refine=bool(getattr(obj, "AutoRefine", True)),
         influence_level=int(getattr(obj, "InfluenceLevel", 0)),
+        **preferences.solve_limits(),
     )
-    options["constraints"] = [spec_of(c) for c in (getattr(obj, "Constraints", None) or []) if c.Enabled]
-    options["rest"] = _rest_of(obj, face)
-    options["projections"] = projection.directions(obj, face, curve_links(obj))
-    options["pressure"] = float(getattr(obj, "Pressure", 0.0))
-    exact = list(getattr(obj, "ExactCurves", []) or [])
-    unknown = [n for n in exact if n not in names]
-    if unknown:
-        raise model.SheetError(f"ExactCurves names curves the sheet does not have: {', '.join(unknown)}")
-    options["exact_curves"] = exact
-    options["stretch_tensor"] = list(getattr(obj, "StretchTensor", []) or [])
-    options["bend_tensor"] = list(getattr(obj, "BendTensor", []) or [])
-    from varsurf import preferences, progress
 
-    options.update(preferences.solve_limits())
+
+def apply_settings(obj, values: settings.SheetSettings) -> None:
+    """Write the settings a Sheet's make-function chooses into its properties."""
+    obj.Stretch = float(values.stretch)
+    obj.Bend = float(values.bend)
+    obj.FixBoundary = bool(values.fix_boundary)
+    obj.Tolerance = float(values.tolerance)
+    obj.MinSpans = int(values.min_spans)
+    obj.MaxSpans = int(values.max_spans)
+    obj.Degree = int(values.degree)
+    obj.SolveMode = values.solve_mode
+
+
+def compute(obj):
+    """The SheetOutcome of a Sheet's inputs (errors.SheetError naming what is wrong)."""
+    face, edges, names = resolve_inputs(obj)
+    values = settings_of(obj)
+    unknown = [n for n in values.exact_curves if n not in names]
+    if unknown:
+        raise errors.SheetError(f"ExactCurves names curves the sheet does not have: {', '.join(unknown)}")
+    inputs = dict(
+        names=names,
+        projections=projection.directions(obj, face, curve_links(obj)),
+        constraints=[spec_of(c) for c in (getattr(obj, "Constraints", None) or []) if c.Enabled],
+        rest=_rest_of(obj, face),
+    )
     watch = progress.for_solve(obj.Label)
-    options["keep_going"] = watch
     try:
         if face is None:
-            return model.solve_sheet_from_curves(edges, **options)
-        return model.solve_sheet_on_face(face, edges, **options)
+            return solve_sheet_from_curves(edges, values, keep_going=watch, **inputs)
+        return solve_sheet_on_face(face, edges, values, keep_going=watch, **inputs)
     finally:
         watch.stop()
 
@@ -241,7 +258,7 @@ def compute(obj):
 def _regions(flat):
     """RefineRegions' numbers in fives: (level, u0, u1, v0, v1)."""
     if len(flat) % 5:
-        raise model.SheetError(f"RefineRegions needs five numbers a region (level, u0, u1, v0, v1); got {len(flat)}")
+        raise errors.SheetError(f"RefineRegions needs five numbers a region (level, u0, u1, v0, v1); got {len(flat)}")
     return [tuple(flat[k:k + 5]) for k in range(0, len(flat), 5)]
 
 
@@ -282,10 +299,10 @@ class SheetFeature(FeatureProxy):
         if older:  # files from before projection choices projected every curve orthogonally
             obj.Projection = "Normal"
         # Files from before a mode was added list fewer modes: offer them all, keep the choice.
-        if list(obj.getEnumerationsOfProperty("SolveMode")) != list(model.SOLVE_MODES):
+        if list(obj.getEnumerationsOfProperty("SolveMode")) != list(settings.SOLVE_MODES):
             mode = str(obj.SolveMode)
-            obj.SolveMode = list(model.SOLVE_MODES)
-            obj.SolveMode = mode if mode in model.SOLVE_MODES else "Automatic"
+            obj.SolveMode = list(settings.SOLVE_MODES)
+            obj.SolveMode = mode if mode in settings.SOLVE_MODES else "Automatic"
 
     def onChanged(self, obj, prop):
         pass

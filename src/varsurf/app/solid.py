@@ -11,12 +11,14 @@ App side only: no GUI import.
 from __future__ import annotations
 
 import FreeCAD
+import Part
 
-from varsurf import assembly, joint, model
 from varsurf.app import hinge as hinge_feature
+from varsurf.app import progress
 from varsurf.app import sheet as sheet_feature
 from varsurf.app import space_curve as space_curve_feature
 from varsurf.app.feature import FeatureProxy, value
+from varsurf.solve import assembly, errors, joint, settings
 
 TYPE = "VarSurf::Solid"
 
@@ -39,7 +41,7 @@ _PROPERTIES = [
 #: A Solid following its sheets joins them within this multiple of their largest Tolerance: a
 #: sheet meets its curves within its own, and the join measures the distance again (projection).
 SHEETS_TOLERANCE_FACTOR = 2.0
-DEFAULT_TOLERANCE = SHEETS_TOLERANCE_FACTOR * model.DEFAULT_TOLERANCE
+DEFAULT_TOLERANCE = SHEETS_TOLERANCE_FACTOR * settings.DEFAULT_TOLERANCE
 #: A hinge farther than this from its angle anywhere along its curve is warned about (degrees).
 HINGE_ANGLE_TOLERANCE = 0.05
 
@@ -47,15 +49,13 @@ HINGE_ANGLE_TOLERANCE = 0.05
 def join_inputs(obj):
     """[(label, face, [(key, shared edge)], [(key, own edge)])] for the Solid's Sheets, or
     SheetError."""
-    import Part
-
     sheets = list(obj.Sheets or [])
     if not sheets:
-        raise model.SheetError("Sheets is empty: select the Sheets to join")
+        raise errors.SheetError("Sheets is empty: select the Sheets to join")
     counts = {}
     for s in sheets:
         if s.Shape.isNull() or len(s.Shape.Faces) != 1:
-            raise model.SheetError(f"{s.Label} has no result: recompute it first (is it in error?)")
+            raise errors.SheetError(f"{s.Label} has no result: recompute it first (is it in error?)")
         for key in set(sheet_feature.curve_keys(s)):
             counts[key] = counts.get(key, 0) + 1
     out = []
@@ -90,8 +90,6 @@ def _solve_together(obj, inputs):
         return inputs
     sheets = [joint.JointSheet(s.Label, sheet_feature.outcome_of(s), sheet_feature.curve_keys(s))
               for s in obj.Sheets]
-    from varsurf import progress
-
     watch = progress.for_solve(obj.Label)
     try:
         result = joint.solve_joint(sheets, variational, hinges, keep_going=watch)
@@ -243,15 +241,15 @@ class SolidFeature(FeatureProxy):
         try:
             problem = sheets_error(obj)
             if problem:  # their last results are stale: nothing is joined
-                raise model.SheetError(problem)
+                raise errors.SheetError(problem)
             inputs = _solve_together(obj, join_inputs(obj))
             tolerance = _tolerance(obj)
             try:
                 outcome = assembly.build_solid(inputs, tolerance)
             except assembly.JoinGapError as error:
-                raise model.SheetError(f"{error}{_hinge_blame(obj)}{_tolerance_hint(obj, tolerance)}") from error
+                raise errors.SheetError(f"{error}{_hinge_blame(obj)}{_tolerance_hint(obj, tolerance)}") from error
             if not outcome.valid:
-                raise model.SheetError("the sewn shape is not valid")
+                raise errors.SheetError("the sewn shape is not valid")
         except Exception as error:
             obj.Status = f"Error: {error}"
             obj.Closed = False

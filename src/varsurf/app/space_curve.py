@@ -10,9 +10,11 @@ joined along it. App side only.
 from __future__ import annotations
 
 import FreeCAD
+import Part
 
-from varsurf import model, space_curve
 from varsurf.app.feature import FeatureProxy
+from varsurf.solve import errors, shapes, space_curve
+from varsurf.solve.native import native
 
 TYPE = "VarSurf::SpaceCurve"
 
@@ -30,27 +32,25 @@ _PROPERTIES = [
 
 def base_edge(obj):
     if obj.Base is None:
-        raise model.SheetError("Base is empty: select the edge the curve starts from")
+        raise errors.SheetError("Base is empty: select the edge the curve starts from")
     link, subs = obj.Base
     subs = [s for s in subs if s]
     if len(subs) != 1 or not subs[0].startswith("Edge"):
-        raise model.SheetError(f"Base must reference exactly one edge of {link.Label}")
-    import Part
-
+        raise errors.SheetError(f"Base must reference exactly one edge of {link.Label}")
     edge = Part.getShape(link, subs[0], needSubElement=True)
     if edge.isNull():
-        raise model.SheetError(f"{link.Label}:{subs[0]} does not exist (anymore)")
+        raise errors.SheetError(f"{link.Label}:{subs[0]} does not exist (anymore)")
     return edge
 
 
 def variational_curve(obj):
     """(VariationalCurve for joint solves, rest Part curve) of a SpaceCurve's inputs."""
     rest = space_curve.rest_curve(base_edge(obj), int(obj.Spans))
-    nat = model.native()
+    nat = native()
     handles = space_curve.handles_at(rest, list(obj.HandleParameters), list(obj.Handles))
     for label, value in (("Stretch", obj.Stretch), ("Bend", obj.Bend)):
         if not value >= 0.0 or value == float("inf"):
-            raise model.SheetError(f"{label} must be finite and >= 0 (got {value})")
+            raise errors.SheetError(f"{label} must be finite and >= 0 (got {value})")
     return space_curve.VariationalCurve(
         start=space_curve.to_native(nat, rest), handles=handles,
         stretch=float(obj.Stretch), bend=float(obj.Bend)), rest
@@ -80,5 +80,5 @@ class SpaceCurveFeature(FeatureProxy):
             obj.Status = f"Error: {error}"
             FreeCAD.Console.PrintError(f"VarSurf: {obj.Label}: {error}\n")
             raise
-        obj.Shape = space_curve.part_curve(solved).toShape()
+        obj.Shape = shapes.part_curve(solved).toShape()
         obj.Status = f"OK: {len(curve.handles)} handles, {len(solved.poles)} poles"

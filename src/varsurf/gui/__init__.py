@@ -1,1 +1,1 @@
-"""GUI side of VarSurf: commands, view providers and task panels (needs FreeCADGui)."""
+"""The GUI tier: commands, view providers, task panels, handles and overlays (needs FreeCADGui)."""

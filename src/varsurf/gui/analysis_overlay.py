@@ -1,13 +1,15 @@
-"""The Sheet's analysis color map in the 3D view: the grid of varsurf.analysis as a Coin mesh with
+"""The Sheet's analysis color map in the 3D view: the grid of varsurf.solve.analysis as a Coin mesh with
 per-vertex colors, drawn just in front of the sheet's own shading (a polygon offset)."""
 
 from __future__ import annotations
 
 import FreeCAD as App
+import Part
 from pivy import coin
 
-from varsurf import analysis
+from varsurf.app.analysis import reference_of
 from varsurf.gui.coin_lines import add_polyline
+from varsurf.solve import analysis
 
 PROPERTY = "Analysis"
 RANGE_PROPERTY = "AnalysisRange"
@@ -28,8 +30,6 @@ def add_view_properties(vobj):
 
 
 def _sheet_edges(obj):
-    import Part
-
     edges = []
     for link, subs in getattr(obj, "Curves", None) or []:
         for sub in subs:
@@ -60,7 +60,7 @@ class AnalysisOverlay:
             self._curves(vobj, obj)
             return
         try:
-            grid = analysis.analyse(obj.Shape, mode, reference=analysis.reference_of(obj))
+            grid = analysis.analyse(obj.Shape, mode, reference=reference_of(obj))
         except Exception as error:
             setattr(vobj, RANGE_PROPERTY, f"unavailable: {error}")
             App.Console.PrintWarning(

@@ -3,12 +3,17 @@
 from __future__ import annotations
 
 import os
+import tempfile
 
 import FreeCAD as App
 import FreeCADGui as Gui
+from PySide import QtGui
 
-from varsurf import api, joints_api
+from varsurf.app import actions, references, selection
+from varsurf.app.macro import ref
+from varsurf.app.transaction import run_in_transaction
 from varsurf.gui import resources
+from varsurf.solve.analysis import MODES
 
 try:
     from PySide.QtCore import QT_TRANSLATE_NOOP
@@ -25,8 +30,6 @@ def _dialogs_allowed() -> bool:
 
 def show_selection_error(message: str):
     if _dialogs_allowed():
-        from PySide import QtGui
-
         title = QtGui.QApplication.translate("VarSurf_Sheet", "VarSurf sheet")
         QtGui.QMessageBox.warning(Gui.getMainWindow(), title, message)
 
@@ -48,10 +51,10 @@ class CommandSheet:
     def IsActive(self):
         if App.ActiveDocument is None:
             return False
-        return api.selection_problem(Gui.Selection.getSelectionEx()) is None
+        return selection.selection_problem(Gui.Selection.getSelectionEx()) is None
 
     def Activated(self):
-        api.run_sheet_command(
+        actions.run_sheet_command(
             Gui.Selection.getSelectionEx(), do_command=Gui.doCommand, on_error=show_selection_error
         )
 
@@ -89,21 +92,21 @@ SELECTION_COMMANDS = [
          "VarSurf_Solid",
          "Join Sheets along the curves they share: each is trimmed to its shared curves and\n"
          "the faces form a shell, a solid when closed. Select two or more Sheets."),
-     api.solid_selection_to_sheets, api.run_solid_command),
+     selection.solid_selection_to_sheets, actions.run_solid_command),
     ("VarSurf_SpaceCurve", "VarSurf_SpaceCurve.svg",
      QT_TRANSLATE_NOOP("VarSurf_SpaceCurve", "Variational space curve"),
      QT_TRANSLATE_NOOP(
          "VarSurf_SpaceCurve",
          "A curve reshaped by handles (both ends and the middle): sheets that pass through it\n"
          "follow it, and in a Solid it is solved with them. Select one edge."),
-     joints_api.space_curve_selection_to_base, joints_api.run_space_curve_command),
+     selection.space_curve_selection_to_base, actions.run_space_curve_command),
     ("VarSurf_Hinge", "VarSurf_Hinge.svg",
      QT_TRANSLATE_NOOP("VarSurf_Hinge", "Hinge"),
      QT_TRANSLATE_NOOP(
          "VarSurf_Hinge",
          "Hold the angle between two Sheets across the curve they share (180 degrees: smooth).\n"
          "Select two Sheets of a Solid and their shared edge, or the Solid's edge between them."),
-     joints_api.hinge_selection_to_args, joints_api.run_hinge_command),
+     selection.hinge_selection_to_args, actions.run_hinge_command),
 ]
 
 
@@ -126,13 +129,13 @@ class CommandConstraint:
         if App.ActiveDocument is None:
             return False
         try:
-            api.constraint_selection_to_args(self.kind, Gui.Selection.getSelectionEx())
+            selection.constraint_selection_to_args(self.kind, Gui.Selection.getSelectionEx())
         except ValueError:
             return False
         return True
 
     def Activated(self):
-        api.run_constraint_command(
+        actions.run_constraint_command(
             self.kind, Gui.Selection.getSelectionEx(), do_command=Gui.doCommand,
             on_error=show_selection_error,
         )
@@ -194,10 +197,7 @@ CONSTRAINT_COMMANDS = [
 ]
 
 def _selected_sheets():
-    from varsurf.app import sheet as sheet_feature
-
-    return [s.Object for s in Gui.Selection.getSelectionEx()
-            if getattr(getattr(s.Object, "Proxy", None), "Type", "") == sheet_feature.TYPE]
+    return [s.Object for s in Gui.Selection.getSelectionEx() if references.is_sheet(s.Object)]
 
 
 class CommandColorMap:
@@ -219,12 +219,10 @@ class CommandColorMap:
         return bool(_selected_sheets())
 
     def Activated(self):
-        from varsurf.analysis import MODES
-
         for sheet in _selected_sheets():
             mode = str(getattr(sheet.ViewObject, "Analysis", "None"))
             following = MODES[(MODES.index(mode) + 1) % len(MODES)] if mode in MODES else MODES[0]
-            Gui.doCommand(f"{api._ref(sheet)}.ViewObject.Analysis = {following!r}")
+            Gui.doCommandGui(f"{ref(sheet)}.ViewObject.Analysis = {following!r}")
 
 
 class CommandLCurve:
@@ -246,17 +244,13 @@ class CommandLCurve:
         return len(sheets) == 1 and bool(sheets[0].LCurveResiduals)
 
     def Activated(self):
-        import tempfile
-
         sheet = _selected_sheets()[0]
         path = os.path.join(tempfile.gettempdir(), f"varsurf-lcurve-{sheet.Document.Name}-{sheet.Name}.png")
-        Gui.doCommand("import varsurf.analysis")
-        Gui.doCommand(f"varsurf.analysis.plot_lcurve({api._ref(sheet)}, {path!r})")
+        Gui.doCommand("import varsurf.app.analysis")
+        Gui.doCommand(f"varsurf.app.analysis.plot_lcurve({ref(sheet)}, {path!r})")
         App.Console.PrintMessage(
             App.Qt.translate("VarSurf_LCurve", "VarSurf: L-curve of {} written to {}").format(sheet.Label, path) + "\n")
         if _dialogs_allowed():
-            from PySide import QtGui
-
             dialog = QtGui.QDialog(Gui.getMainWindow())
             dialog.setWindowTitle(QtGui.QApplication.translate("VarSurf_LCurve", "L-curve"))
             layout = QtGui.QVBoxLayout(dialog)
@@ -281,10 +275,10 @@ class CommandRestShape:
     def Activated(self):
         sheets = _selected_sheets()
         doc = sheets[0].Document
-        lines = ["import varsurf"] + [f"varsurf.{self.function}({api._ref(s)})" for s in sheets]
+        lines = ["import varsurf"] + [f"varsurf.{self.function}({ref(s)})" for s in sheets]
         lines.append(f"App.getDocument({doc.Name!r}).recompute()")
         try:
-            api.run_in_transaction(doc, f"VarSurf {self.function.replace('_', ' ')}", lines, Gui.doCommand)
+            run_in_transaction(doc, f"VarSurf {self.function.replace('_', ' ')}", lines, Gui.doCommand)
         except ValueError as error:
             show_selection_error(str(error))
 

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from pivy import coin
 
-from varsurf.model import native
+from varsurf.solve.native import native
 
 #: Most grid cells per direction (two per span below that).
 MAX_CELLS = 96

@@ -10,10 +10,12 @@ from __future__ import annotations
 
 import FreeCAD as App
 import FreeCADGui as Gui
+import Part
 from pivy import coin
 
-from varsurf import drag
+from varsurf.app import drag
 from varsurf.gui.coin_lines import add_polyline
+from varsurf.gui.drag_preview import DragPreview
 
 V = App.Vector
 PIN = (0.95, 0.55, 0.05)
@@ -119,8 +121,6 @@ def _on_sheet(sheet, constraint):
 
 
 def _location(constraint):
-    import Part
-
     link, subs = constraint.Location
     subs = [s for s in subs if s]
     shape = Part.getShape(link, subs[0], needSubElement=True) if subs else link.Shape
@@ -220,8 +220,6 @@ class ConstraintHandles:
             self._ribbon(c, sheet, size)
 
     def _ribbon(self, c, sheet, size):
-        import Part
-
         link, subs = c.Curve
         subs = [s for s in subs if s]
         edge = Part.getShape(link, subs[0], needSubElement=True) if subs else link.Shape.Edges[0]
@@ -244,8 +242,6 @@ class ConstraintHandles:
 
     # -- dragging --
     def begin_drag(self):
-        from varsurf.gui.drag_preview import DragPreview
-
         sheet = sheet_of(self.constraint)
         try:
             if sheet is None:

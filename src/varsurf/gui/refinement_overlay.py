@@ -5,8 +5,8 @@ from __future__ import annotations
 
 from pivy import coin
 
-from varsurf.analysis import refined_outlines
 from varsurf.gui.coin_lines import add_polyline
+from varsurf.solve.analysis import refined_outlines
 
 PROPERTY = "ShowRefinement"
 #: Outline colors by level (repeating).

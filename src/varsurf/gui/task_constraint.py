@@ -8,9 +8,9 @@ import FreeCAD as App
 import FreeCADGui as Gui
 from PySide import QtGui
 
-from varsurf import constraints
 from varsurf.gui.handles import sheet_of
 from varsurf.gui.task_base import PropertyTaskPanel, message, translate
+from varsurf.solve import constraints
 
 _LINKS = {"location": ("Location", ("Vertex",)), "curve": ("Curve", ("Edge",)),
           "reference": ("Reference", ("Face", "Edge"))}

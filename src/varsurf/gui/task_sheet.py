@@ -5,6 +5,7 @@ from __future__ import annotations
 import FreeCAD as App
 from PySide import QtCore, QtGui
 
+from varsurf.app import make
 from varsurf.gui.task_base import PropertyTaskPanel
 
 TRANSACTION_EDIT = "Edit VarSurf sheet"
@@ -115,10 +116,8 @@ class TaskPanelSheet(PropertyTaskPanel):
 
     def install_rest_shape(self):
         """The current result becomes the rest shape (inside the panel's transaction)."""
-        from varsurf import api
-
         try:
-            api.install_rest_shape(self.obj)
+            make.install_rest_shape(self.obj)
         except ValueError as error:
             App.Console.PrintError(f"VarSurf: {error}\n")
             return
@@ -126,8 +125,6 @@ class TaskPanelSheet(PropertyTaskPanel):
         self.update()
 
     def melt(self):
-        from varsurf import api
-
-        api.melt(self.obj)
+        make.melt(self.obj)
         self.rest_shape.setCurrentText("None")
         self.update()

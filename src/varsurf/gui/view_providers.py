@@ -2,18 +2,16 @@
 
 from __future__ import annotations
 
-import FreeCAD as App
+import importlib
+import os
+
 import FreeCADGui as Gui
+from PySide import QtGui
+from PySide.QtCore import QT_TRANSLATE_NOOP
 
-from varsurf.gui import resources
-
-try:
-    from PySide.QtCore import QT_TRANSLATE_NOOP
-except ImportError:  # pragma: no cover - FreeCAD always ships the PySide shim
-
-    def QT_TRANSLATE_NOOP(context, text):
-        return text
-from varsurf.persistence import VersionedState
+from varsurf.app.persistence import VersionedState
+from varsurf.gui import analysis_overlay, refinement_overlay, resources
+from varsurf.gui.handles import ConstraintHandles, CurveHandles, is_dragging, refresh_sheet_handles
 
 TYPE = "VarSurf::ViewProviderSheet"
 
@@ -58,7 +56,10 @@ class _ViewProvider(VersionedState):
 
 
 class _EditedInPanel:
-    """Double click or the context menu opens the object's task panel (PANEL: module, class)."""
+    """Double click or the context menu opens the object's task panel (PANEL: module, class).
+
+    The panel is named, not imported: panels use the make-functions, which import this module for
+    the view providers of the objects they make."""
 
     PANEL = ("", "")
     EDIT_TEXT = "Edit"
@@ -68,8 +69,6 @@ class _EditedInPanel:
         return True
 
     def setupContextMenu(self, vobj, menu):
-        from PySide import QtGui
-
         action = QtGui.QAction(QtGui.QIcon(self.getIcon()),
                                QtGui.QApplication.translate("VarSurf", self.EDIT_TEXT), menu)
         action.triggered.connect(lambda: Gui.ActiveDocument.setEdit(vobj.Object.Name, 0))
@@ -78,8 +77,6 @@ class _EditedInPanel:
     def setEdit(self, vobj, mode=0):
         if mode != 0:
             return False  # let FreeCAD handle Transform etc.
-        import importlib
-
         module, name = self.PANEL
         Gui.Control.showDialog(getattr(importlib.import_module(module), name)(vobj.Object))
         return True
@@ -105,10 +102,6 @@ class ViewProviderSheet(_EditedInPanel, _ViewProvider):
 
     def attach(self, vobj):
         super().attach(vobj)
-        from varsurf.gui import analysis_overlay
-
-        from varsurf.gui import refinement_overlay
-
         analysis_overlay.add_view_properties(vobj)
         refinement_overlay.add_view_property(vobj)
         if getattr(self, "overlay", None) is None:  # FreeCAD attaches again when Proxy is set
@@ -118,8 +111,6 @@ class ViewProviderSheet(_EditedInPanel, _ViewProvider):
     def updateData(self, obj, prop):
         if prop != "Shape":
             return
-        from varsurf.gui.handles import is_dragging, refresh_sheet_handles
-
         refresh_sheet_handles(obj)  # the constraints' handles sit on the solved sheet
         overlay = getattr(self, "overlay", None)
         if overlay is None or obj.ViewObject is None:
@@ -161,8 +152,6 @@ class ViewProviderConstraint(_EditedInPanel, _ViewProvider):
 
     def attach(self, vobj):
         super().attach(vobj)
-        from varsurf.gui.handles import ConstraintHandles
-
         if getattr(self, "handles", None) is None:  # FreeCAD attaches again when Proxy is set
             self.handles = ConstraintHandles()
             vobj.addDisplayMode(self.handles.root, self.MODE)
@@ -170,8 +159,6 @@ class ViewProviderConstraint(_EditedInPanel, _ViewProvider):
 
     def getIcon(self):
         """The kind's own icon (the generic one for a kind without)."""
-        import os
-
         kind = str(getattr(getattr(self, "Object", None), "Kind", ""))
         path = resources.icon(f"VarSurf_{kind}.svg")
         return path if kind and os.path.isfile(path) else resources.icon(self.ICON)
@@ -232,8 +219,6 @@ class ViewProviderSpaceCurve(_ViewProvider):
 
     def attach(self, vobj):
         super().attach(vobj)
-        from varsurf.gui.handles import CurveHandles
-
         if getattr(self, "handles", None) is None:  # FreeCAD attaches again when Proxy is set
             self.handles = CurveHandles(vobj)
 
@@ -251,9 +236,3 @@ class ViewProviderHinge(_EditedInPanel, _ViewProvider):
     ICON = "VarSurf_Hinge.svg"
     PANEL = ("varsurf.gui.task_hinge", "TaskPanelHinge")
     EDIT_TEXT = QT_TRANSLATE_NOOP("VarSurf", "Edit hinge")
-
-
-def ensure_view_provider(obj):
-    """Give a Sheet created without GUI (or restored without a proxy) its view provider."""
-    if App.GuiUp and obj.ViewObject is not None and obj.ViewObject.Proxy is None:
-        ViewProviderSheet(obj.ViewObject)

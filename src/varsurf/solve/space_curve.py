@@ -13,7 +13,9 @@ import math
 from dataclasses import dataclass, field
 from typing import List, Sequence, Tuple
 
-from varsurf.model import SheetError, _build, native
+from varsurf.solve import shapes
+from varsurf.solve.errors import SheetError
+from varsurf.solve.native import build, native
 
 #: Spans the rest curve is refined to (knot insertion, shape unchanged): the freedom handles and
 #: sheets have to bend it.
@@ -57,8 +59,6 @@ def rest_curve(edge, spans: int = DEFAULT_SPANS):
     SheetError for a closed edge (its two ends would have to stay together: split it) or one that
     cannot be converted.
     """
-    import Part
-
     if getattr(edge, "ShapeType", None) != "Edge":
         raise SheetError("a space curve's base must be an edge")
     if not 1 <= int(spans) <= 512:
@@ -72,7 +72,7 @@ def rest_curve(edge, spans: int = DEFAULT_SPANS):
         raise SheetError(f"the base edge cannot be converted to a B-spline: {error}") from error
     if curve.isRational():
         points = edge.discretize(Number=max(8 * int(spans), 64))
-        curve = Part.BSplineCurve()
+        curve = shapes.part().BSplineCurve()
         curve.approximate(Points=points, DegMin=3, DegMax=3, Tolerance=APPROXIMATION_TOLERANCE)
     if curve.isPeriodic():
         curve.setNotPeriodic()
@@ -84,20 +84,8 @@ def rest_curve(edge, spans: int = DEFAULT_SPANS):
     return curve
 
 
-def to_native(nat, part_curve):
-    return nat.curve_from_edge_brep(part_curve.toShape().exportBrepToString())
-
-
-def part_curve(native_curve):
-    """A Part.BSplineCurve with the native curve's knots and poles (non-rational)."""
-    import FreeCAD
-    import Part
-
-    knots, mults = native().split_knots(list(native_curve.knots))
-    poles = [FreeCAD.Vector(*map(float, row)) for row in native_curve.poles]
-    curve = Part.BSplineCurve()
-    curve.buildFromPolesMultsKnots(poles, mults, knots, False, int(native_curve.degree))
-    return curve
+def to_native(nat, curve):
+    return nat.curve_from_edge_brep(curve.toShape().exportBrepToString())
 
 
 def handles_at(start_part_curve, parameters: Sequence[float], positions: Sequence) -> list:
@@ -124,5 +112,5 @@ def solve_alone(curve: VariationalCurve):
     except nat.InvalidInput as error:
         raise SheetError(str(error)) from error
     start = curve.start
-    return _build(nat.BSplineCurve, degree=start.degree, knots=list(start.knots),
+    return build(nat.BSplineCurve, degree=start.degree, knots=list(start.knots),
                   poles=result.curve_poles[0])

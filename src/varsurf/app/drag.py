@@ -16,10 +16,14 @@ import math
 import time
 
 import FreeCAD
+import Part
 
-from varsurf.api import _exec_line, _ref
 from varsurf.app import sheet as sheet_feature
-from varsurf.model import SheetError, _build, _single_face, native, shape_from_brep
+from varsurf.app import space_curve as space_curve_feature
+from varsurf.app.macro import exec_line, ref
+from varsurf.solve.errors import SheetError
+from varsurf.solve.native import build, native
+from varsurf.solve.shapes import shape_from_brep, single_face
 
 TRANSACTION = "Drag VarSurf point"
 #: A target this far (relative to the sheet's size) from the prepared one is not this constraint.
@@ -28,14 +32,14 @@ _SAME_TARGET = 1e-9
 
 def _target_lines(constraint, t):
     """Macro lines that write a Point's dragged target (set_point_target)."""
-    return ["import varsurf.drag",
-            f"varsurf.drag.set_point_target({_ref(constraint)}, App.Vector({t.x!r}, {t.y!r}, {t.z!r}))"]
+    return ["import varsurf.app.drag",
+            f"varsurf.app.drag.set_point_target({ref(constraint)}, App.Vector({t.x!r}, {t.y!r}, {t.z!r}))"]
 
 
 def _finish(doc, lines, do_command=None):
     """Run a drag's closing lines and a recompute inside its open transaction, then commit it
     (abort on failure)."""
-    run = do_command or _exec_line
+    run = do_command or exec_line
     try:
         for line in lines + [f"App.getDocument({doc.Name!r}).recompute()"]:
             run(line)
@@ -59,8 +63,6 @@ def point_target(constraint):
     if constraint.Location is not None and not constraint.UseOrigin:
         link, subs = constraint.Location
         subs = [s for s in subs if s]
-        import Part
-
         shape = Part.getShape(link, subs[0], needSubElement=True) if subs else link.Shape
         if shape.isNull() or not shape.Vertexes:
             raise DragError(f"{constraint.Label}: its Location is not a vertex")
@@ -145,14 +147,14 @@ class PointDrag:
             self.last = self.prepared.update(self.problem)
         except (nat.InvalidInput, nat.SolveFailure) as error:
             raise DragError(f"{self.sheet.Label}: {error}") from error
-        surface = _build(nat.BSplineSurface, space=self.space, poles=self.last.poles)
+        surface = build(nat.BSplineSurface, space=self.space, poles=self.last.poles)
         if update_shape:
             try:  # bounded and oriented like the base face, as the Sheet's own result
                 brep = self.trim.face_brep(surface) if self.trim is not None else nat.face_brep(surface)
             except (nat.InvalidInput, nat.GeometryError) as error:
                 raise DragError(f"{self.sheet.Label}: the dragged sheet cannot be bounded like its base "
                                 f"face: {error}") from error
-            self.sheet.Shape = _single_face(shape_from_brep(brep))
+            self.sheet.Shape = single_face(shape_from_brep(brep))
         self.moves += 1
         self.seconds += time.perf_counter() - began
         return surface
@@ -239,8 +241,6 @@ class HandleDrag(RecomputeDrag):
     TRANSACTION = HANDLE_TRANSACTION
 
     def __init__(self, curve, index):
-        from varsurf.app import space_curve as space_curve_feature
-
         if not space_curve_feature.is_space_curve(curve):
             raise DragError(f"{curve.Label} is not a SpaceCurve")
         if not 0 <= int(index) < len(curve.Handles):
@@ -255,7 +255,7 @@ class HandleDrag(RecomputeDrag):
 
     def _lines(self, t):
         return ["import varsurf",
-                f"varsurf.move_handle({_ref(self.curve)}, {self.index}, App.Vector({t.x!r}, {t.y!r}, {t.z!r}))"]
+                f"varsurf.move_handle({ref(self.curve)}, {self.index}, App.Vector({t.x!r}, {t.y!r}, {t.z!r}))"]
 
     def _preview(self):
         self.curve.recompute()
@@ -281,7 +281,7 @@ class OriginDrag(RecomputeDrag):
         self.constraint.Origin = target
 
     def _lines(self, t):
-        return [f"{_ref(self.constraint)}.Origin = App.Vector({t.x!r}, {t.y!r}, {t.z!r})"]
+        return [f"{ref(self.constraint)}.Origin = App.Vector({t.x!r}, {t.y!r}, {t.z!r})"]
 
 
 class TargetDrag(RecomputeDrag):

@@ -7,21 +7,21 @@ import math
 
 import FreeCAD
 
-from varsurf import model
+from varsurf.solve import settings
 
 PARAM_PATH = "User parameter:BaseApp/Preferences/Mod/VarSurf"
 
 # name -> (kind, built-in default, valid?)
 _ENTRIES = {
-    "Degree": ("Int", model.SHEET_MIN_DEGREE, lambda v: 2 <= v <= 9),
-    "MinSpans": ("Int", model.DEFAULT_MIN_SPANS, lambda v: 1 <= v <= 512),
-    "MaxSpans": ("Int", model.DEFAULT_MAX_SPANS, lambda v: 1 <= v <= 1024),
-    "Stretch": ("Float", model.DEFAULT_STRETCH, lambda v: math.isfinite(v) and v >= 0.0),
-    "Bend": ("Float", model.DEFAULT_BEND, lambda v: math.isfinite(v) and v >= 0.0),
-    "Tolerance": ("Float", model.DEFAULT_TOLERANCE, lambda v: math.isfinite(v) and v > 0.0),
-    "SolveMode": ("Int", 0, lambda v: 0 <= v < len(model.SOLVE_MODES)),  # a combo box's index
+    "Degree": ("Int", settings.SHEET_MIN_DEGREE, lambda v: 2 <= v <= 9),
+    "MinSpans": ("Int", settings.DEFAULT_MIN_SPANS, lambda v: 1 <= v <= 512),
+    "MaxSpans": ("Int", settings.DEFAULT_MAX_SPANS, lambda v: 1 <= v <= 1024),
+    "Stretch": ("Float", settings.DEFAULT_STRETCH, lambda v: math.isfinite(v) and v >= 0.0),
+    "Bend": ("Float", settings.DEFAULT_BEND, lambda v: math.isfinite(v) and v >= 0.0),
+    "Tolerance": ("Float", settings.DEFAULT_TOLERANCE, lambda v: math.isfinite(v) and v > 0.0),
+    "SolveMode": ("Int", 0, lambda v: 0 <= v < len(settings.SOLVE_MODES)),  # a combo box's index
     # Resource limits of one solve: seconds, and megabytes (0: half the physical memory).
-    "SolveTimeLimit": ("Float", model.DEFAULT_TIME_LIMIT, lambda v: math.isfinite(v) and v > 0.0),
+    "SolveTimeLimit": ("Float", settings.DEFAULT_TIME_LIMIT, lambda v: math.isfinite(v) and v > 0.0),
     "SolveMemoryLimit": ("Int", 0, lambda v: v >= 0),
 }
 
@@ -45,15 +45,15 @@ def sheet_defaults() -> dict:
         "stretch": get("Stretch"),
         "bend": get("Bend"),
         "tolerance": get("Tolerance"),
-        "solve_mode": model.SOLVE_MODES[get("SolveMode")],
+        "solve_mode": settings.SOLVE_MODES[get("SolveMode")],
     }
 
 
 def solve_limits() -> dict:
-    """The time and memory limits of a solve (solve_sheet_on_face's keywords)."""
+    """The time and memory limits of a solve (SheetSettings.time_limit and memory_limit)."""
     megabytes = get("SolveMemoryLimit")
     return {"time_limit": get("SolveTimeLimit"),
-            "memory_limit": megabytes * 1e6 if megabytes > 0 else model.default_memory_limit()}
+            "memory_limit": megabytes * 1e6 if megabytes > 0 else settings.default_memory_limit()}
 
 
 def is_set(name: str) -> bool:

@@ -4,14 +4,17 @@ reflection of stripes parallel to a direction: kinks and curvature jumps show as
 and along each of its curves, the distance from the curve to the sheet (CurveDeviation).
 
 Plain geometry on Part faces (OCCT evaluates the surface and its curvature); the GUI colors a mesh
-with it (varsurf.gui.analysis_overlay). No GUI import.
+with it (varsurf.gui.analysis_overlay). What a Sheet object is measured against, and its L-curve
+plot, are in varsurf.app.analysis.
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import List, Optional, Tuple
+from typing import List, Tuple
+
+from varsurf.solve.shapes import single_face
 
 MODES = ("None", "Deviation", "CurveDeviation", "MeanCurvature", "GaussianCurvature", "Zebra")
 #: Grid cells per direction.
@@ -36,13 +39,6 @@ class AnalysisGrid:
         return (min(finite), max(finite)) if finite else (0.0, 0.0)
 
 
-def _single_face(shape):
-    faces = getattr(shape, "Faces", None) or []
-    if len(faces) != 1:
-        raise ValueError(f"analysis needs one face (got {len(faces)})")
-    return faces[0]
-
-
 def analyse(shape, mode: str, reference=None, direction=(0.0, 0.0, 1.0), n: int = GRID) -> AnalysisGrid:
     """Sample `mode` on an (n+1) x (n+1) grid over the face's parameter box.
 
@@ -56,13 +52,13 @@ def analyse(shape, mode: str, reference=None, direction=(0.0, 0.0, 1.0), n: int 
                          f" (got {mode!r})")
     if not 1 <= n <= 400:
         raise ValueError(f"analysis grid must have 1 to 400 cells per direction (got {n})")
-    face = _single_face(shape)
+    face = single_face(shape, "analysis")
     surface = face.Surface
     ref = None
     if mode == "Deviation":
         if reference is None:
             raise ValueError("deviation needs a reference face (the base, or an installed rest shape)")
-        ref = _single_face(reference)
+        ref = single_face(reference, "analysis")
     u0, u1, v0, v1 = face.ParameterRange
     d = _unit(direction)
     grid = AnalysisGrid(n=n)
@@ -102,7 +98,7 @@ def curve_deviations(shape, edges, samples: int = CURVE_SAMPLES) -> List[CurveDe
     """Distance from points along each edge to the sheet's surface (by projection onto it)."""
     if samples < 2:
         raise ValueError("a curve needs at least 2 samples")
-    face = _single_face(shape)
+    face = single_face(shape, "analysis")
     out = []
     for edge in edges:
         points, distances = [], []
@@ -170,55 +166,6 @@ def color_range(mode: str, grid: AnalysisGrid) -> Tuple[float, float]:
     lo, hi = grid.range
     m = max(abs(lo), abs(hi))
     return (-m, m)
-
-
-def reference_of(sheet) -> Optional[object]:
-    """The face a Sheet's deviation is measured from: its installed rest shape, else its base."""
-    if str(getattr(sheet, "RestShape", "None")) == "Installed":
-        rest = getattr(sheet, "InstalledRest", None)
-        if rest is not None and not rest.isNull() and len(rest.Faces) == 1:
-            return rest
-    base = getattr(sheet, "Base", None)
-    if base and base[0] is not None:
-        import Part
-
-        subs = [s for s in base[1] if s]
-        if subs:
-            return Part.getShape(base[0], subs[0], needSubElement=True)
-    return None
-
-
-def plot_lcurve(sheet, path: str) -> str:
-    """The L-curve of a Sheet's TSVD/MTSVD solve (residual norm against solution change norm per
-    truncation k, log-log) with the chosen corner marked, written as a PNG; its path. ValueError
-    when the last solve drew no L-curve (other solve modes)."""
-    residuals, norms = list(sheet.LCurveResiduals), list(sheet.LCurveNorms)
-    corner = int(sheet.LCurveCorner)
-    if not residuals or len(residuals) != len(norms) or not 1 <= corner <= len(residuals):
-        raise ValueError(f"{sheet.Label} has no L-curve: solve it in TSVD or MTSVD mode")
-    import matplotlib
-
-    matplotlib.use("Agg", force=False)  # a file, whatever the GUI uses
-    from matplotlib.figure import Figure
-    from matplotlib.backends.backend_agg import FigureCanvasAgg
-
-    keep = [(r, e) for r, e in zip(residuals, norms) if r > 0.0 and e > 0.0]
-    figure = Figure(figsize=(6.0, 4.5), dpi=100)
-    FigureCanvasAgg(figure)
-    axes = figure.add_subplot(1, 1, 1)
-    axes.loglog([r for r, _ in keep], [e for _, e in keep], "o-", markersize=3, color="#2060c0")
-    r, e = residuals[corner - 1], norms[corner - 1]
-    if r > 0.0 and e > 0.0:
-        axes.loglog([r], [e], "o", markersize=10, markerfacecolor="none", markeredgecolor="#d02020",
-                    markeredgewidth=2, label=f"corner: k = {corner}")
-        axes.legend()
-    axes.set_xlabel("constraint residual norm ‖B x − d‖")
-    axes.set_ylabel("solution change norm ‖x − x₀‖")
-    axes.set_title(f"L-curve of {sheet.Label} ({len(residuals)} truncations)")
-    axes.grid(True, which="both", alpha=0.3)
-    figure.tight_layout()
-    figure.savefig(path)
-    return path
 
 
 #: Points along each side of a refined span's outline.

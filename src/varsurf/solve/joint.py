@@ -11,12 +11,14 @@ from __future__ import annotations
 
 import copy
 import math
+import re
 from dataclasses import dataclass
 from typing import Dict, List, Sequence
 
-from varsurf.model import SheetError, _build, _single_face, native, shape_from_brep
-from varsurf.space_curve import VariationalCurve, part_curve
-
+from varsurf.solve.errors import CANCELLED, SheetError
+from varsurf.solve.native import build, native
+from varsurf.solve.shapes import part_curve, shape_from_brep, single_face
+from varsurf.solve.space_curve import VariationalCurve
 
 #: A hinge farther than this (degrees) from its angle anywhere is a failure, not a result.
 HINGE_FAILURE = 1.0
@@ -33,7 +35,7 @@ HINGE_ITERATIONS = 80
 @dataclass
 class JointSheet:
     label: str
-    outcome: object  # model.SheetOutcome of the sheet's own solve
+    outcome: object  # SheetOutcome of the sheet's own solve
     keys: List[str]  # one key per curve, in outcome.curve_names order (equal keys: the same curve)
 
 
@@ -160,25 +162,23 @@ def solve_joint(sheets: Sequence[JointSheet], variational: Dict[str, Variational
     except (nat.InvalidInput, nat.ResourceLimit) as error:
         raise SheetError(_named(str(error), labels, list(index), hinges)) from error
     except nat.Cancelled as error:
-        from varsurf.model import CANCELLED
-
         raise SheetError(CANCELLED) from error
 
     faces = []
     for s, problem, poles in zip(sheets, problems, result.sheet_poles):
-        surface = _build(nat.BSplineSurface, space=problem.space, poles=poles)
+        surface = build(nat.BSplineSurface, space=problem.space, poles=poles)
         trim = getattr(s.outcome, "trim", None)
         try:  # bounded and oriented like the sheet's base face, as its own result
             brep = trim.face_brep(surface) if trim is not None else nat.face_brep(surface)
         except (nat.InvalidInput, nat.GeometryError) as error:
             raise SheetError(f"{s.label}: the jointly solved sheet cannot be bounded like its base face: "
                              f"{error}") from error
-        faces.append(_single_face(shape_from_brep(brep)))
+        faces.append(single_face(shape_from_brep(brep)))
     edges = {}
     for key, i in index.items():
         if key not in variational:
             continue  # a fixed curve stays the user's edge (exactly, arcs included)
-        solved = _build(nat.BSplineCurve, degree=curves[i].start.degree, knots=list(curves[i].start.knots),
+        solved = build(nat.BSplineCurve, degree=curves[i].start.degree, knots=list(curves[i].start.knots),
                         poles=result.curve_poles[i])
         edges[key] = part_curve(solved).toShape()
     rep = result.report
@@ -208,8 +208,6 @@ def _fixed_curve(nat, target):
 
 def _named(message: str, labels, keys, hinges) -> str:
     """The core names sheets, curves and hinges by index: say which ones."""
-    import re
-
     def by_index(names):
         return lambda m: names[int(m.group(1))] if int(m.group(1)) < len(names) else m.group(0)
 

@@ -16,6 +16,9 @@ import math
 from dataclasses import dataclass, field
 from typing import Dict, List, Optional, Sequence, Tuple
 
+from varsurf.solve import shapes
+from varsurf.solve.native import native
+
 #: Kind -> (what it does, unit of its residual).
 KINDS: Dict[str, Tuple[str, str]] = {
     "Point": ("the sheet passes through the location (or Origin) at its (u, v)", "mm"),
@@ -189,8 +192,7 @@ LOOP_POINTS = 240
 
 def _place_loop(spec: ConstraintSpec, base, nat):
     """The pre-image on the base of a region's closed loop of edges, as (u, v) points."""
-    import Part
-
+    Part = shapes.part()
     fail = lambda why: ConstraintError(f"{spec.name}: {why}")  # noqa: E731
     edges = list(spec.region_loop.Edges)
     if not edges:
@@ -333,9 +335,8 @@ def _native_region(p: PlacedSpec, nat):
 def _region_samples(p: PlacedSpec, surface):
     """(u, v, weight) on which a region kind's residual is measured: the region's quadrature
     points (at most REGION_SAMPLES of them, evenly picked) with their weights normalized."""
-    from varsurf import _native
-
-    points = _native.region_quadrature(surface.space, _native_region(p, _native))
+    nat = native()
+    points = nat.region_quadrature(surface.space, _native_region(p, nat))
     points = points[:: max(1, len(points) // REGION_SAMPLES)]
     total = sum(q.weight for q in points)
     return [(q.u, q.v, q.weight / total) for q in points]
@@ -372,13 +373,9 @@ def residual(p: PlacedSpec, surface, base) -> float:
     """How far the solved ``surface`` is from what the spec asks, in KINDS' unit."""
     s, kind = p.spec, p.spec.kind
     if kind == "G0":
-        from varsurf import _native
-
-        return _native.max_deviation(surface, p.curve.target)
+        return native().max_deviation(surface, p.curve.target)
     if kind in CURVE_KINDS:
-        from varsurf import _native
-
-        return math.degrees(_native.ribbon_angle_error(surface.space, surface.poles, p.ribbon))
+        return math.degrees(native().ribbon_angle_error(surface.space, surface.poles, p.ribbon))
     if kind in POINT_KINDS:
         d = surface.derivatives(p.u, p.v, 1)
         w, wu, wv = list(d[0]), list(d[1]), list(d[2])

@@ -13,7 +13,9 @@ import math
 from dataclasses import dataclass, field
 from typing import List, Sequence
 
-from varsurf.model import SheetError, native, shape_from_brep
+from varsurf.solve.errors import SheetError
+from varsurf.solve.native import native
+from varsurf.solve.shapes import shape_from_brep
 
 
 class JoinGapError(SheetError):

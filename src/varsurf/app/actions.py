@@ -1,0 +1,91 @@
+"""What each command does when activated, headless too: check the selection, then run the
+command's macro lines (recorded in the GUI) in one transaction; an unusable selection is reported
+(report view, and ``on_error``, e.g. a dialog) and creates nothing."""
+
+from __future__ import annotations
+
+import FreeCAD
+
+from varsurf.app import macro, references, selection
+from varsurf.app.transaction import run_in_transaction
+
+#: Names of the undo transactions the commands open.
+TRANSACTION_CREATE = "Create VarSurf sheet"
+TRANSACTION_SOLID = "Add VarSurf solid"
+TRANSACTION_CONSTRAINT = "Add VarSurf constraint"
+TRANSACTION_SPACE_CURVE = "Add VarSurf space curve"
+TRANSACTION_HINGE = "Add VarSurf hinge"
+
+
+def _report(error, on_error):
+    FreeCAD.Console.PrintError(f"VarSurf: {error}\n")
+    if on_error is not None:
+        on_error(str(error))
+
+
+def create_sheet_from_selection(selection_ex, do_command=None):
+    """Validate the selection and create a sheet through macro lines, in one undo transaction.
+
+    do_command runs one line (FreeCADGui.doCommand in the GUI, so the lines are recorded in
+    macros); without it the lines are exec()'d. Raises ValueError for an unusable selection,
+    creating nothing. Returns the new Sheet object.
+    """
+    base, curves = selection.selection_to_sheet_args(selection_ex)
+    return run_in_transaction(base[0].Document, TRANSACTION_CREATE, macro.sheet_command_lines(base, curves),
+                              do_command, keep=references.is_sheet)
+
+
+def run_sheet_command(selection_ex, do_command=None, on_error=None):
+    """What the VarSurf_Sheet command does: a Sheet on the selected face through the selected
+    edges. Returns the new Sheet or None."""
+    try:
+        return create_sheet_from_selection(selection_ex, do_command=do_command)
+    except ValueError as error:
+        _report(error, on_error)
+        return None
+
+
+def run_solid_command(selection_ex, do_command=None, on_error=None):
+    """What the VarSurf_Solid command does: join the selected Sheets. Returns the new Solid or
+    None."""
+    try:
+        sheets = selection.solid_selection_to_sheets(selection_ex)
+    except ValueError as error:
+        _report(error, on_error)
+        return None
+    return run_in_transaction(sheets[0].Document, TRANSACTION_SOLID, macro.solid_command_lines(sheets), do_command)
+
+
+def run_constraint_command(kind: str, selection_ex, do_command=None, on_error=None):
+    """What a constraint command does: the constraint of ``kind`` on the selected Sheet. Returns
+    the new Constraint or None."""
+    try:
+        sheet, args = selection.constraint_selection_to_args(kind, selection_ex)
+    except ValueError as error:
+        _report(error, on_error)
+        return None
+    return run_in_transaction(sheet.Document, TRANSACTION_CONSTRAINT,
+                              macro.constraint_command_lines(kind, sheet, args), do_command)
+
+
+def run_space_curve_command(selection_ex, do_command=None, on_error=None):
+    """What VarSurf_SpaceCurve does: a SpaceCurve on the selected edge."""
+    try:
+        obj, sub = selection.space_curve_selection_to_base(selection_ex)
+    except ValueError as error:
+        _report(error, on_error)
+        return None
+    return run_in_transaction(obj.Document, TRANSACTION_SPACE_CURVE, macro.space_curve_command_lines(obj, sub),
+                              do_command)
+
+
+def run_hinge_command(selection_ex, do_command=None, on_error=None, angle: float = 180.0):
+    """What VarSurf_Hinge does: a Hinge between the selected Sheets."""
+    try:
+        solid, a, b, (obj, sub) = selection.hinge_selection_to_args(selection_ex)
+    except ValueError as error:
+        _report(error, on_error)
+        return None
+    return run_in_transaction(solid.Document, TRANSACTION_HINGE, macro.hinge_command_lines(solid, a, b, obj, sub, angle),
+                              do_command,
+                              keep=lambda o: getattr(getattr(o, "Proxy", None), "Type", None) == "VarSurf::Hinge")

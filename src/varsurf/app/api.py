@@ -1,0 +1,55 @@
+"""The App tier's public API in one place: the make-functions, the selection helpers and what
+each command does (``varsurf.make_sheet`` and the other top-level names come from here)."""
+
+from varsurf.app.actions import (
+    create_sheet_from_selection,
+    run_constraint_command,
+    run_hinge_command,
+    run_sheet_command,
+    run_solid_command,
+    run_space_curve_command,
+)
+from varsurf.app.macro import constraint_command_lines, sheet_command_lines
+from varsurf.app.make import export_step, install_rest_shape, make_constraint, make_sheet, make_solid, melt
+from varsurf.app.make_joints import make_hinge, make_space_curve, move_handle
+from varsurf.app.references import is_sheet, single_element
+from varsurf.app.selection import (
+    constraint_selection_to_args,
+    hinge_selection_to_args,
+    selection_hint,
+    selection_problem,
+    selection_to_sheet_args,
+    solid_selection_to_sheets,
+    space_curve_selection_to_base,
+)
+from varsurf.app.transaction import run_in_transaction
+
+__all__ = [
+    "create_sheet_from_selection",
+    "run_constraint_command",
+    "run_hinge_command",
+    "run_sheet_command",
+    "run_solid_command",
+    "run_space_curve_command",
+    "constraint_command_lines",
+    "sheet_command_lines",
+    "export_step",
+    "install_rest_shape",
+    "make_constraint",
+    "make_sheet",
+    "make_solid",
+    "melt",
+    "make_hinge",
+    "make_space_curve",
+    "move_handle",
+    "is_sheet",
+    "single_element",
+    "constraint_selection_to_args",
+    "hinge_selection_to_args",
+    "selection_hint",
+    "selection_problem",
+    "selection_to_sheet_args",
+    "solid_selection_to_sheets",
+    "space_curve_selection_to_base",
+    "run_in_transaction",
+]

@@ -1,0 +1,96 @@
+"""The macro lines each command records (and runs, so a recorded macro replays it exactly)."""
+
+from __future__ import annotations
+
+from typing import List
+
+import FreeCAD
+
+from varsurf.app import references
+from varsurf.solve import constraints
+
+
+def ref(obj) -> str:
+    """The expression that finds ``obj`` again when a macro replays."""
+    return f"App.getDocument({obj.Document.Name!r}).getObject({obj.Name!r})"
+
+
+def exec_line(line: str, namespace={}):  # noqa: B006 - one namespace, like the GUI console
+    if not namespace:
+        namespace.update({"App": FreeCAD, "FreeCAD": FreeCAD, "__name__": "__varsurf_macro__"})
+    exec(line, namespace)
+
+
+def sheet_command_lines(base, curves) -> List[str]:
+    """The macro lines that create and compute a sheet (what the GUI command records)."""
+    base_obj, face_name = references.normalize_base(base)
+    curve_links = references.normalize_curves(curves)
+    curve_text = ", ".join(f"({ref(o)}, {tuple(names)!r})" for o, names in curve_links)
+    doc = base_obj.Document
+    return [
+        "import varsurf",
+        f"_sheet = varsurf.make_sheet(({ref(base_obj)}, {face_name!r}), [{curve_text}])",
+        f"App.getDocument({doc.Name!r}).recompute()",
+    ]
+
+
+def solid_command_lines(sheets) -> List[str]:
+    """Macro lines that join Sheets into a Solid and recompute."""
+    return [
+        "import varsurf",
+        f"_solid = varsurf.make_solid([{', '.join(ref(s) for s in sheets)}])",
+        f"App.getDocument({sheets[0].Document.Name!r}).recompute()",
+    ]
+
+
+def constraint_command_lines(kind: str, sheet, args) -> List[str]:
+    """Macro lines that add a constraint with editable defaults and recompute."""
+    parts = [ref(sheet), repr(kind)]
+    for key in ("location", "curve", "reference"):
+        if key in args:
+            obj, sub = args[key]
+            parts.append(f"{key}=({ref(obj)}, {sub!r})")
+    if "region_loop" in args:
+        obj, subs = args["region_loop"]
+        parts.append(f"region_loop=({ref(obj)}, {list(subs)!r})")
+    if kind in constraints.POINT_KINDS and "location" not in args:
+        parts.append("uv=(0.5, 0.5)")
+    if kind in ("PointInPlane", "PointOnLine", "PointAttractor", "PlaneAttractor", "LineAttractor", "Repeller"):
+        # planes, lines and attracting points start through the sheet's middle
+        centre = _sheet_centre(sheet)
+        parts.append(f"origin=({centre[0]:.6g}, {centre[1]:.6g}, {centre[2]:.6g})")
+    if kind in constraints.REGION_KINDS and "region_loop" not in args:
+        parts.append("region=(0.25, 0.75, 0.25, 0.75)")  # the sheet's middle
+    return [
+        "import varsurf",
+        f"_constraint = varsurf.make_constraint({', '.join(parts)})",
+        f"App.getDocument({sheet.Document.Name!r}).recompute()",
+    ]
+
+
+def _sheet_centre(sheet):
+    face = sheet.Shape.Faces[0] if not sheet.Shape.isNull() and sheet.Shape.Faces else None
+    if face is None:
+        return (0.0, 0.0, 0.0)
+    u0, u1, v0, v1 = face.ParameterRange
+    p = face.Surface.value(0.5 * (u0 + u1), 0.5 * (v0 + v1))
+    return (p.x, p.y, p.z)
+
+
+def space_curve_command_lines(obj, sub) -> List[str]:
+    """Macro lines that add a SpaceCurve on an edge and recompute."""
+    return [
+        "import varsurf",
+        f"_curve = varsurf.make_space_curve(({ref(obj)}, {sub!r}))",
+        f"App.getDocument({obj.Document.Name!r}).recompute()",
+    ]
+
+
+def hinge_command_lines(solid, a, b, obj, sub, angle) -> List[str]:
+    """Macro lines that add a Hinge to a Solid and recompute."""
+    return [
+        "import varsurf",
+        f"_hinge = varsurf.make_hinge({ref(solid)}, {ref(a)}, {ref(b)}, ({ref(obj)}, {sub!r}), "
+        f"angle={float(angle)!r})",
+        f"App.getDocument({solid.Document.Name!r}).recompute()",
+    ]

@@ -1,0 +1,230 @@
+"""The make-functions of the scripting API (headless, in macros and behind the GUI commands):
+each adds one VarSurf object to a document, computed at the next recompute.
+
+    import varsurf
+    sheet = varsurf.make_sheet((surface, "Face1"), [(sketch, ("Edge1", "Edge2"))], bend=1.0)
+    App.ActiveDocument.recompute()
+    print(sheet.MaxDeviations)
+    varsurf.export_step([sheet], "/tmp/sheet.step")
+"""
+
+from __future__ import annotations
+
+import os
+from typing import Iterable, Optional
+
+import FreeCAD
+import Part
+
+from varsurf.app import preferences, references
+from varsurf.app.constraint import ConstraintFeature
+from varsurf.app.sheet import SheetFeature, apply_settings
+from varsurf.app.solid import SolidFeature
+from varsurf.solve import constraints, settings
+from varsurf.solve.native import native
+
+if FreeCAD.GuiUp:  # as Draft's make-functions: the view provider comes with the object
+    from varsurf.gui import view_providers
+
+
+def attach_view_provider(obj, class_name: str):
+    """In the GUI, give ``obj`` its view provider (``varsurf.gui.view_providers.<class_name>``)
+    and let it set itself up (e.g. hide the inputs the object consumes); headless, nothing."""
+    if not FreeCAD.GuiUp:
+        return
+    getattr(view_providers, class_name)(obj.ViewObject)
+    on_created = getattr(obj.ViewObject.Proxy, "on_created", None)
+    if on_created is not None:
+        on_created(obj.ViewObject)
+
+
+def _model_size(base, curves) -> float:
+    """The diagonal (mm) of what a new sheet is made from: its base face, else its curves."""
+    boxes = []
+    try:
+        if base is not None:
+            obj, sub = references.normalize_base(base)
+            boxes.append(Part.getShape(obj, sub, needSubElement=True).BoundBox)
+        else:
+            for obj, subs in references.normalize_curves(curves):
+                for sub in subs:
+                    boxes.append(Part.getShape(obj, sub, needSubElement=True).BoundBox)
+    except Exception:  # a broken link: the Sheet reports it when it recomputes
+        return 0.0
+    if not boxes:
+        return 0.0
+    box = boxes[0]
+    for other in boxes[1:]:
+        box.add(other)
+    return box.DiagonalLength
+
+
+def make_sheet(
+    base,
+    curves: Iterable = (),
+    stretch: Optional[float] = None,
+    bend: Optional[float] = None,
+    fix_boundary: bool = True,
+    tolerance: Optional[float] = None,
+    min_spans: Optional[int] = None,
+    max_spans: Optional[int] = None,
+    doc=None,
+    name: str = "Sheet",
+    degree: Optional[int] = None,
+    solve_mode: Optional[str] = None,
+):
+    """Add a VarSurf Sheet to the document (it is computed at the next recompute).
+
+    base: (object, "FaceN"), the base surface; its boundary is kept when fix_boundary is True.
+        None: the sheet starts from the best-fit plane of the curves, with a free boundary.
+    curves: [(object, "EdgeN") or (object, ("EdgeN", ...)) or object (all its edges), ...], the
+        curves the sheet must pass through; they must lie over the base face.
+    stretch, bend: thin-plate weights alpha and beta (default: pure thin plate, 0 and 1).
+    tolerance: distance (mm) at which a curve counts as met.
+    min_spans, max_spans: spans per direction the base face is refined to, and the limit of the
+        automatic refinement used when the curves cannot be met within the tolerance.
+    degree: the sheet's smallest degree in u and v (the base is elevated to it).
+    solve_mode: one of settings.SOLVE_MODES.
+    Omitted values come from the VarSurf preferences (built in: thin plate 0 and 1, 16 to 64
+    spans, degree 3, Automatic); without a stored tolerance, 1e-4 of the base's (or curves')
+    size, rounded down to 1, 2 or 5 x 10^k (0.01 mm for a 100 mm part).
+    """
+    given = dict(stretch=stretch, bend=bend, tolerance=tolerance, min_spans=min_spans,
+                 max_spans=max_spans, degree=degree, solve_mode=solve_mode)
+    values = {k: (v if v is not None else preferences.sheet_defaults()[k]) for k, v in given.items()}
+    if tolerance is None and not preferences.is_set("Tolerance"):
+        values["tolerance"] = settings.tolerance_for_size(_model_size(base, curves))
+    if values["solve_mode"] not in settings.SOLVE_MODES:
+        raise ValueError(f"solve_mode must be one of {', '.join(settings.SOLVE_MODES)} (got {values['solve_mode']!r})")
+    chosen = settings.SheetSettings(fix_boundary=bool(fix_boundary), **values)
+
+    curve_links = references.normalize_curves(curves)
+    if base is not None:
+        base_obj, face_name = references.normalize_base(base)
+    elif not curve_links:
+        raise ValueError("a sheet without a base face needs curves")
+    if doc is None:
+        doc = (base_obj if base is not None else curve_links[0][0]).Document
+    obj = doc.addObject("Part::FeaturePython", name)
+    SheetFeature(obj)
+    if base is not None:
+        obj.Base = (base_obj, face_name)
+    obj.Curves = [(o, names) for o, names in curve_links]
+    apply_settings(obj, chosen)
+    attach_view_provider(obj, "ViewProviderSheet")
+    return obj
+
+
+def make_constraint(
+    sheet,
+    kind: str,
+    location=None,
+    uv=None,
+    vector=None,
+    origin=None,
+    region=None,
+    weight: float = 1.0,
+    name: str = "Constraint",
+    curve=None,
+    reference=None,
+    angle: float = 0.0,
+    region_loop=None,
+):
+    """Add a Constraint of ``kind`` (see ``varsurf.solve.constraints.KINDS``) to ``sheet``.
+
+    location: (object, "VertexN"), whose projection onto the base gives the (u, v) (and, for a
+        Point, the target); or uv=(u, v), normalized to [0, 1].
+    vector: tangent, normal, plane normal, line or director direction (FreeCAD.Vector or tuple).
+    origin: plane, line or attractor point; for a Point, the target instead of the location.
+    region: normalized (u0, u1, v0, v1) of an operator or a frozen region.
+    weight: the constraint's weight or the operator's strength.
+    curve, reference, angle: Ribbon and G1: (object, "EdgeN"), (object, "FaceN") and degrees; a
+        Ribbon's reference may also be a second edge, or None for the base's own normal.
+        CurveAttractor: curve is the edge pulled onto; SurfaceAttractor: reference is the face.
+    region_loop: (object, ["Edge1", ...]) or (object, []) for all its edges: a closed loop whose
+        projection onto the base is the region (instead of the rectangle `region`).
+    """
+    if kind not in constraints.KINDS:
+        raise ValueError(f"unknown constraint kind {kind!r}: one of {', '.join(constraints.KINDS)}")
+    doc = sheet.Document
+    obj = doc.addObject("App::FeaturePython", name)
+    ConstraintFeature(obj)
+    obj.Kind = kind
+    if location is not None:
+        link, sub = location
+        obj.Location = (link, sub)
+    if uv is not None:
+        obj.U, obj.V = float(uv[0]), float(uv[1])
+    if vector is not None:
+        obj.Vector = FreeCAD.Vector(*vector)
+    if origin is not None:
+        obj.Origin = FreeCAD.Vector(*origin)
+        obj.UseOrigin = location is not None or kind == "Point"
+    if region is not None:
+        obj.RegionU0, obj.RegionU1, obj.RegionV0, obj.RegionV1 = (float(x) for x in region)
+    obj.Weight = float(weight)
+    if curve is not None:
+        obj.Curve = (curve[0], curve[1])
+    if reference is not None:
+        obj.Reference = (reference[0], reference[1])
+    obj.Angle = float(angle)
+    if region_loop is not None:
+        link, subs = region_loop
+        obj.RegionLoop = (link, list(subs) if not isinstance(subs, str) else [subs])
+    sheet.Constraints = list(sheet.Constraints) + [obj]
+    attach_view_provider(obj, "ViewProviderConstraint")
+    return obj
+
+
+def make_solid(sheets, tolerance=None, name: str = "Solid"):
+    """Add a VarSurf Solid joining ``sheets`` along the curves they share (computed at the next
+    recompute): each sheet is trimmed to the loop of its join curves and the faces are sewn into
+    a shell, a solid when they close. tolerance: sewing tolerance (mm)."""
+    sheets = list(sheets)
+    if not sheets:
+        raise ValueError("a Solid needs Sheets")
+    doc = sheets[0].Document
+    obj = doc.addObject("Part::FeaturePython", name)
+    SolidFeature(obj)
+    obj.Sheets = sheets
+    if tolerance is not None:
+        obj.Tolerance = float(tolerance)
+    attach_view_provider(obj, "ViewProviderSolid")
+    return obj
+
+
+def install_rest_shape(sheet):
+    """Make the Sheet's current result its rest shape: later edits keep this shape's detail."""
+    if sheet.Shape.isNull() or len(sheet.Shape.Faces) != 1:
+        raise ValueError(f"{sheet.Label} has no result to install: recompute it first")
+    sheet.InstalledRest = sheet.Shape.Faces[0].copy()
+    sheet.RestShape = "Installed"
+    return sheet
+
+
+def melt(sheet):
+    """Drop the Sheet's rest shape: back to pure fairness (the thin-plate energy of the shape)."""
+    sheet.RestShape = "None"
+    return sheet
+
+
+def export_step(objects, path: str) -> str:
+    """Write the shapes of ``objects`` (document objects or Part shapes) to an AP214 STEP file.
+
+    Faces keep their exact B-spline surfaces and their pcurves. Returns the path.
+    """
+    if not isinstance(objects, (list, tuple)):
+        objects = [objects]
+    found = []
+    for item in objects:
+        shape = item if isinstance(item, Part.Shape) else references.shape_of(item)
+        if shape.isNull():
+            raise ValueError("cannot export an empty shape")
+        found.append(shape)
+    if not found:
+        raise ValueError("nothing to export")
+    shape = found[0] if len(found) == 1 else Part.makeCompound(found)
+    folder = os.path.dirname(os.path.abspath(path))
+    os.makedirs(folder, exist_ok=True)
+    native().write_step(shape.exportBrepToString(), path)
+    return path

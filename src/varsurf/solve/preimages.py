@@ -1,0 +1,114 @@
+"""Where a sheet's curves and constraints lie on its base face: each curve's pre-image (its
+curve in the base's parameters), and the refusals that name a curve the sheet cannot take."""
+
+from __future__ import annotations
+
+from varsurf.solve import constraints as constraint_specs
+from varsurf.solve.errors import SheetError
+from varsurf.solve.native import build, native
+
+
+def canonical_direction(nat, curve):
+    """``curve`` run from the lexicographically smaller of its two end poles (x, then y, then z).
+
+    A curve and its reverse ask the same of the sheet, but the pre-image's adaptive fit samples
+    and splits them differently, and its 1e-7 fit error moved the solved sheet by up to 7e-5 mm
+    between the two; one direction for both makes them the same solve."""
+    poles = curve.poles
+    if not tuple(poles[-1]) < tuple(poles[0]):
+        return curve
+    a, b = curve.knots[0], curve.knots[-1]
+    weights = curve.weights[::-1] if len(curve.weights) else curve.weights
+    return nat.BSplineCurve(curve.degree, [a + b - k for k in reversed(curve.knots)], poles[::-1], weights)
+
+
+def projection_failure(name, direction, error):
+    """The message of a curve whose pre-image cannot be found, naming the real cause."""
+    if direction is not None:
+        seen = tuple(round(c, 6) for c in direction)
+        if "beyond the face" in error:
+            return (f"{name} runs beyond the base face seen along {seen} (the Sheet's Projection): {error}; "
+                    "move the curve over the face, or project it another way")
+        return f"{name} cannot be projected onto the base face along {seen}: {error}"
+    if "crosses the seam of the closed face" in error:  # on the face, but around it
+        return f"{name} goes around the closed base face across its seam: {error}"
+    if "jumps" in error:
+        return (f"{name}'s orthogonal projection onto the base face jumps (the curve lies too far from a curved "
+                f"base for its nearest points to follow it): {error}. Project it along a direction instead: set "
+                "the Sheet's Projection to Direction (or Automatic, for a sketch facing the base)")
+    return (f"{name} runs beyond the base face (it must lie over the face to be projected onto it): {error}")
+
+
+def curve_constraints(nat, base, edges, names, projections, settings):
+    """(native CurveConstraints, target curves) of the named edges on the base, in their order."""
+    exact = set(settings.exact_curves)
+    constraints, targets = [], []
+    for edge, name, direction in zip(edges, names, projections):
+        if getattr(edge, "ShapeType", None) != "Edge":
+            raise SheetError(f"{name} is not an edge")
+        try:
+            curve = canonical_direction(nat, nat.curve_from_edge_brep(edge.exportBrepToString()))
+        except (nat.InvalidInput, nat.GeometryError) as error:
+            raise SheetError(f"{name} cannot be converted to a B-spline curve: {error}") from error
+        try:
+            pre = nat.project_curve(base, curve, direction=direction)
+        except nat.InvalidInput as error:
+            raise SheetError(projection_failure(name, direction, str(error))) from error
+        except nat.GeometryError as error:
+            raise SheetError(f"{name} cannot be projected onto the base face: {error}") from error
+        # Where the curve's foot point is on the face's boundary, a kept boundary cannot move to it
+        # (the solver sees those samples on fixed poles only): say so instead of refining in vain.
+        if settings.fix_boundary and pre.boundary_distance > settings.tolerance:
+            x, y, z = (float(c) for c in curve.evaluate(pre.boundary_t))
+            raise SheetError(
+                f"{name} is {pre.boundary_distance:.3g} mm from the base face where it reaches the face's "
+                f"kept boundary (at ({x:.4g}, {y:.4g}, {z:.4g})): the kept boundary cannot move "
+                "there; let the curve meet the boundary, or turn FixBoundary off"
+            )
+        constraints.append(build(nat.CurveConstraint, preimage=pre.curve, target=curve, weight=1.0,
+                                 exact=name in exact))
+        targets.append(curve)
+    return constraints, targets
+
+
+def kept_boundary(nat, trim):
+    """CurveConstraints holding a (trimmed) base face's own edges, not only its rectangle's."""
+    try:
+        held = trim.boundary()
+    except (nat.InvalidInput, nat.GeometryError) as error:
+        raise SheetError(f"the base face's boundary cannot be kept: {error}") from error
+    return [build(nat.CurveConstraint, preimage=b.preimage, target=b.target, weight=1.0) for b in held]
+
+
+def refuse_outside_trim(trim, preimages, placed, tolerance):
+    """SheetError naming the first curve or constraint whose pre-image leaves the base face's
+    trimmed domain (over a hole, outside a disc): the sheet keeps the base face's trim, so a curve
+    there would shape a part of the sheet that is not kept. Farther than `tolerance` (mm) from the
+    face's boundary counts as leaving it.
+
+    preimages: [(name, 2D pre-image)] of the curves; placed: the placed constraint specs."""
+    if trim.natural:  # the projection already refuses anything beyond the parameter rectangle
+        return
+    nat = native()
+
+    def refuse(name, hit):
+        where = ("over a hole of the base face" if hit.place == nat.TrimPlace.over_hole
+                 else "outside the base face's boundary")
+        raise SheetError(f"{name} lies {where} (up to {hit.distance:.3g} mm from its edges): the sheet "
+                         "keeps its base face's trim; move it onto the face, or pick a base face that "
+                         "covers it")
+
+    for name, preimage in preimages:
+        hit = trim.place_curve(preimage, tolerance)
+        if hit.place != nat.TrimPlace.inside:
+            refuse(name, hit)
+    for p in placed:
+        curves = [c.preimage for c in (p.ribbon, p.curve) if c is not None]
+        for preimage in curves:
+            hit = trim.place_curve(preimage, tolerance)
+            if hit.place != nat.TrimPlace.inside:
+                refuse(p.spec.name, hit)
+        if p.spec.kind in constraint_specs.POINT_KINDS:
+            hit = trim.place(p.u, p.v, tolerance)
+            if hit.place != nat.TrimPlace.inside:
+                refuse(p.spec.name, hit)
