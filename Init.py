@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 # VarSurf workbench: application (headless) initialization.
 #
 # FreeCAD runs this file with exec() while it scans its Mod folders, so __file__ is not set (0.20).

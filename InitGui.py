@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 # VarSurf workbench: GUI initialization.
 #
 # FreeCAD exec()s this file with separate globals and locals and without __file__ (0.20): names

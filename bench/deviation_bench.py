@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """Time of the deviation measurement (varsurf._native.max_deviation) and its agreement with
 FreeCAD's distToShape at the same number of points:
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """Run inside the FreeCAD GUI (under Xvfb) by bench/run_bench.py: drags a Point's pin on a 64 x 64
 pole Sheet through 10 curves with the 3D view redrawn after every move (the sheet tessellated
 again each time), and writes the moves per second, and those of the headless move alone in the

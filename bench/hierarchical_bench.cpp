@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Local against uniform refinement (Welch & Witkin sec. 4.4): a flat bicubic sheet with its
 // boundary kept and one interior wavy curve across it. Prints, as JSON lines, for each tolerance
 // the hierarchical degrees of freedom that meet it and the poles of the uniform refinement

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """VarSurf benchmarks: prints the tables of the README's "Benchmarks" section.
 
     /usr/bin/python3 bench/run_bench.py [--quick]
@@ -14,7 +15,7 @@
 3. Michalik & Bruderlin's sizes (TSVD / MTSVD) and 4. Du & Qin's sheet sizes.
 6. Local refinement (hierarchical spaces) against uniform refinement: degrees of freedom to meet a
    tolerance on one interior curve (bench/hierarchical_bench.cpp).
-5. Live dragging in a FreeCAD document (varsurf.drag.PointDrag): a 64 x 64 pole Sheet through 10
+5. Live dragging in a FreeCAD document (varsurf.app.drag.PointDrag): a 64 x 64 pole Sheet through 10
    curves with a Point constraint; each move's back-substitution and result face against a fresh
    recompute of the same Sheet in the same process.
 """

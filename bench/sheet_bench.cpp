@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Solver benchmarks, one case per run so that peak memory belongs to that case alone. Prints one
 // JSON object per line; bench/run_bench.py runs the cases, fits exponents and prints the tables.
 //

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 # Install rules and the Debian package for the workbench.
 #
 # Everything a user needs lands in one install component, `workbench`, laid out the way Debian's

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """VarSurf demo: a variational sheet over a curved B-spline face, through three sketches.
 
     /usr/bin/python3 examples/demo.py [OUT_DIR]        (default: out/demo)

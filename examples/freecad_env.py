@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """Makes FreeCAD and VarSurf importable from Debian's python3 for the examples: FreeCAD's
 Python modules live outside the interpreter's path, VarSurf in this repository's src/.
 Import it before FreeCAD."""

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """VarSurf example: a hinge pair. Two sheets meet along a wavy curve and a Hinge holds the angle
 between them all along it; the Solid reports the angle reached along the seam.
 

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """VarSurf example: Welch & Witkin's Figure 2 motion. The rounded box (rounded_box.py), with its
 top front edge made a variational SpaceCurve: moving the handle in its middle reshapes the curve,
 and the two sheets joined along it (top and front) follow in one joint solve; the box stays a

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """VarSurf example: a pillow. Two sheets joined along one closed, non-planar 3D curve and pushed
 apart by pressure close into a smooth solid.
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """Render the demo document to a PNG inside the FreeCAD GUI (run by examples/demo.py):
 
     VARSURF_DEMO_FCSTD=out/demo/demo.FCStd VARSURF_DEMO_PNG=out/demo/demo.png \

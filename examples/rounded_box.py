@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """VarSurf example: a rounded box. Six sheets, one per face of a 100 mm cube, each passing through
 the four edges of its face; the twelve edges bow outward, so the sheets bulge to meet them, and
 the Solid joins the six sheets along the twelve shared curves into a closed solid.

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """VarSurf example: a box with a smooth band. Six sheets joined along twelve curves: a top and a
 bottom rim, each a rounded square of four pieces that are tangent-continuous where they meet, and
 four slanted edges (the band tapers). Hinges at 180 degrees make the four side sheets one smooth band around the

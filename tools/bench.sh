@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: LGPL-2.1-or-later
 # Build VarSurf and print the benchmark tables (bench/run_bench.py; --quick stops at 64 x 64).
 set -euo pipefail
 cd "$(dirname "$0")/.."

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: LGPL-2.1-or-later
 # Configure and build the C++ core, the OpenCASCADE bridge, the Python extension and the C++ tests
 # in build/. The extension lands in src/varsurf/ so the workbench imports it in place.
 set -euo pipefail

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: LGPL-2.1-or-later
 # Build VarSurf and run the demo: writes out/demo/{demo.FCStd,demo.step,demo.png,report.txt}.
 set -euo pipefail
 cd "$(dirname "$0")/.."

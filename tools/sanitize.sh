@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: LGPL-2.1-or-later
 # Build the C++ tests and the libFuzzer harnesses with clang, AddressSanitizer and
 # UndefinedBehaviorSanitizer in build-san/, run the C++ tests there, then run each harness for a
 # bounded time (FUZZ_SECONDS, default 60) from its seed corpus. Any sanitizer report, crash or

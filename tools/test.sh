@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: LGPL-2.1-or-later
 # Build VarSurf, then run the C++ tests (ctest) and the Python/FreeCAD tests (pytest), including
 # the GUI smoke test under Xvfb; then the C++ tests again under AddressSanitizer and
 # UndefinedBehaviorSanitizer, and each libFuzzer harness for a minute (tools/sanitize.sh). Exits

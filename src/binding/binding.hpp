@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Parts of the varsurf._native module, one per file.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Core data types. Fields are copied in and out (numpy arrays, lists): assign whole values, e.g.
 // `problem.curves = [...]`, not `problem.curves.append(...)`.
 #include <pybind11/eigen.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 #include <pybind11/eigen.h>
 #include <pybind11/stl.h>
 

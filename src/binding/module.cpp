@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 #include "binding.hpp"
 
 PYBIND11_MODULE(_native, m) {

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Bridge functions: shapes enter and leave as BREP strings (Part.Shape.exportBrepToString /
 // importBrepFromString), everything else as core types.
 #include <pybind11/eigen.h>

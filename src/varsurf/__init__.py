@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """VarSurf: variational B-spline surface modeling for FreeCAD.
 
 The package has one folder per tier: ``varsurf.solve`` (the computation, without FreeCAD),

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // 2D curves chained into a closed loop, in any order and direction.
 #include <gtest/gtest.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Curves projected onto sheets: known pre-images recovered across knot lines and a cylinder's C0
 // knots, curves above or beyond a sheet or across its seam, and bad input. Curves on the base
 // face's own boundary: their pre-images are the boundary exactly (not a rounding error inside it),

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // The deviation of a curve from a sheet, checked against OCCT's own distance (BRepExtrema, as the
 // distToShape of FreeCAD measures it) densely along the curve and against analytic distances, on
 // rational, non-uniform, periodic and high-degree surfaces, and on curves that wiggle; too few

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // LineFoot: where the line through a point along a direction meets a sheet. Checked on a wavy
 // graph z = f(x, y) whose x and y are exactly u and v, so the foot straight down is known.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // The discrepancy principle with a rest shape: constraints the rest shape already meets within
 // the fit tolerance leave the sheet alone in every solve mode; a sheet with nothing to do stays
 // exactly on its rest shape at every degree; the penalty mode survives a semi-definite system.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Core splines to Geom and back (exactly, rational or not; periodic ones unperiodized), faces and
 // edges read as splines (placed, bounded, closed), and bad data refused. Faces of Part-like
 // primitives (cylinders, cones, spheres, tori; whole, partial, placed) convert to B-spline

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Sheets solved on locally refined spaces: the same answers as uniform spaces where they are the
 // same space, and refinement driven by curve error (Welch & Witkin Figure 3).
 #include <gtest/gtest.h>

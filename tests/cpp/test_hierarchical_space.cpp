@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Locally refined spline spaces (Welch & Witkin sec. 3): knot insertion as a linear map, layers,
 // their degrees of freedom, and the exact export to one tensor-product B-spline.
 #include <gtest/gtest.h>

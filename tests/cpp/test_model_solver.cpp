@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Several sheets and space curves solved as one system: curve fairness, variational curves shared
 // by sheets, hinges (Welch & Witkin sec. 5).
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Repellers, shape attractors and pressure: the energy terms that are not quadratic in the poles.
 #include <gtest/gtest.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Rest shape, derivative/normal/plane/line point constraints, attractors and the director, and the
 // coupled 3n solve they need.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Regions given as closed (u, v) loops: exact quadrature, validation, the poles they touch, and
 // operators acting on them.
 #include <gtest/gtest.h>

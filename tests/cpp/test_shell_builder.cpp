@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Sheets trimmed to pre-image loops and sewn into shells and solids: a pillow of two domes
 // joined along a circle, checked against its analytic volume, and bad inputs.
 #include <gtest/gtest.h>

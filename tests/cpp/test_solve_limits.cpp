@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Resource limits of a solve: max_unknowns, memory_limit (refused before allocating, by the
 // estimate) and time_limit (stopped between steps), each with ResourceLimit and a message.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Solve modes (exact, penalty, CG, TSVD, MTSVD, automatic), the L-curve, and reuse of a
 // factorization when only targets move.
 #include <gtest/gtest.h>

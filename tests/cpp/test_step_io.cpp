@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // STEP exchange of sheets that meet within a tolerance: a pillow whose top dome waves 1e-4 above
 // the shared rim. OCCT's reader re-derives edge tolerances from samples; the written file must
 // read back with tolerances that cover what OCCT's curve-on-surface check (the one its Boolean

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Helpers shared by the core tests: exact pole fits of representable functions, Greville points.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // The surface grid drawn while dragging: points and normals against the analytic surface.
 #include <gtest/gtest.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // A sheet keeps its base face's trim and orientation: a plate with a hole, a disc, a cylinder
 // patch with a hole (its NURBS conversion reparametrizes it), checked against analytic areas,
 // OCCT's checker and the measured distance between each edge and the sheet.

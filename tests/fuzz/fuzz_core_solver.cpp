@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // libFuzzer harness over the core solver: random spaces, degrees, knots, weights (NaN and inf
 // included), constraint sets, operators, fixed poles and solve modes. A solve may refuse its input
 // (InvalidInput), fail numerically (SolveFailure) or stop (Cancelled); anything else -- a crash, a

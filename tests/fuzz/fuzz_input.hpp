@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Random model input drawn from a fuzzer's bytes: mostly sane values (so the solver gets deep),
 // sometimes the values users and files produce by mistake (NaN, inf, negative, huge, reversed or
 // over-repeated knots, parameters off the domain).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // libFuzzer harness over the OpenCASCADE bridge: faces and edges of every kind a FreeCAD document
 // may hand over (B-spline faces from random data, periodic cylinders and tori, spheres and cones
 // with collapsed edges, zero-area faces; lines, full and partial circles, zero-length segments,

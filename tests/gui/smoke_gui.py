@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """GUI smoke test, run inside the real FreeCAD GUI (under Xvfb):
 
     xvfb-run -a -s "-screen 0 1280x1024x24" freecad tests/gui/smoke_gui.py

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """Measurements on a result's B-rep made with OpenCASCADE through Part alone, independently of
 what VarSurf reports: the angle between two faces across an edge, and an enclosed volume by the
 divergence theorem over sampled surfaces."""

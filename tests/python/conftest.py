@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """FreeCAD in-process for the workbench tests.
 
 The workbench is installed the way a user installs it: a temporary HOME whose

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """Generated base faces and curves lying on them, for the invariant tests.
 
 Every face is built the way a FreeCAD user gets one: Part primitives' faces (full and partial),

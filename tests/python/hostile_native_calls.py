@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """Calls every function, method and constructor of varsurf._native with well-typed but hostile
 arguments, so that each call passes pybind11's type conversion and reaches the C++ core: NaN, inf,
 huge, negative and zero numbers; empty, NaN-filled, huge and wrongly sized arrays; and objects of

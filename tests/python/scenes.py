@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """Small documents for the tests: a gently curved bicubic base face and sketches above it."""
 
 import contextlib

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """The check every STEP file written in the tests passes: FreeCAD reads it back as a shape that
 passes OpenCASCADE's full check (BRepCheck and the Boolean operations' checks, ``check(True)``)
 with the faces, area and solids' volume it was written with (relative 1e-6).

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """Analysis fields on a sheet's face: deviation from the base, curvature, zebra; checked against
 analytic values."""
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """The bad-input catalogue (tests/bad_inputs.md): one case each, run in a document that also holds
 a healthy sheet. Every case must name what is wrong in the report view, leave its object in error
 (or create nothing), leave the healthy sheet untouched, and recompute again once repaired."""

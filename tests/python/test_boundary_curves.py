@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """Curves on the base face's own boundary: with the base as rest shape, a sheet through the face's
 own edges (or curves partly along its boundary, or touching it) is the base face itself.
 

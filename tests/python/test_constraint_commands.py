@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """The constraint commands' headless path: selection check, macro lines, one transaction."""
 
 import FreeCAD

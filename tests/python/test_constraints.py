@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """Constraint objects of a Sheet: every kind through the API, residuals measured on the result,
 Enabled, save/reopen, and bad input."""
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """The Debian package: cpack builds varsurf_<version>_amd64.deb from build/, its control data and
 file list are what an apt install needs, and FreeCAD runs the workbench from the unpacked package
 alone (a fresh HOME whose Mod/VarSurf points into it, nothing of the checkout on the path): a sheet

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """How far a sheet is from its curves (the measurement behind a Sheet's MaxDeviations, its
 refinement and its warnings), checked against FreeCAD's own distance (``distToShape`` and the
 foot point ``Surface.parameter`` finds) densely along each curve, and against known distances,

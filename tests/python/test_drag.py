@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """Dragging a Point constraint's target: each move is a back-substitution on the Sheet's kept
 factorization and equals a fresh solve; finishing is one undoable step; cancel writes nothing."""
 

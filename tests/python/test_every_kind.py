@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """Every constraint kind: made through the API, recomputed, saved and reopened with the same
 result; and each kind's bad inputs reported on the object in error, never a crash."""
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """A Sheet without a base face: it starts from the best-fit plane of its curves (free boundary)."""
 
 import FreeCAD

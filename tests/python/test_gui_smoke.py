@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """Runs tests/gui/smoke_gui.py in the real FreeCAD GUI under Xvfb and checks its JSON report."""
 
 import json

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """Invariants of the sheet over generated faces (generated_scenes.py), not only hand-picked scenes.
 
 1. With the base face as rest shape, curves lying on the base (its own edges, pieces of them, iso

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """Sheets solved together in a Solid: hinges (the hinge-pair example) and a variational space
 curve moved by its handle (the moving-curve example, Welch & Witkin Figure 2); STEP and save
 round trips, edits, commands and bad inputs."""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """Local refinement on a Sheet: spans refined only under the curves that are off (hierarchical
 layers), the exported face one B-spline that meets the curves, fewer degrees of freedom than the
 uniform refinement, manual regions, and bad settings."""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """The compiled extension varsurf._native: exceptions for bad input, and shapes crossing to and
 from FreeCAD's Part module as BREP strings.
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """The package's tiers, read from its source: a file's folder says what it may import.
 
 - varsurf.solve imports neither FreeCAD, Part, FreeCADGui, PySide nor pivy at module level (only

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """Persistence and long sessions: every feature type through save/reopen, files from newer
 versions, files opened without VarSurf, restoring without running file code, undo/redo of every
 command, hostile calls into the native module, and a soak of drag/recompute cycles."""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """The VarSurf preferences give new sheets their defaults; bad stored values fall back."""
 
 import pytest

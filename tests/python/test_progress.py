@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """Solves report progress and can be cancelled: a cancelled recompute marks the object in error
 with a clear message and changes nothing else; the next recompute solves again."""
 

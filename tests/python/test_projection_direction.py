@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """Curves drawn above a curved base: projection along the sketch's normal or a chosen direction.
 
 The reference for where a curve point belongs on the sheet is computed independently of the

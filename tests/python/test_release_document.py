@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """A document saved by release 0.1.0, before the package had one folder per tier: it opens with
 every object's proxy restored, recomputes to the geometry it was saved with (poles to 1e-12 mm),
 and saves and opens again."""

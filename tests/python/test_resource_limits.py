@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """The memory estimate a solve is refused by (SolveOptions.memory_limit) bounds the memory solves
 really take: measured as the growth of a fresh process's peak resident memory over one solve."""
 

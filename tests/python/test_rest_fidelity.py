@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """With the base face as rest shape, a sheet changes only what its curves ask for.
 
 Curves that already lie on the base within the tolerance (a curve drawn on a face and read back

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """Rest shape of a Sheet: edits keep the base face's detail; melt and install."""
 
 import math

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """The VarSurf_Sheet command's selection rules (the code its Activated runs, headless)."""
 
 import pytest

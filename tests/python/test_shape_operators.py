@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """Surface and curve attractors, regions bounded by closed edges, and ribbons that follow a
 second edge or the sheet's own base: each measured on the solved surface."""
 

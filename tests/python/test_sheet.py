@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """The Sheet feature end to end: creation, parametric updates, files, errors, accuracy."""
 
 import json

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """Trimming sheets to pre-image loops and sewing them into a solid, through the Python binding
 and FreeCAD's Part module: a pillow of two domes along the unit circle (volume pi)."""
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """Sheets on cylinders, cones and spheres pass OCCT's Boolean argument check.
 
 OCCT converts these surfaces with quadratic arcs joined at double knots (C0 by multiplicity, so

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """The Solid feature: sheets joined along shared curves, trimmed and sewn into a solid; the
 pillow example, STEP and save/reopen round trips, edits, and bad inputs."""
 

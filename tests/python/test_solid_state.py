@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """A Solid follows its Sheets: it is in error, naming the sheet, while one of them is, and is
 rebuilt once the sheet is repaired; its tolerance follows theirs, so a 12 m model joins as a
 100 mm one does."""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """Solve modes on a Sheet: every mode recomputes, the energy modes agree, TSVD/MTSVD publish
 their L-curve, and a PreparedSheet drag through the API equals a fresh solve."""
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """Every STEP file VarSurf writes reads back, in FreeCAD, as a shape that passes OpenCASCADE's
 full check (BRepCheck and the Boolean operations' checks: ``check(True)``) with the area and
 volume it was written with: each example's output and the API's export of a sheet and of solids.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """Sheets on torus faces: a full torus (doubly periodic) and a partial one are taken as base faces
 like any other, and with the base as rest shape and no curves the sheet is the torus itself,
 measured against the torus's own equation and area."""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """A sheet keeps its base face's trim and every constraint of its own when it is solved again
 elsewhere: while a Point's pin is dragged (back-substitution on the kept factorization), and in a
 joint solve (a Solid's hinge, a variational space curve).

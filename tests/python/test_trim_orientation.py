@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """A Sheet keeps its base face's trim and orientation.
 
 Base faces built the way a FreeCAD user builds them: the top of a box with a cylinder cut out (a

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """The workbench as a FreeCAD Mod: package metadata, Init files, resources, App/Gui separation."""
 
 import subprocess

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // The equality-constrained quadratic problem behind every sheet solve, and its solve modes.
 #pragma once
 

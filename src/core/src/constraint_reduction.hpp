@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Reduction of weighted least-squares constraint samples to independent equality rows.
 #pragma once
 

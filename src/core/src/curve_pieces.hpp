@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Splitting a curve's parameter range into the pieces on which integrands along its pre-image are
 // polynomial, for exact Gauss quadrature of constraints along curves.
 #pragma once

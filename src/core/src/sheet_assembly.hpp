@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // A sheet's quadratic problem for solvers that combine several sheets (the model solver).
 #pragma once
 

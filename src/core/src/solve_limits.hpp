@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Resource limits of a solve (SolveOptions::time_limit, memory_limit): a deadline shared by every
 // step of one solve, and a memory estimate checked before anything large is allocated.
 #pragma once

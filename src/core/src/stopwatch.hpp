@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Wall-clock timing of solver phases (SolveReport's *_seconds).
 #pragma once
 

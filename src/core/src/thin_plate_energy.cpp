@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 #include "varsurf/core/thin_plate_energy.hpp"
 
 #include <Eigen/LU>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Direction arguments (normals, line and attractor directions) as unit vectors.
 #pragma once
 

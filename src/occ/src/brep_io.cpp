@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 #include "varsurf/occ/brep_io.hpp"
 
 #include <BRepTools.hxx>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 #include "varsurf/occ/curve_projection.hpp"
 
 #include <Geom_BSplineSurface.hxx>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 #include "varsurf/occ/directional_projection.hpp"
 
 #include <GeomAPI_IntCS.hxx>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 #include "varsurf/occ/face_builder.hpp"
 
 #include <BRepBuilderAPI_MakeFace.hxx>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 #include "varsurf/occ/normal_field.hpp"
 
 #include <BRepAdaptor_Surface.hxx>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 #include "varsurf/occ/occ_error.hpp"
 
 #include <Standard_Failure.hxx>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 #include "varsurf/occ/shell_builder.hpp"
 
 #include <BRepBuilderAPI_MakeEdge.hxx>

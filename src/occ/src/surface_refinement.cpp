@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 #include "varsurf/occ/surface_refinement.hpp"
 
 #include <TColStd_Array1OfInteger.hxx>

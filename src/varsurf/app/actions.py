@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """What each command does when activated, headless too: check the selection, then run the
 command's macro lines (recorded in the GUI) in one transaction; an unusable selection is reported
 (report view, and ``on_error``, e.g. a dialog) and creates nothing."""

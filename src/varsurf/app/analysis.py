@@ -1,5 +1,7 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """A Sheet's analysis data: the face its deviation is measured from, and its L-curve plot
-(recorded macros call ``varsurf.analysis.plot_lcurve``). The fields themselves are computed by
+(recorded macros call ``varsurf.app.analysis.plot_lcurve``; those of release 0.1.0,
+``varsurf.analysis.plot_lcurve``). The fields themselves are computed by
 varsurf.solve.analysis."""
 
 from __future__ import annotations

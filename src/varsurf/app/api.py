@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """The App tier's public API in one place: the make-functions, the selection helpers and what
 each command does (``varsurf.make_sheet`` and the other top-level names come from here)."""
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """The Constraint feature: one constraint or energy operator of a Sheet, as a document object.
 
 An ``App::FeaturePython`` listed in its Sheet's ``Constraints``. Its position on the sheet is a

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """Dragging the target of a Sheet's Point constraint, with the Sheet re-solved as it moves
 (Welch & Witkin sec. 1: direct manipulation).
 

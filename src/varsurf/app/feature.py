@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """The common part of VarSurf's document-object proxies."""
 
 from __future__ import annotations

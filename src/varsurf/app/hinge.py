@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """The Hinge feature: the angle between two Sheets across a curve they share (Welch & Witkin
 4.2.2 and sec. 5). 180 degrees makes the seam tangent-continuous (G1).
 

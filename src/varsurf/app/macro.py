@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """The macro lines each command records (and runs, so a recorded macro replays it exactly)."""
 
 from __future__ import annotations

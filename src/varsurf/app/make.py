@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """The make-functions of the scripting API (headless, in macros and behind the GUI commands):
 each adds one VarSurf object to a document, computed at the next recompute.
 

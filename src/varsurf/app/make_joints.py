@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """The make-functions for what couples sheets in a Solid: variational space curves and hinges.
 
     curve = varsurf.make_space_curve((sketch, "Edge1"))         # handles at both ends and midway

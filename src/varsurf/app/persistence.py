@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """What VarSurf proxies write into a document: a small versioned dict, nothing else.
 
 FreeCAD 0.20 stores a proxy through dumps/loads; Python 3.11 gives every object a default

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """The user's defaults for new sheets (Edit > Preferences > VarSurf, Resources/ui/preferences.ui),
 read from FreeCAD's parameters. Values out of range fall back to the built-in defaults."""
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """FreeCAD's progress indicator for solves that take longer than a moment, with cancel.
 
 The solver asks its SolveOptions.keep_going between iterative steps; a SolveProgress answers.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """How a Sheet's curves find their place on the base face: the direction each is projected along.
 
 A curve drawn in a sketch above a curved base means "this, seen from the sketch's side": its

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """What the API's references mean: (object, "FaceN") / (object, ("EdgeN", ...)) links, and
 which objects are VarSurf's."""
 

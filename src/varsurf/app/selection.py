@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """What a selection (Gui.Selection.getSelectionEx()) asks for: the arguments of each
 make-function, or a ValueError that says what to select."""
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """The Sheet feature: a variational B-spline sheet over a base face, through curves.
 
 A ``Part::FeaturePython`` whose ``Shape`` is the face that minimizes the thin-plate energy

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """The Solid feature: Sheets joined along the curves they share into a shell, and into a solid
 when they close (Welch & Witkin sec. 5).
 

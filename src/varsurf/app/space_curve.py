@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """The SpaceCurve feature: a variational space curve (Welch & Witkin sec. 5, Figure 2).
 
 A ``Part::FeaturePython`` whose ``Shape`` is one edge: the ``Base`` edge reshaped by its handles,

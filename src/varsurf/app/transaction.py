@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """Commands as one undoable step: their macro lines run inside one document transaction."""
 
 from __future__ import annotations

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """The Sheet's analysis color map in the 3D view: the grid of varsurf.solve.analysis as a Coin mesh with
 per-vertex colors, drawn just in front of the sheet's own shading (a polygon offset)."""
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """One polyline in a Coin scene: what handles, color maps and refinement outlines all draw."""
 
 from __future__ import annotations

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """GUI commands of the VarSurf workbench."""
 
 from __future__ import annotations

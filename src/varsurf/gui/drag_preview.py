@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """What the view shows while a sheet is dragged: the solved surface as a Coin mesh sampled on a
 grid by the core (varsurf._native.sample_grid), with the Sheet's own shading switched off until the
 release. Setting the Sheet's Shape on every move made FreeCAD tessellate a new face each time

@@ -1,8 +1,9 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """Coin3D handles of a Constraint in the 3D view: a draggable pin for a Point, arrows for normals,
 tangents and directors, a plane patch or a line for points held in a plane or on a line, a star
 for attractors (red for a repeller), the curve with ticks along it for ribbons and G1 joins.
 
-Dragging a pin moves the Point's target and re-solves its Sheet live (varsurf.drag.PointDrag);
+Dragging a pin moves the Point's target and re-solves its Sheet live (varsurf.app.drag.PointDrag);
 releasing it commits one undoable step.
 """
 

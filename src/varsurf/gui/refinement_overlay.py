@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """The spans a locally refined Sheet refined, outlined on the sheet (view property
 ShowRefinement): one color per level, so a user sees where the detail went."""
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """Paths of the workbench's resources (icons, Qt Designer files)."""
 
 import os

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """What every VarSurf task panel does: load its .ui form, open one transaction for the edit,
 preview with Update, commit on OK, restore on Cancel (as FreeCAD's own panels do)."""
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """Task panel of a Constraint: kind, enabled, weight, where it acts (a vertex picked in the 3D
 view or (u, v)), its vector and origin, region, curve and reference links, angle; its residual
 on the solved sheet. Fields the kind does not use are disabled."""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """Task panel of a Hinge: the sheets and curve it joins, its angle and Enabled; the angles its
 Solid reached along the seam."""
 

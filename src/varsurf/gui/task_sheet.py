@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """Task panel to edit a Sheet (energy, space, solve mode, rest shape) and see its results."""
 
 from __future__ import annotations

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """Task panel of a Solid: its Sheets and tolerance; the curves they are joined along with the
 gap measured at each, its hinges with the angles reached, and its status."""
 

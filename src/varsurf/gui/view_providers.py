@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """View providers of VarSurf objects."""
 
 from __future__ import annotations

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """Fields to judge a solved sheet by, sampled on a grid over its face: deviation from a reference
 (the base or the rest shape), mean and Gaussian curvature (fairness), and zebra stripes (the
 reflection of stripes parallel to a direction: kinks and curvature jumps show as broken stripes);

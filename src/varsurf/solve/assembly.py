@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """Joined sheets into a shell or solid (Welch & Witkin sec. 5): each sheet trimmed to the loop of
 the curves it shares with the others, the shared edges built once with a pcurve on every sheet.
 No document and no GUI here.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """Constraints and energy operators of a sheet as plain data, and their residuals.
 
 A ``ConstraintSpec`` says what a Constraint document object asks of a sheet; ``native_terms``

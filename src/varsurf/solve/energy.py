@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """The thin-plate energy's weights, per unit of the base's relative parameter speeds."""
 
 from __future__ import annotations

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """What a sheet's computation raises when its inputs cannot make a sheet."""
 
 

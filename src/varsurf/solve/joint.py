@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """Sheets, their shared curves and hinges solved as one system (Welch & Witkin sec. 5), without
 a document.
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """Local refinement (hierarchical layers, Welch & Witkin sec. 3, 4.4): its native options and
 how its solve is reported."""
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """The compiled extension (varsurf._native) and how its value types are built."""
 
 from __future__ import annotations

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """What a solved sheet is, and what a user wants to know about it."""
 
 from __future__ import annotations
@@ -39,7 +40,7 @@ class SheetOutcome:
     refinement_met: bool = True
     refined_spans: List[tuple] = field(default_factory=list)  # (level, u0, u1, v0, v1) each
     # The native SheetProblem of the final solve (curves in curve_names order) and its options:
-    # what a joint solve of several sheets (varsurf.joint) starts from.
+    # what a joint solve of several sheets (varsurf.solve.joint) starts from.
     problem: object = None
     options: object = None
     # The base face's trim (native BaseTrim): trim.face_brep(surface) bounds and orients any

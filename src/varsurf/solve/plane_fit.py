@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """The start of a sheet made from curves alone: the best-fit plane of the curves."""
 
 from __future__ import annotations

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """Where a sheet's curves and constraints lie on its base face: each curve's pre-image (its
 curve in the base's parameters), and the refusals that name a curve the sheet cannot take."""
 

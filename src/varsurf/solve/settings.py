@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """A sheet's settings: what a Sheet's properties hold (energy, tolerance, spline space, solve
 and refinement), their defaults and their checks."""
 

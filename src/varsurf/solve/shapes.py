@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """Part shapes from and to what the extension returns: BREP text and native curves.
 
 This is the only module of the solve tier that uses FreeCAD's Part, and only when a shape is

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """The variational sheet as a computation, without a document.
 
 ``solve_sheet_on_face`` takes a Part face (the base surface and its boundary), Part edges (the

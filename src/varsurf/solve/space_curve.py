@@ -1,10 +1,11 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """Variational space curves (Welch & Witkin sec. 5, Figure 2), without a document.
 
 A variational curve starts as a given edge (its rest shape) and is reshaped by handles: points of
 the curve moved to new positions. Alone, it minimizes the energy of its displacement from the rest
 shape, ``integral stretch |D'|^2 + bend |D''|^2 dt``, through its handles, so it keeps its shape
 where no handle pulls it. Joined to sheets in a Solid, its poles become unknowns of the joint
-system (varsurf.joint), so the sheets pull on it as it pulls on them.
+system (varsurf.solve.joint), so the sheets pull on it as it pulls on them.
 """
 
 from __future__ import annotations

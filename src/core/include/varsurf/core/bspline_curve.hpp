@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // A (possibly rational) B-spline curve in any dimension: used for 3D target curves and for 2D
 // pre-images in a sheet's (u, v) domain.
 #pragma once

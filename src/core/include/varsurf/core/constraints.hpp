@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Geometric constraints on a sheet, all linear in the poles and separable in x, y, z.
 #pragma once
 

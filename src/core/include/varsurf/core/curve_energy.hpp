@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Fairness of a space curve (Welch & Witkin sec. 5: variational curves shared by sheets):
 // integral over t of stretch |C'(t)|^2 + bend |C''(t)|^2, a quadratic form in the poles.
 #pragma once

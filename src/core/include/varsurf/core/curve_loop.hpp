@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Curves in a sheet's (u, v) domain chained into one closed loop: what trims a sheet.
 #pragma once
 

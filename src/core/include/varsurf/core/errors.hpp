@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Error types thrown by the core. The binding maps each to a distinct Python exception.
 #pragma once
 

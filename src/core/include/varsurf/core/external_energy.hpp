@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // External energy operators (Veltkamp & Wesselink sec. 5): quadratic pulls on a region of the
 // sheet, added to the thin-plate energy with a strength each. A point attractor is separable in
 // x, y, z; plane and line attractors and the director couple the coordinates.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Gauss–Legendre nodes and weights on [-1, 1] (Golub–Welsch free: Newton on P_n, exact to 1e-15).
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // A sheet solved on a locally refined space, refined where its curves are not met (Welch &
 // Witkin sec. 4.4 and Figure 3): spans whose measured constraint error exceeds the tolerance are
 // refined, recursively, until every curve is within the tolerance or the depth limit is reached.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // A locally refinable spline space (Welch & Witkin sec. 3): a sum of layers, layer k+1 on the
 // knots of layer k with every span halved, each layer holding poles only where it was refined.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Knot insertion as a linear map: a B-spline basis on a coarse knot vector written in the basis of
 // a finer one (every coarse knot kept). Used to place refined layers and to export them exactly.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Clamped B-spline knot vectors and basis function evaluation (Piegl & Tiller, algorithms
 // A2.1–A2.3).
 #pragma once

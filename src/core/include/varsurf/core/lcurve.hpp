@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // The discrete L-curve of a truncated SVD (Hansen; Michalik & Bruderlin 4.2): for each truncation
 // k, the residual norm rho_k and the norm eta_k of the solution's change, and its corner.
 #pragma once

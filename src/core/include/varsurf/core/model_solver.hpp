@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Several sheets and their shared space curves solved as one system (Welch & Witkin sec. 5).
 //
 // A join says that a sheet contains a space curve: w_s(c_s(t)) = C(t) along the sheet's own

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Finite-dimensional constraints beyond point position (Welch & Witkin 4.2.1): parametric
 // derivatives, normals, and points held to a plane or a line. Tangents are separable in x, y, z;
 // the others couple the coordinates and switch the solve to one 3n system.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Regions of a sheet's parameter domain on which energy operators act: a rectangle, or the area
 // enclosed by a closed loop (e.g. the pre-image of a closed sketch), with quadrature that
 // integrates products of basis functions over them exactly.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Ribbon (Welch & Witkin 4.2.2): the sheet's orientation along a curve. A normal field N(t) is
 // prescribed along the pre-image c(t); w_u . N = 0 and w_v . N = 0 hold in least squares over the
 // curve. Linear in the poles, coupled in x, y, z.

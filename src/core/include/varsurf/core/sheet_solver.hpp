@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Minimize the sheet energy subject to its constraints (Welch & Witkin sec. 4.3, eq. 9).
 //
 // All point and curve constraints form one weighted least-squares system B p = d. Their solution

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // A tensor-product B-spline space with fixed weights: the set of surfaces whose points are linear
 // in the poles. Pole (i, j) -- i along u, j along v -- has the flat index i * nv() + j, the order
 // of FreeCAD's getPoles() rows.

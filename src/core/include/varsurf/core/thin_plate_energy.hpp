@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Thin plate under tension (Welch & Witkin eq. 4): sum_ij alpha_ij D_i w D_j w + beta_ij (D_i D_j
 // w)^2 integrated over the parameter domain, as the quadratic form p^T H p per coordinate.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Shapes as OCCT's ASCII BREP text: the format of FreeCAD's Part.Shape.exportBrepToString() and
 // importBrepFromString() (same OCCT version on both sides).
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Closest points on another shape's faces or edges: the targets of surface and curve attractors
 // and the measure of their residuals.
 #pragma once

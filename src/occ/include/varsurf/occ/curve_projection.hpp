@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Pre-images of target curves: the (u, v) curve c(t) on a base sheet whose surface point S(c(t))
 // is the orthogonal projection of the target D(t), with the same parameter t (the solver's curve
 // constraint needs the shared parameter).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // How far a target curve is from a sheet, measured by OCCT independently of the solver and of any
 // pre-image: the true point-to-surface distance over the whole bounded sheet.
 #pragma once

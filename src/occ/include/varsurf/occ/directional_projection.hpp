@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Projection along a direction (a sketch's normal): where the line through a target point along
 // the direction meets a base sheet. A curve drawn well above a curved sheet has an orthogonal
 // projection that jumps between the sheet's valleys; seen along the sketch's normal it has a

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Edges prepared for a file that stores no tolerances (STEP).
 //
 // An edge shared by two sheets that meet only within a tolerance has a 3D curve and pcurves

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // A sheet as a topological face bounded by its natural (domain) boundary.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Conversions between the core's B-splines and OCCT geometry. Knots are flat in the core and
 // (value, multiplicity) pairs in OCCT; poles and weights map one to one (pole (i, j) of OCCT, both
 // 1-based, is row (i-1) * nv + (j-1)). Periodic OCCT geometry is unperiodized.

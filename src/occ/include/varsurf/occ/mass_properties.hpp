@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Area and volume of a shape integrated to a stated relative precision. The default integration
 // (BRepGProp without a precision, what Part.Shape.Area / Volume use) is accurate to only a few
 // 1e-6 on trimmed B-spline faces, and its error changes with how the boundary is split into

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Normal fields along a curve: what a ribbon (or a G1 join) asks the sheet's normal to follow.
 #pragma once
 

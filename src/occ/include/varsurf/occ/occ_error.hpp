@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Errors of the OpenCASCADE layer. OCCT throws Standard_Failure, which is not a std::exception:
 // every public function of this layer converts it into GeometryError so callers (and the Python
 // binding) only ever see standard exceptions.

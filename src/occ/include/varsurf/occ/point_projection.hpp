@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Orthogonal projection of a point onto a sheet: where a picked vertex sits in (u, v).
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Cylinders, cones, spheres and tori as exact rational B-spline surfaces that are smooth by their
 // knots. OCCT's own conversion (GeomConvert, Convert_TgtThetaOver2) joins quadratic arcs at
 // double knots: geometrically smooth, but C0 by multiplicity, so OCCT's Boolean argument check

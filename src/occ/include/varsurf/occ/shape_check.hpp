@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Validity of a shape as OCCT's BRepCheck_Analyzer sees it.
 #pragma once
 

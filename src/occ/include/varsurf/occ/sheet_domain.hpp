@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // The (u, v) domain of a sheet as projections see it: its bounds, the directions in which the
 // sheet closes on itself (a seam, as on a cylinder), and the placing of parameters that lie on
 // the boundary exactly on it. A pre-image a rounding error inside the boundary gives the solver

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Sheets trimmed to loops of pre-image curves, sewn into a shell and, when it closes, a solid
 // (Welch & Witkin sec. 5: joined sheets bounding a solid).
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // The one face or edge a shape stands for, as sent from FreeCAD (a bare face/edge, or a compound,
 // shell or wire holding exactly one).
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // STEP exchange (AP214, surface curves written as 3D curves and pcurves).
 #pragma once
 

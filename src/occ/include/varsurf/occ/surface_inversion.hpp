@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // The closest point of a bounded B-spline surface to a point in space (point inversion), global
 // over the whole surface and its boundary: the measure behind a sheet's deviation from its curves.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Uniform refinement of a sheet's B-spline space by knot insertion: the surface is unchanged,
 // the space gains the freedom a variational solve needs to hold curves that do not follow its
 // iso lines.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // A sheet bounded like its base face: the base's own wires (outer boundary and holes) carried
 // over to the sheet, which shares the base's parametrization (the NURBS conversion of a plane
 // keeps it; that of a cylinder, cone, sphere or torus reparametrizes it, and the wires' pcurves
