@@ -64,8 +64,8 @@ double estimate_solve_bytes(long long unknowns, long long row_nonzeros, SolveMod
   // of 64^2 to 256^2 poles: the exact mode's KKT LU took 2400-2950 bytes per n log2 n, the
   // penalty mode's Cholesky 410-470. The factors below bound both with a margin of 1.4 to 1.9;
   // automatic may pick the exact mode, so it counts as exact.
-  const bool lu = mode == SolveMode::exact || mode == SolveMode::mtsvd ||
-                  mode == SolveMode::automatic;
+  const bool lu =
+      mode == SolveMode::exact || mode == SolveMode::mtsvd || mode == SolveMode::automatic;
   const double per_entry = lu ? 80.0 : 16.0;
   return per_entry * r * n * std::log2(n + 2.0) + 512.0 * n;
 }

@@ -41,12 +41,13 @@ LineFoot::LineFoot(const BSplineSurface& base, const Eigen::Vector3d& direction)
     throw InvalidInput("projection direction must be a finite, non-zero vector");
   direction_ = direction.normalized();
   // Two unit vectors across the line: the foot is where S - p has no component along them.
-  Eigen::Vector3d helper = std::abs(direction_(0)) < 0.9 ? Eigen::Vector3d::UnitX()
-                                                         : Eigen::Vector3d::UnitY();
+  Eigen::Vector3d helper =
+      std::abs(direction_(0)) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
   const Eigen::Vector3d across1 = direction_.cross(helper).normalized();
   across_.row(0) = across1.transpose();
   across_.row(1) = direction_.cross(across1).transpose();
-  scale_ = std::max(1.0, (base.poles.colwise().maxCoeff() - base.poles.colwise().minCoeff()).norm());
+  scale_ =
+      std::max(1.0, (base.poles.colwise().maxCoeff() - base.poles.colwise().minCoeff()).norm());
   geom_ = to_geom(base);
 }
 
@@ -89,9 +90,8 @@ void LineFoot::check_incidence(const Eigen::Vector3d& p, const Eigen::Vector2d& 
   if (n.norm() <= 0.0) return;  // a degenerate point (a pole of a sphere): no tangent plane
   if (std::abs(n.normalized().dot(direction_)) < kGrazing) {
     std::ostringstream msg;
-    msg << "along the projection direction " << vec(direction_) << " the line through "
-        << vec(p) << " grazes the face (less than "
-        << 90.0 - std::acos(kGrazing) * 180.0 / M_PI
+    msg << "along the projection direction " << vec(direction_) << " the line through " << vec(p)
+        << " grazes the face (less than " << 90.0 - std::acos(kGrazing) * 180.0 / M_PI
         << " degrees from its tangent plane): project along a direction that meets the face "
            "more steeply";
     throw InvalidInput(msg.str());
@@ -109,8 +109,8 @@ Eigen::Vector2d LineFoot::operator()(const Eigen::Vector3d& p, const Eigen::Vect
   }
   // OCCT's line/surface intersection over the whole sheet decides the first point, and any
   // point where continuing from the neighbour failed.
-  const Handle(Geom_Line) line = new Geom_Line(gp_Pnt(p(0), p(1), p(2)),
-                                                gp_Dir(direction_(0), direction_(1), direction_(2)));
+  const Handle(Geom_Line) line =
+      new Geom_Line(gp_Pnt(p(0), p(1), p(2)), gp_Dir(direction_(0), direction_(1), direction_(2)));
   Eigen::Vector2d best;
   double best_cost = std::numeric_limits<double>::infinity();
   guarded("intersecting the projection line with the face", [&] {
@@ -130,8 +130,8 @@ Eigen::Vector2d LineFoot::operator()(const Eigen::Vector3d& p, const Eigen::Vect
   });
   if (!std::isfinite(best_cost)) {
     std::ostringstream msg;
-    msg << "seen along the projection direction " << vec(direction_) << ", the point "
-        << vec(p) << " lies beyond the face: the line through it misses the face";
+    msg << "seen along the projection direction " << vec(direction_) << ", the point " << vec(p)
+        << " lies beyond the face: the line through it misses the face";
     throw InvalidInput(msg.str());
   }
   best = best.cwiseMax(lo_).cwiseMin(hi_);
