@@ -8,7 +8,8 @@ PACKAGES=(
   libeigen3-dev libsuitesparse-dev libopenblas0-pthread
   libocct-foundation-dev libocct-modeling-data-dev libocct-modeling-algorithms-dev
   libocct-data-exchange-dev libocct-ocaf-dev libocct-visualization-dev
-  pybind11-dev python3-pybind11 python3-dev python3-numpy python3-pytest
+  pybind11-dev python3-pybind11 python3-dev python3-numpy python3-pytest python3-pytest-xdist
+  python3-flake8
   libgtest-dev libgmock-dev libbenchmark-dev
   freecad python3-matplotlib libgl1-mesa-dri xvfb xauth clang-format
   clang libclang-rt-14-dev

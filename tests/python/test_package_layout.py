@@ -11,6 +11,7 @@
 """
 
 import ast
+import re
 import os
 import subprocess
 from pathlib import Path
@@ -182,3 +183,37 @@ def test_every_solve_module_imports_without_freecad():
     assert f"IMPORTED {solve_files} LEAKED []" in run.stdout, run.stdout
     check = subprocess.run(["/usr/bin/python3", "-c", "import FreeCAD"], env=env, capture_output=True, timeout=60)
     assert check.returncode != 0, "FreeCAD must not be importable in that Python for this test to mean anything"
+
+
+def _layout_table():
+    """{path named in the first column: the row's text} of the README's Repository layout table."""
+    text = (REPO / "README.md").read_text()
+    section = text.split("## Repository layout", 1)[1].split("\n## ", 1)[0]
+    rows = {}
+    for line in section.splitlines():
+        cells = [c.strip() for c in line.strip().strip("|").split("|")]
+        if len(cells) < 2 or cells[0] in ("Path", "---"):
+            continue
+        for path in re.findall(r"`([^`]+)`", cells[0]):
+            rows[path.rstrip("/")] = cells[1]
+    return rows
+
+
+def test_the_readme_layout_table_matches_the_tree():
+    rows = _layout_table()
+    missing = [p for p in rows if not (REPO / p).exists()]
+    assert not missing, f"the table names what the tree does not have: {missing}"
+    tracked = subprocess.run(["git", "ls-files"], cwd=REPO, capture_output=True, text=True, check=True).stdout.split()
+    entries = {t.split("/")[0] for t in tracked} | {"/".join(t.split("/")[:2]) for t in tracked
+                                                   if t.startswith(("src/", "tests/")) and t.count("/") >= 1}
+    entries |= {"/".join(t.split("/")[:3]) for t in tracked if t.startswith("src/varsurf/") and t.count("/") >= 3}
+    def named(entry):  # itself, a folder above it, or something in it
+        return any(entry == p or entry.startswith(p + "/") or p.startswith(entry + "/") for p in rows)
+
+    unnamed = sorted(e for e in entries if not e.startswith(".git") and not named(e))
+    assert not unnamed, f"the table does not say what these are: {unnamed}"
+    for tier in ("solve", "app"):
+        files = sorted(p.name for p in (PACKAGE / tier).glob("*.py") if p.name != "__init__.py")
+        row = rows[f"src/varsurf/{tier}"]
+        absent = [f for f in files if f"`{f}`" not in row]
+        assert not absent, f"src/varsurf/{tier}/ row does not name {absent}"
