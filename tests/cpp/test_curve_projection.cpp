@@ -6,7 +6,6 @@
 // edges, with the boundary kept and the base as rest shape, is the base. The faces and edges are
 // built as a modeller builds them: primitives and their own edges.
 #include <gtest/gtest.h>
-#include <BRepAdaptor_Surface.hxx>
 #include <BRepBuilderAPI_MakeEdge.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
 #include <BRepPrimAPI_MakeBox.hxx>
@@ -45,6 +44,8 @@
 namespace varsurf {
 namespace {
 
+using test::face_of;
+
 std::vector<TopoDS_Edge> edges_of(const TopoDS_Shape& shape) {
   std::vector<TopoDS_Edge> out;
   for (TopExp_Explorer ex(shape, TopAbs_EDGE); ex.More(); ex.Next()) {
@@ -54,18 +55,6 @@ std::vector<TopoDS_Edge> edges_of(const TopoDS_Shape& shape) {
     if (!seen && !BRep_Tool::Degenerated(e)) out.push_back(e);
   }
   return out;
-}
-
-TopoDS_Face face_of(const TopoDS_Shape& shape, GeomAbs_SurfaceType type, double min_z = -1e300) {
-  for (TopExp_Explorer ex(shape, TopAbs_FACE); ex.More(); ex.Next()) {
-    const TopoDS_Face f = TopoDS::Face(ex.Current());
-    BRepAdaptor_Surface a(f);
-    if (a.GetType() != type) continue;
-    const double u = 0.5 * (a.FirstUParameter() + a.LastUParameter());
-    const double v = 0.5 * (a.FirstVParameter() + a.LastVParameter());
-    if (a.Value(u, v).Z() >= min_z) return f;
-  }
-  return {};
 }
 
 // 0 when the pre-image lies exactly on a bound of the domain in some direction (every pole's
@@ -124,24 +113,6 @@ TopoDS_Face interpolated_face() {
   GeomAPI_PointsToBSplineSurface fit;
   fit.Interpolate(grid);
   return BRepBuilderAPI_MakeFace(fit.Surface(), 1e-7).Face();
-}
-
-TEST(SheetDomain, FindsTheSeamOfAClosedFaceOnly) {
-  const TopoDS_Shape cylinder = BRepPrimAPI_MakeCylinder(20.0, 50.0).Shape();
-  const BSplineSurface lateral = occ::surface_from_face(face_of(cylinder, GeomAbs_Cylinder));
-  const occ::SheetDomain closed(lateral);
-  EXPECT_TRUE(closed.closed(0));
-  EXPECT_FALSE(closed.closed(1));
-  const BSplineSurface plane = occ::surface_from_face(
-      BRepBuilderAPI_MakeFace(gp_Pln(gp::XOY()), 0.0, 100.0, 0.0, 60.0).Face());
-  const occ::SheetDomain open(plane);
-  EXPECT_FALSE(open.closed(0));
-  EXPECT_FALSE(open.closed(1));
-  // On the boundary within rounding: exactly on it; a visible distance inside: untouched.
-  EXPECT_EQ(open.snapped({100.0 - 1e-13, 30.0}), Eigen::Vector2d(100.0, 30.0));
-  EXPECT_EQ(open.snapped({3e-15, 1e-12}), Eigen::Vector2d(0.0, 0.0));
-  EXPECT_EQ(open.snapped({1e-3, 30.0}), Eigen::Vector2d(1e-3, 30.0));
-  EXPECT_EQ(open.snapped({-1.0, 61.0}), Eigen::Vector2d(0.0, 60.0));
 }
 
 // Part.makePlane(100, 60): each of its four edges is a side of the domain exactly.

@@ -6,7 +6,6 @@
 #include <gtest/gtest.h>
 #include <BRepBuilderAPI_MakeFace.hxx>
 #include <BRepBuilderAPI_MakeVertex.hxx>
-#include <BRepExtrema_DistShapeShape.hxx>
 #include <BRepExtrema_ExtPC.hxx>
 #include <BRepExtrema_ExtPF.hxx>
 #include <BRep_Tool.hxx>
@@ -41,49 +40,13 @@
 #include "varsurf/core/errors.hpp"
 #include "varsurf/occ/deviation.hpp"
 #include "varsurf/occ/geom_convert.hpp"
-#include "varsurf/occ/surface_inversion.hpp"
 
 namespace varsurf {
 namespace {
 
-// A clamped knot vector over [0, length] with random interior knots (non-uniform on purpose).
-void random_knots(std::mt19937& rng, int poles, int degree, double length,
-                  TColStd_Array1OfReal& knots, TColStd_Array1OfInteger& mults) {
-  std::uniform_real_distribution<double> inner(0.03, 0.97);
-  std::vector<double> k{0.0, 1.0};
-  while (static_cast<int>(k.size()) < poles - degree + 1) k.push_back(inner(rng));
-  std::sort(k.begin(), k.end());
-  knots.Resize(1, static_cast<int>(k.size()), false);
-  mults.Resize(1, static_cast<int>(k.size()), false);
-  for (int i = 0; i < static_cast<int>(k.size()); ++i) {
-    knots(i + 1) = length * k[i];
-    mults(i + 1) = i == 0 || i + 1 == static_cast<int>(k.size()) ? degree + 1 : 1;
-  }
-}
-
-// A rational (weights 0.3 .. 3) surface of the given degree over about 100 x 80 mm with
-// non-uniform knots and a bumpy height.
-Handle(Geom_BSplineSurface)
-    random_surface(std::mt19937& rng, int degree, int nu, int nv, double bump = 10.0) {
-  std::uniform_real_distribution<double> jitter(-3.0, 3.0), height(-bump, bump), weight(0.3, 3.0);
-  TColgp_Array2OfPnt poles(1, nu, 1, nv);
-  TColStd_Array2OfReal weights(1, nu, 1, nv);
-  for (int i = 1; i <= nu; ++i)
-    for (int j = 1; j <= nv; ++j) {
-      poles(i, j) = gp_Pnt(100.0 * (i - 1) / (nu - 1) + jitter(rng),
-                           80.0 * (j - 1) / (nv - 1) + jitter(rng), height(rng));
-      weights(i, j) = weight(rng);
-    }
-  TColStd_Array1OfReal ku(1, 2), kv(1, 2);
-  TColStd_Array1OfInteger mu(1, 2), mv(1, 2);
-  random_knots(rng, nu, degree, 7.0, ku, mu);
-  random_knots(rng, nv, degree, 0.4, kv, mv);
-  return new Geom_BSplineSurface(poles, weights, ku, kv, mu, mv, degree, degree);
-}
-
-TopoDS_Face face_of(const Handle(Geom_Surface) & surface) {
-  return BRepBuilderAPI_MakeFace(surface, 1e-7);
-}
+using test::face_of;
+using test::random_knots;
+using test::random_surface;
 
 double size_of(const TopoDS_Face& face) {
   const BSplineSurface s = occ::surface_from_face(face);
@@ -335,24 +298,6 @@ TEST(MaxDeviation, WigglyCurveDoesNotDependOnTheSampleCount) {
   for (int samples : {2, 7, 50, 200, 300, 2001}) {
     const double measured = occ::max_deviation(sheet, target, samples);
     EXPECT_NEAR(measured, exact, 1e-8 * exact) << samples << " samples";
-  }
-}
-
-// The inversion alone: a point's closest point is global even when started from a far one.
-TEST(SurfaceInversion, FindsTheGlobalClosestPointFromAnyStart) {
-  std::mt19937 rng(5);
-  const Handle(Geom_BSplineSurface) geom = random_surface(rng, 4, 9, 8);
-  const TopoDS_Face face = face_of(geom);
-  occ::SurfaceInversion inversion(geom);
-  std::uniform_real_distribution<double> x(-20.0, 120.0), y(-20.0, 100.0), z(-30.0, 30.0);
-  for (int k = 0; k < 200; ++k) {
-    const gp_Pnt p(x(rng), y(rng), z(rng));
-    occ::SurfacePoint far_start{0.0, 0.0, 0.0};
-    const occ::SurfacePoint found = inversion.closest(p, &far_start);
-    BRepExtrema_DistShapeShape reference(BRepBuilderAPI_MakeVertex(p).Vertex(), face);
-    ASSERT_TRUE(reference.IsDone());
-    EXPECT_NEAR(found.distance, reference.Value(), 1e-7) << k;
-    EXPECT_NEAR(geom->Value(found.u, found.v).Distance(p), found.distance, 1e-9);
   }
 }
 

@@ -17,12 +17,10 @@
 #include <BRep_Builder.hxx>
 #include <BRep_Tool.hxx>
 #include <GeomAPI_ProjectPointOnSurf.hxx>
-#include <GeomAdaptor_Surface.hxx>
 #include <GeomConvert.hxx>
 #include <Geom_Circle.hxx>
 #include <Geom_Line.hxx>
 #include <Geom_RectangularTrimmedSurface.hxx>
-#include <TopExp_Explorer.hxx>
 #include <TopoDS.hxx>
 #include <gp_Ax2.hxx>
 #include <gp_Circ.hxx>
@@ -38,12 +36,13 @@
 #include "occ_test_support.hpp"
 #include "varsurf/core/errors.hpp"
 #include "varsurf/occ/geom_convert.hpp"
-#include "varsurf/occ/revolved_surface.hpp"
 #include "varsurf/occ/surface_refinement.hpp"
 
 using namespace varsurf;
 
 namespace {
+
+using test::curved_face;
 
 struct Case {
   std::string name;
@@ -65,15 +64,6 @@ std::vector<Case> primitives() {
       {"torus", BRepPrimAPI_MakeTorus(frame, 30.0, 8.0).Shape()},
       {"torus piece", BRepPrimAPI_MakeTorus(30.0, 8.0, -1.0, 2.0, 4.0).Shape()},
   };
-}
-
-// The primitive's curved (lateral) face: the first face whose surface is not a plane.
-TopoDS_Face curved_face(const TopoDS_Shape& shape) {
-  for (TopExp_Explorer ex(shape, TopAbs_FACE); ex.More(); ex.Next()) {
-    const TopoDS_Face face = TopoDS::Face(ex.Current());
-    if (GeomAdaptor_Surface(BRep_Tool::Surface(face)).GetType() != GeomAbs_Plane) return face;
-  }
-  return TopoDS_Face();
 }
 
 double size_of(const TopoDS_Face& face) {
@@ -205,20 +195,6 @@ TEST(GeomConvert, OcctsOwnConversionIsC0ByItsKnots) {
   EXPECT_EQ(occt->Continuity(), GeomAbs_C0);
   occt->IncreaseDegree(3, 3);
   EXPECT_EQ(occt->Continuity(), GeomAbs_C0);
-}
-
-TEST(GeomConvert, OtherSurfacesAreLeftToGeomConvert) {
-  const TopoDS_Shape box = BRepPrimAPI_MakeCylinder(5.0, 10.0).Shape();
-  for (TopExp_Explorer ex(box, TopAbs_FACE); ex.More(); ex.Next()) {
-    const TopoDS_Face face = TopoDS::Face(ex.Current());
-    const Handle(Geom_Surface) s = BRep_Tool::Surface(face);
-    const bool plane = GeomAdaptor_Surface(s).GetType() == GeomAbs_Plane;
-    EXPECT_EQ(occ::smooth_revolved_surface(s, 0.0, 1.0, 0.0, 1.0).IsNull(), plane);
-  }
-  // A box longer than a turn is not an arc.
-  const Handle(Geom_Surface) cylinder =
-      BRep_Tool::Surface(curved_face(BRepPrimAPI_MakeCylinder(5.0, 10.0).Shape()));
-  EXPECT_TRUE(occ::smooth_revolved_surface(cylinder, 0.0, 7.0, 0.0, 1.0).IsNull());
 }
 
 // ---------------------------------------------------------------------------------------------
