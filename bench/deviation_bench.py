@@ -24,8 +24,8 @@ sys.path.append("/usr/lib/freecad-python3/lib")
 import FreeCAD  # noqa: E402
 import Part  # noqa: E402
 
-from varsurf.solve.native import native
-from varsurf.solve.sheet import solve_sheet_on_face
+from varsurf.solve.native import native  # noqa: E402
+from varsurf.solve.sheet import solve_sheet_on_face  # noqa: E402
 
 V = FreeCAD.Vector
 nat = native()

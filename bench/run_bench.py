@@ -51,7 +51,8 @@ def ms(seconds):
 
 def scaling(sizes):
     print("\n## 1. Scaling: 4 wavy boundary curves + 10 interior curves, automatic mode\n")
-    print("| poles | unknowns | mode | assemble ms | factor ms | solve ms | full ms | drag ms | add a pin ms | peak MiB | max dev mm |")
+    print("| poles | unknowns | mode | assemble ms | factor ms | solve ms | full ms | drag ms | add a pin ms "
+          "| peak MiB | max dev mm |")
     print("|---|---|---|---|---|---|---|---|---|---|---|")
     rows = []
     for n in sizes:
@@ -80,7 +81,8 @@ def michalik_bruderlin():
     print("|---|---|---|---|---|---|---|")
     for r in run_case("mb"):
         corner = f"{r['corner']} / {r['directions']}" if r["directions"] else "-"
-        print(f"| {r['name']} | {r['poles']} | {r['rows']} | {r['mode']} | {ms(r['seconds'])} | {corner} | {r['max_dev']:.2g} |")
+        print(f"| {r['name']} | {r['poles']} | {r['rows']} | {r['mode']} | {ms(r['seconds'])} | {corner} "
+              f"| {r['max_dev']:.2g} |")
     # A constraint group too large for a dense SVD: the Krylov (CGLS) truncation.
     for mode in ("tsvd", "mtsvd"):
         (r,) = run_case("scaling", 128, 10, mode)
@@ -133,7 +135,7 @@ def _case_curves(Part, V, amplitude, interior):
     for j in range(interior):
         a = 0.2 + 0.6 * (j + 0.5) / interior - 0.05
         inner.append(_curve(Part, V, lambda t, a=a, j=j: (L * (a + 0.1 * t), L * (0.15 + 0.7 * t),
-                                                         6.0 + 3.0 * math.sin(3 * math.pi * t + j))))
+                                                          6.0 + 3.0 * math.sin(3 * math.pi * t + j))))
     return boundary, inner
 
 
@@ -281,7 +283,8 @@ def live_drag(moves=60):
     per_move = (time.perf_counter() - began) / moves
     session.cancel()
     gui = gui_drag()
-    print("| poles | fresh recompute ms | per move ms (solve + face) | moves per second | speed-up | in the GUI, view redrawn each move |")
+    print("| poles | fresh recompute ms | per move ms (solve + face) | moves per second | speed-up "
+          "| in the GUI, view redrawn each move |")
     print("|---|---|---|---|---|---|")
     print(f"| {sheet.PoleCountU} x {sheet.PoleCountV} | {ms(fresh)} | {ms(per_move)} | "
           f"{1.0 / per_move:.0f} | {fresh / per_move:.0f}x | {gui} |")
@@ -318,7 +321,8 @@ def local_refinement():
     print("\n## 6. Local against uniform refinement: one interior wavy curve, boundary kept\n")
     bench = REPO / "build" / "bench" / "varsurf_hierarchical_bench"
     out = subprocess.run([str(bench)], check=True, capture_output=True, text=True)
-    print("| tolerance | depth | hierarchical DOFs (poles) | export poles | uniform poles that meet it | ratio | hierarchical ms | uniform ms |")
+    print("| tolerance | depth | hierarchical DOFs (poles) | export poles | uniform poles that meet it | ratio "
+          "| hierarchical ms | uniform ms |")
     print("|---|---|---|---|---|---|---|---|")
     for line in out.stdout.splitlines():
         r = json.loads(line)

@@ -218,8 +218,8 @@ def run(result):
         Gui.updateGui()  # redraw: the sheet is tessellated again each move
     result["drag_moves_per_second"] = moves / (time.perf_counter() - t0)
     preview = handles.preview.points
-    result["preview_through_pin"] = min(((p[0] - target.x) ** 2 + (p[1] - target.y) ** 2 + (p[2] - target.z) ** 2) ** 0.5
-                                        for p in preview.tolist())
+    result["preview_through_pin"] = min(
+        ((p[0] - target.x) ** 2 + (p[1] - target.y) ** 2 + (p[2] - target.z) ** 2) ** 0.5 for p in preview.tolist())
     result["preview_top"] = float(preview[:, 2].max())
     result["sheet_top_before"] = sheet.Shape.BoundBox.ZMax
     during = snapshot("drag_during.png")
@@ -242,7 +242,8 @@ def run(result):
     Gui.ActiveDocument.setEdit(pin.Name, 0)
     Gui.updateGui()
     widgets = task_widgets("VarSurfConstraint")
-    result["pin_panel_fields"] = {name: widgets[name].isEnabled() for name in ("uSpin", "originZ", "regionU0Spin", "angleSpin")}
+    result["pin_panel_fields"] = {name: widgets[name].isEnabled()
+                                  for name in ("uSpin", "originZ", "regionU0Spin", "angleSpin")}
     result["pin_panel_residual"] = widgets["residualValue"].text()
     origin_before = list(pin.Origin)
     widgets["originZ"].setValue(pin.Origin.z + 3.0)
@@ -401,7 +402,8 @@ def run(result):
                                  len(csheet.RefinedSpans) // 5, image_difference(plain, shown)]
 
     # 6. the Solid command on two selected Sheets (the pillow example's, built without it)
-    sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(varsurf.__file__)))), "examples"))
+    sys.path.insert(0, os.path.join(
+        os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(varsurf.__file__)))), "examples"))
     import pillow
 
     pdoc = App.newDocument("PillowSmoke")

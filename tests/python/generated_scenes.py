@@ -26,6 +26,7 @@ import Part
 
 V = FreeCAD.Vector
 
+
 def rng(name: str) -> np.random.RandomState:
     """A generator seeded from a stable hash of ``name``."""
     return np.random.RandomState(zlib.crc32(name.encode()) & 0x7FFFFFFF)
@@ -626,10 +627,12 @@ def _into_range(face, u, v):
     surface = face.Surface
     if surface.isUPeriodic():
         period = surface.UPeriod()
-        u += period * math.floor((u1 - u) / period) if u > u1 else period * math.ceil((u0 - u) / period) if u < u0 else 0.0
+        u += (period * math.floor((u1 - u) / period) if u > u1
+              else period * math.ceil((u0 - u) / period) if u < u0 else 0.0)
     if surface.isVPeriodic():
         period = surface.VPeriod()
-        v += period * math.floor((v1 - v) / period) if v > v1 else period * math.ceil((v0 - v) / period) if v < v0 else 0.0
+        v += (period * math.floor((v1 - v) / period) if v > v1
+              else period * math.ceil((v0 - v) / period) if v < v0 else 0.0)
     return u, v
 
 

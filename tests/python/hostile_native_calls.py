@@ -464,7 +464,8 @@ def valid_and_hostile(pname, ptype):
         return [FACE_BREP, FACE_BREP], [[]] + [[s] for s in hostile_strings()]
     if t == "List[BSplineCurve]":
         loop = square_loop(uv=pname == "preimages")
-        return loop, [[]] + [[c] for c in hostile_curves()] + [loop[:2]] + [[c] + loop[1:] for c in hostile_curves()[:6]]
+        return loop, ([[]] + [[c] for c in hostile_curves()] + [loop[:2]]
+                      + [[c] + loop[1:] for c in hostile_curves()[:6]])
     if t == "List[JoinedSheet]":
         return [nat.JoinedSheet(surface(), [0, 1, 2, 3], square_loop(uv=True))], \
             [[], [nat.JoinedSheet(surface(), [7], [line2()])], [nat.JoinedSheet(surface(), [-1], [])]] + \

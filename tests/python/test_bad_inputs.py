@@ -125,8 +125,8 @@ def case_huge_face(sc):
         assert max(sheet.MaxDeviations) <= 1e4, list(sheet.MaxDeviations)
         face = sheet.Shape.Faces[0]
         edge = rail.Shape.Edges[0]
-        far = max(face.distToShape(Part.Vertex(edge.valueAt(edge.FirstParameter + k * (edge.LastParameter
-                                                              - edge.FirstParameter) / 20)))[0] for k in range(21))
+        far = max(face.distToShape(Part.Vertex(edge.valueAt(
+            edge.FirstParameter + k * (edge.LastParameter - edge.FirstParameter) / 20)))[0] for k in range(21))
         assert far <= 1e4, far  # measured by OCCT: the sheet passes through the rail
         # no overflow: the same scene a million times smaller (100 mm, its tolerance 0.01 mm by the
         # same rule) gives the same sheet scaled down

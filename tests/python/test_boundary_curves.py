@@ -189,7 +189,8 @@ def test_circle_across_a_cylinders_seam_is_refused_with_the_cause(native):
     pre-image would have to run on both sides of the seam; the message says so."""
     lateral = Part.makeCylinder(20, 50).Faces[0]
     circle = Part.makeCircle(20, V(0, 0, 25), V(0, 0, 1), 90, 450)
-    with pytest.raises(errors.SheetError, match=r"Ring goes around the closed base face across its seam.*split the curve"):
+    with pytest.raises(errors.SheetError,
+                       match=r"Ring goes around the closed base face across its seam.*split the curve"):
         solve_sheet_on_face(lateral, [circle], names=["Ring"])
 
 

@@ -27,10 +27,11 @@ def sheet(doc, native):
 def test_every_kind_from_a_selected_sheet(sheet, kind):
     doc = sheet.Document
     lines = []
-    c = actions.run_constraint_command(kind, [Sel(sheet, "Face1")], do_command=lambda l: (lines.append(l), macro.exec_line(l)))
+    c = actions.run_constraint_command(kind, [Sel(sheet, "Face1")],
+                                       do_command=lambda line: (lines.append(line), macro.exec_line(line)))
     assert c is not None and c.Kind == kind
     assert c in sheet.Constraints
-    assert any("varsurf.make_constraint(" in l and repr(kind) in l for l in lines), lines
+    assert any("varsurf.make_constraint(" in line and repr(kind) in line for line in lines), lines
     if kind == "FrozenRegion":
         # The default region (the sheet's middle half) covers part of the rail, which must lift
         # the sheet 5 mm there: freezing it contradicts the rail, and the Sheet says so.
@@ -100,9 +101,9 @@ def test_g1_from_a_sheet_an_edge_and_a_face(sheet):
     doc.recompute()
     lines = []
     c = actions.run_constraint_command("G1", [Sel(sheet), Sel(seam, "Edge1"), Sel(face, "Face1")],
-                                   do_command=lambda l: (lines.append(l), macro.exec_line(l)))
+                                       do_command=lambda line: (lines.append(line), macro.exec_line(line)))
     assert c is not None and c.Kind == "G1" and c.Curve[0] == seam and c.Reference[0] == face
-    assert any("curve=" in l and "reference=" in l for l in lines), lines
+    assert any("curve=" in line and "reference=" in line for line in lines), lines
     assert sheet.isValid(), sheet.getStatusString()
     assert sheet.ConstraintResiduals[0] < 1.0
     messages = []
@@ -152,7 +153,7 @@ def test_kinds_that_take_edges_and_faces(sheet, kind, picks, expect):
     o = _scene(doc)
     lines = []
     c = actions.run_constraint_command(kind, [Sel(sheet)] + picks(o),
-                                   do_command=lambda l: (lines.append(l), macro.exec_line(l)))
+                                       do_command=lambda line: (lines.append(line), macro.exec_line(line)))
     assert c is not None and c.Kind == kind
     for prop, label in dict(curve="Curve", reference="Reference", region_loop="RegionLoop").items():
         link = getattr(c, label)

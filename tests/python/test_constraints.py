@@ -194,7 +194,8 @@ def test_pressure_inflates_the_sheet(sheet):
 def tilted_face(doc, degrees):
     """A face containing the line x = 60 (z = 0), tilted `degrees` about it."""
     rot = FreeCAD.Rotation(V(0, 1, 0), degrees)
-    corners = [V(60, 20, 0), V(60, 60, 0), rot.multVec(V(20, 0, 0)) + V(60, 60, 0), rot.multVec(V(20, 0, 0)) + V(60, 20, 0)]
+    corners = [V(60, 20, 0), V(60, 60, 0), rot.multVec(V(20, 0, 0)) + V(60, 60, 0),
+               rot.multVec(V(20, 0, 0)) + V(60, 20, 0)]
     face = Part.Face(Part.makePolygon(corners + [corners[0]]))
     obj = doc.addObject("Part::Feature", "Neighbour")
     obj.Shape = face

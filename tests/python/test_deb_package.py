@@ -191,7 +191,8 @@ def test_package_holds_the_workbench_and_nothing_else(deb, contents):
     packaged = {p[len(f"{MOD}/src/varsurf/"):] for p in contents
                 if p.startswith(f"{MOD}/src/varsurf/") and p.endswith(".py")}
     assert packaged == deb["sources"], (packaged ^ deb["sources"])
-    assert not [p for p in contents if not (MOD.startswith(p + "/") or p == MOD or p.startswith(MOD + "/"))], "outside the Mod folder"
+    assert not [p for p in contents
+                if not (MOD.startswith(p + "/") or p == MOD or p.startswith(MOD + "/"))], "outside the Mod folder"
     unwanted = [p for p in files if re.search(r"\.(h|hh|hpp|hxx|a|pyc|cmake)$", p)
                 or "__pycache__" in p or "/tests/" in p or "/bench" in p or "fuzz" in p]
     assert not unwanted, unwanted
@@ -291,7 +292,7 @@ def test_freecad_runs_the_unpacked_package(deb, tmp_path):
     run = subprocess.run(["freecadcmd", str(script)], cwd=work, env=env, capture_output=True,
                          text=True, timeout=300)
     print(f"freecadcmd: {time.monotonic() - started:.1f} s")
-    lines = [l for l in run.stdout.splitlines() if l.startswith(RESULT_TAG)]
+    lines = [line for line in run.stdout.splitlines() if line.startswith(RESULT_TAG)]
     assert len(lines) == 1, f"exit {run.returncode}:\n{run.stdout[-4000:]}\n{run.stderr[-4000:]}"
     result = json.loads(lines[0][len(RESULT_TAG):])
     assert result["ok"], result.get("error")

@@ -81,7 +81,7 @@ def test_cancel_writes_nothing_and_bad_drags_are_refused(sheet):
 
 
 def test_dragging_a_space_curve_handle_moves_the_joined_sheets(doc, native):
-        
+
     import moving_curve
 
     solid, curve = moving_curve.build(doc)

@@ -58,7 +58,7 @@ def _failures(lines):
     for k, line in enumerate(lines):
         if line.endswith("Traceback (most recent call last):"):
             cause = lines[k - 1] if k else ""
-            final = next((l for l in lines[k + 1:] if l.startswith("<class ")), "")
+            final = next((later for later in lines[k + 1:] if later.startswith("<class ")), "")
             out.append((cause, final.split("'")[1] if final.count("'") >= 2 else final))
     return out
 
@@ -74,7 +74,7 @@ def test_report_view_shows_only_the_provoked_errors(smoke):
     unexpected = [cause for cause, _cls in failures if not any(p in cause for p in PROVOKED)]
     assert not unexpected, unexpected
     assert any(PROVOKED[-1] in cause for cause, _cls in failures), failures
-    assert len([l for l in lines if "Recompute failed" in l]) == len(failures), lines
+    assert len([line for line in lines if "Recompute failed" in line]) == len(failures), lines
 
 
 def test_workbench_and_command(smoke):

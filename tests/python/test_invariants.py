@@ -198,8 +198,9 @@ def test_the_scene_at_another_scale_gives_the_scaled_result(name, scale):
 
 
 @pytest.mark.parametrize("name, kind, scale", [case(f"on-base-scaled/{name}/{kind}/{scale}", name, kind, scale)
-                                        for name in ("plane-a", "cylinder-partial-a", "bspline-3x3", "step-bspline")
-                                        for kind in ("iso-grid", "free") for scale in SCALES])
+                                               for name in ("plane-a", "cylinder-partial-a", "bspline-3x3",
+                                                            "step-bspline")
+                                               for kind in ("iso-grid", "free") for scale in SCALES])
 def test_curves_on_the_base_return_the_base_at_any_scale(name, kind, scale):
     factor = SCALES[scale]
     matrix = FreeCAD.Matrix()

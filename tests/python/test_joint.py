@@ -166,10 +166,10 @@ def test_commands_make_space_curves_and_hinges(doc, native):
 
     seam = doc.getObject("Seam")
     c = actions.run_space_curve_command([Sel(seam, "Edge1")], do_command=run)
-    assert c is not None and c.isValid() and any("make_space_curve" in l for l in lines)
+    assert c is not None and c.isValid() and any("make_space_curve" in line for line in lines)
     left, right = solid.Sheets
     h = actions.run_hinge_command([Sel(left), Sel(right), Sel(seam, "Edge1")], do_command=run)
-    assert h is not None and h in solid.Hinges and any("make_hinge" in l for l in lines)
+    assert h is not None and h in solid.Hinges and any("make_hinge" in line for line in lines)
     # From the Solid's edge between its two faces: the same sheets and curve.
     mid = seam.Shape.Edges[0].valueAt(0.5 * (seam.Shape.Edges[0].FirstParameter + seam.Shape.Edges[0].LastParameter))
     edge = min(range(len(solid.Shape.Edges)),

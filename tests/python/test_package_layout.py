@@ -171,7 +171,8 @@ def test_every_solve_module_imports_without_freecad():
         "    importlib.import_module(name)\n"
         "import varsurf\n"
         "outcome = varsurf.SheetSettings(tolerance=0.001)\n"
-        "leaked = sorted(m for m in sys.modules if m.split('.')[0] in %r or m.startswith(('varsurf.app', 'varsurf.gui')))\n"
+        "leaked = sorted(m for m in sys.modules if m.split('.')[0] in %r"
+        " or m.startswith(('varsurf.app', 'varsurf.gui')))\n"
         "print('IMPORTED', len(names), 'LEAKED', leaked)\n"
     ) % (FREECAD_MODULES,)
     env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
@@ -205,8 +206,9 @@ def test_the_readme_layout_table_matches_the_tree():
     assert not missing, f"the table names what the tree does not have: {missing}"
     tracked = subprocess.run(["git", "ls-files"], cwd=REPO, capture_output=True, text=True, check=True).stdout.split()
     entries = {t.split("/")[0] for t in tracked} | {"/".join(t.split("/")[:2]) for t in tracked
-                                                   if t.startswith(("src/", "tests/")) and t.count("/") >= 1}
+                                                    if t.startswith(("src/", "tests/")) and t.count("/") >= 1}
     entries |= {"/".join(t.split("/")[:3]) for t in tracked if t.startswith("src/varsurf/") and t.count("/") >= 3}
+
     def named(entry):  # itself, a folder above it, or something in it
         return any(entry == p or entry.startswith(p + "/") or p.startswith(entry + "/") for p in rows)
 

@@ -221,7 +221,6 @@ def test_restoring_runs_no_code_from_the_file(doc, native, tmp_path):
     FreeCAD.closeDocument(doc.Name)
     marker = tmp_path / "pwned"
     payload = f"__import__('os').system('touch {marker}')"
-    hostile = json.dumps({"type": payload, "version": payload, "eval": payload})
 
     def edit(state):
         # the Sheet's state becomes code in every field; the Constraint's a bare string of code
@@ -308,7 +307,6 @@ def _constraint_picks(kind, sheet, pin, o):
     return [Sel(sheet, "Face1")]
 
 
-
 def _commands(doc, surface, rail, pin, sheet, o):
     """(name, run) for every document-changing command, as its GUI command runs it."""
     from varsurf.solve import constraints
@@ -320,7 +318,8 @@ def _commands(doc, surface, rail, pin, sheet, o):
         out.append((kind, lambda kind=kind, picks=picks: actions.run_constraint_command(kind, picks, do_command=run)))
     for function in ("install_rest_shape", "melt"):
         lines = ["import varsurf", f"varsurf.{function}({macro.ref(sheet)})"]
-        out.append((function, lambda lines=lines, f=function: transaction.run_in_transaction(doc, f"VarSurf {f}", lines, run)))
+        out.append((function, lambda lines=lines, f=function: transaction.run_in_transaction(doc, f"VarSurf {f}",
+                                                                                             lines, run)))
     out.append(("SpaceCurve", lambda: actions.run_space_curve_command([Sel(o.second, "Edge1")], do_command=run)))
     return out
 
@@ -356,7 +355,7 @@ def test_undo_and_redo_of_joining_and_hinging(doc, native):
     assert made is not None and made.isValid(), made and made.getStatusString()
     after_solid = snapshot(doc)
     hinge = actions.run_hinge_command([Sel(sheets[0]), Sel(sheets[1]), Sel(seam, "Edge1")], do_command=run,
-                                         angle=120.0)
+                                      angle=120.0)
     assert hinge is not None
     after_hinge = snapshot(doc)
     doc.undo()
@@ -375,7 +374,7 @@ HOSTILE = Path(__file__).resolve().parent / "hostile_native_calls.py"
 
 
 def _hostile_totals(stdout):
-    line = [l for l in stdout.splitlines() if l.startswith("CALLS ")][-1].split()
+    line = [row for row in stdout.splitlines() if row.startswith("CALLS ")][-1].split()
     return {k: int(v) for k, v in zip(line[::2], line[1::2])}
 
 
@@ -392,10 +391,10 @@ def test_every_native_function_answers_hostile_arguments_with_an_exception(nativ
     assert run.returncode == 0, (run.returncode, run.stdout[-3000:], run.stderr[-3000:])
     totals = _hostile_totals(run.stdout)
     print("native boundary:", totals)
-    targets = {l.split()[1]: (int(l.split()[2]), int(l.split()[3])) for l in run.stdout.splitlines()
-               if l.startswith("TARGET ")}
-    assert not [l for l in run.stdout.splitlines() if l.startswith("UNKNOWN")], run.stdout[-3000:]
-    assert totals["BAD_RESULTS"] == 0, [l for l in run.stdout.splitlines() if l.startswith("BAD")]
+    targets = {line.split()[1]: (int(line.split()[2]), int(line.split()[3])) for line in run.stdout.splitlines()
+               if line.startswith("TARGET ")}
+    assert not [line for line in run.stdout.splitlines() if line.startswith("UNKNOWN")], run.stdout[-3000:]
+    assert totals["BAD_RESULTS"] == 0, [line for line in run.stdout.splitlines() if line.startswith("BAD")]
     # well-typed: every call reaches the core (none is a pybind11 conversion TypeError)
     assert totals["REFUSED_BY_BINDING"] == 0 and totals["REACHED"] == totals["CALLS"], totals
     assert totals["CALLS"] >= 3000 and totals["RAISED"] >= totals["CALLS"] // 2, totals
@@ -492,7 +491,7 @@ def test_soak_of_drag_and_recompute_cycles_keeps_memory_flat(doc, native):
     doc.recompute()
     assert sheet.isValid() and len(sheet.Constraints) == 10, sheet.getStatusString()
 
-    session, start, rss = None, None, {}
+    session, session_target, start = None, None, None
     for cycle in range(SOAK_CYCLES):
         c = pins[(cycle // 10) % 10]
         target = c.Origin + V(0, 0, 0.5 if cycle % 2 else -0.5)

@@ -68,7 +68,7 @@ def test_a_cancelled_sheet_is_in_error_and_solves_again(doc, native, cancelling)
 
 
 def test_a_cancelled_joint_solve_leaves_the_solid_in_error(doc, native, cancelling):
-        
+
     import hinge_pair
 
     progress.factory = progress.SolveProgress

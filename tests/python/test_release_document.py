@@ -29,7 +29,7 @@ def test_a_release_document_recomputes_identically_and_saves_again(native, tmp_p
     try:
         saved = {o.Name: geometry(o) for o in varsurf_objects(doc)}
         shaped = [o for o in varsurf_objects(doc) if o.Proxy.TYPE in ("VarSurf::Sheet", "VarSurf::Solid",
-                                                                        "VarSurf::SpaceCurve")]
+                                                                      "VarSurf::SpaceCurve")]
         assert all(saved[o.Name][0] for o in shaped), "the file holds the shapes as saved"
         for obj in doc.Objects:
             obj.touch()

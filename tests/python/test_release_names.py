@@ -49,7 +49,8 @@ def test_every_old_module_name_loads_what_it_held():
 
     assert SheetError is errors.SheetError is varsurf.SheetError
     # The analysis fields answer through the old name too (their new home is the solve tier).
-    assert importlib.import_module("varsurf.analysis").analyse is importlib.import_module("varsurf.solve.analysis").analyse
+    assert (importlib.import_module("varsurf.analysis").analyse
+            is importlib.import_module("varsurf.solve.analysis").analyse)
 
 
 def test_a_release_script_solves_as_the_current_api_does(native):

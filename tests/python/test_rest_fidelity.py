@@ -51,7 +51,8 @@ def noisy_curve_on(face, noise, count=41):
 
 def curve_off_face(edge, face, samples=200):
     """Largest distance from the curve to the face (OCCT, at samples along the curve)."""
-    return max(face.distToShape(Part.Vertex(edge.valueAt(edge.FirstParameter + (edge.LastParameter - edge.FirstParameter) * k / samples)))[0]
+    return max(face.distToShape(Part.Vertex(edge.valueAt(
+        edge.FirstParameter + (edge.LastParameter - edge.FirstParameter) * k / samples)))[0]
                for k in range(samples + 1))
 
 
@@ -59,7 +60,8 @@ def sheet_off_base(sheet, base, n=17):
     """Largest distance from the sheet to the base face (OCCT, on an n x n parameter grid)."""
     surface = sheet.Surface
     u0, u1, v0, v1 = sheet.ParameterRange
-    return max(base.distToShape(Part.Vertex(surface.value(u0 + (u1 - u0) * i / (n - 1), v0 + (v1 - v0) * j / (n - 1))))[0]
+    return max(base.distToShape(Part.Vertex(surface.value(u0 + (u1 - u0) * i / (n - 1),
+                                                          v0 + (v1 - v0) * j / (n - 1))))[0]
                for i in range(n) for j in range(n))
 
 
@@ -127,7 +129,7 @@ def test_fillet_face_solves_in_automatic_and_penalty_modes(kind, mode):
 def test_sheet_without_curves_is_its_base_at_every_degree(degree, fix_boundary):
     for face in (loft_face(), cylinder_face()):
         out = solve_sheet_on_face(face, [], tolerance=0.01, rest="base", degree=degree,
-                                        fix_boundary=fix_boundary)
+                                  fix_boundary=fix_boundary)
         assert out.degree_u >= degree and out.degree_v >= degree
         # Before: degree 5-7 drifted 1e-3 mm, a free boundary 5e-4 mm at any degree.
         assert sheet_off_base(out.shape, face) <= 1e-9 * face.BoundBox.DiagonalLength

@@ -139,9 +139,9 @@ def test_solid_command_joins_selected_sheets_in_one_transaction(doc, native):
     top, bottom = doc.getObject("Top"), doc.getObject("Bottom")
     lines = []
     s = actions.run_solid_command([Sel(top), Sel(bottom, "Face1")],
-                              do_command=lambda l: (lines.append(l), macro.exec_line(l)))
+                                  do_command=lambda line: (lines.append(line), macro.exec_line(line)))
     assert s is not None and s.isValid() and s.Closed, s.Status
-    assert any("varsurf.make_solid(" in l for l in lines), lines
+    assert any("varsurf.make_solid(" in line for line in lines), lines
     name = s.Name
     doc.undo()
     assert name not in [o.Name for o in doc.Objects]

@@ -4,7 +4,6 @@ their L-curve, and a PreparedSheet drag through the API equals a fresh solve."""
 
 import math
 
-import FreeCAD
 import pytest
 
 import varsurf

@@ -113,7 +113,7 @@ def test_a_joint_solve_keeps_the_trimmed_edges_of_a_sheets_base(doc, native):
     rail = line.Shape.Edges[0]
     tolerance = 1e-3
     outcome = solve_sheet_on_face(base, [rail], names=["Rail:Edge1"], tolerance=tolerance,
-                                        rest="base")
+                                  rest="base")
     assert len(outcome.problem.curves) > 1  # the rim is kept as curves of the sheet's own
     rest = space_curves.rest_curve(rail)
     lift = V(24.0, 40.0, TOP + 8.0)

@@ -87,6 +87,7 @@ def run_hinge_command(selection_ex, do_command=None, on_error=None, angle: float
     except ValueError as error:
         _report(error, on_error)
         return None
-    return run_in_transaction(solid.Document, TRANSACTION_HINGE, macro.hinge_command_lines(solid, a, b, obj, sub, angle),
+    return run_in_transaction(solid.Document, TRANSACTION_HINGE,
+                              macro.hinge_command_lines(solid, a, b, obj, sub, angle),
                               do_command,
                               keep=lambda o: getattr(getattr(o, "Proxy", None), "Type", None) == "VarSurf::Hinge")

@@ -63,7 +63,7 @@ def directions(obj, face, links):
         d = value(obj, "ProjectionDirection")
         if not all(math.isfinite(c) for c in (d.x, d.y, d.z)) or d.Length == 0.0:
             raise errors.SheetError("Projection is Direction but ProjectionDirection is zero: give the direction "
-                                   "the curves are projected along (e.g. 0, 0, 1 for a plan view)")
+                                    "the curves are projected along (e.g. 0, 0, 1 for a plan view)")
         return [(d.x, d.y, d.z)] * len(links)
     reference = base_normal(face)
     found = []

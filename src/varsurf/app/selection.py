@@ -102,7 +102,8 @@ SELECTION_HINTS = {
     "region": "Select a Sheet and, optionally, closed edges (e.g. a sketch) bounding the region.",
     "SurfaceAttractor": "Select a Sheet, the face to pull onto and, optionally, closed edges bounding the region.",
     "CurveAttractor": "Select a Sheet and the edge to pull onto.",
-    "Ribbon": "Select a Sheet, the edge along which its normal is set and, optionally, a face or a second edge to follow.",
+    "Ribbon": ("Select a Sheet, the edge along which its normal is set and, optionally, a face or a second edge "
+               "to follow."),
     "G1": "Select a Sheet, the edge along which it joins, and the face it must follow there.",
     "G0": "Select a Sheet and the edge it must contain (e.g. the edge of the neighbouring face).",
 }

@@ -162,7 +162,7 @@ def _check_not_cyclic(obj, link_obj):
         current = stack.pop()
         if current is obj:
             raise errors.SheetError(f"cyclic dependency: {link_obj.Label} is built from {obj.Label} itself; "
-                                   "link curves and faces that do not depend on the sheet")
+                                    "link curves and faces that do not depend on the sheet")
         if current.Name not in seen:
             seen.add(current.Name)
             stack.extend(current.OutList)

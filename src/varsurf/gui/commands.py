@@ -197,6 +197,7 @@ CONSTRAINT_COMMANDS = [
      QT_TRANSLATE_NOOP("VarSurf_FrozenRegion", "Keep a region of the sheet as the base shape.\nSelect a Sheet and, optionally, closed edges (e.g. a sketch) bounding the region.")),
 ]
 
+
 def _selected_sheets():
     return [s.Object for s in Gui.Selection.getSelectionEx() if references.is_sheet(s.Object)]
 

@@ -181,7 +181,8 @@ class ConstraintHandles:
         if not getattr(constraint, "Enabled", False):
             return
         sheet = sheet_of(constraint)
-        size = HANDLE_SIZE * max(sheet.Shape.BoundBox.DiagonalLength if sheet and not sheet.Shape.isNull() else 100.0, 1.0)
+        size = HANDLE_SIZE * max(sheet.Shape.BoundBox.DiagonalLength if sheet and not sheet.Shape.isNull() else 100.0,
+                                 1.0)
         kind = constraint.Kind
         try:
             self._draw(kind, constraint, sheet, size)

@@ -141,6 +141,7 @@ class ViewProviderSheet(_EditedInPanel, _ViewProvider):
             base[0].ViewObject.Visibility = True
         return True
 
+
 class ViewProviderConstraint(_EditedInPanel, _ViewProvider):
     """Tree icon of a Constraint, and its handles in the 3D view (gui.handles): a Point's pin drags
     its target with the Sheet re-solved live."""

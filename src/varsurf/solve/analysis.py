@@ -49,7 +49,8 @@ def analyse(shape, mode: str, reference=None, direction=(0.0, 0.0, 1.0), n: int 
     to `direction` turns through STRIPES stripes over a half turn.
     """
     if mode not in MODES or mode in ("None", "CurveDeviation"):
-        raise ValueError(f"a grid analysis is one of {', '.join(m for m in MODES if m not in ('None', 'CurveDeviation'))}"
+        raise ValueError("a grid analysis is one of "
+                         f"{', '.join(m for m in MODES if m not in ('None', 'CurveDeviation'))}"
                          f" (got {mode!r})")
     if not 1 <= n <= 400:
         raise ValueError(f"analysis grid must have 1 to 400 cells per direction (got {n})")

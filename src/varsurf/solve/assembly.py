@@ -121,7 +121,7 @@ def build_solid(sheets: Sequence, tolerance: float) -> AssemblyOutcome:
                 raise SheetError(f"{label} does not reach a join curve: {error}") from error
             if pre.max_distance > tolerance:
                 raise JoinGapError(f"{label} passes {pre.max_distance:.3g} mm from a join curve "
-                                 f"(more than the tolerance {tolerance:.3g} mm)")
+                                   f"(more than the tolerance {tolerance:.3g} mm)")
             gaps[key] = max(gaps.get(key, 0.0), float(pre.max_distance))
             ids.append(index[key])
             pre_images.append(pre.curve)

@@ -34,7 +34,8 @@ KINDS: Dict[str, Tuple[str, str]] = {
     "Director": ("the region's normals are pushed toward Vector", "deg"),
     "Repeller": ("the region is pushed away from Origin with strength Weight (residual: closest distance)", "mm"),
     "FrozenRegion": ("the sheet over the region keeps the base shape", "mm"),
-    "SurfaceAttractor": ("the region is pulled onto Reference (a face) with strength Weight (residual: RMS distance)", "mm"),
+    "SurfaceAttractor": ("the region is pulled onto Reference (a face) with strength Weight (residual: RMS distance)",
+                         "mm"),
     "CurveAttractor": ("the region is pulled onto Curve (an edge) with strength Weight (residual: RMS distance)", "mm"),
     "Ribbon": ("along Curve, the sheet's normal follows Reference (a face's normal, or the strip toward a second "
                "edge; without Reference the base's own normal), turned by Angle", "deg"),

@@ -180,7 +180,7 @@ def solve_joint(sheets: Sequence[JointSheet], variational: Dict[str, Variational
         if key not in variational:
             continue  # a fixed curve stays the user's edge (exactly, arcs included)
         solved = build(nat.BSplineCurve, degree=curves[i].start.degree, knots=list(curves[i].start.knots),
-                        poles=result.curve_poles[i])
+                       poles=result.curve_poles[i])
         edges[key] = part_curve(solved).toShape()
     rep = result.report
     angles = [(math.degrees(r.min_angle), math.degrees(r.max_angle), math.degrees(r.max_error))

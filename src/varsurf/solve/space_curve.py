@@ -114,4 +114,4 @@ def solve_alone(curve: VariationalCurve):
         raise SheetError(str(error)) from error
     start = curve.start
     return build(nat.BSplineCurve, degree=start.degree, knots=list(start.knots),
-                  poles=result.curve_poles[0])
+                 poles=result.curve_poles[0])
