@@ -188,6 +188,7 @@ def _fairness(face, n=60):
 def filling_comparison():
     FreeCAD, Part = _freecad()
     V = FreeCAD.Vector
+    from varsurf.solve.settings import SheetSettings
     from varsurf.solve.sheet import solve_sheet_on_face
 
     print("\n## 2. VarSurf against FreeCAD's Surface Filling (GeomPlate), same curves, same run\n")
@@ -205,7 +206,7 @@ def filling_comparison():
         edges = boundary + inner
         base = _flat_square(Part, V)
         t = time.perf_counter()
-        ours = solve_sheet_on_face(base, edges, fix_boundary=False, tolerance=tolerance)
+        ours = solve_sheet_on_face(base, edges, SheetSettings(fix_boundary=False, tolerance=tolerance))
         ours_s = time.perf_counter() - t
         objs = []
         for k, e in enumerate(edges):
