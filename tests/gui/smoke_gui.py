@@ -529,9 +529,21 @@ def every_constraint_command(result, doc, sheet, surface, rail):
         result.setdefault("constraint_command_seconds", {})[kind] = time.perf_counter() - began
     result["every_constraint_command"] = outcome
     result["constraints_after_undos"] = len(sheet.Constraints)  # each command undone again
-    # an attractor's origin is a pin too: dragged, the sheet follows; one undo step
+    # a G0 join's measured continuity is listed in the Sheet's panel (then removed again)
     import varsurf
 
+    join = varsurf.make_constraint(sheet, "G0", curve=(rail, "Edge1"), name="Join")
+    doc.recompute()
+    Gui.ActiveDocument.setEdit(sheet.Name, 0)
+    Gui.updateGui()
+    table = task_widgets()["deviationTable"]
+    rows = [[table.item(r, c).text() for c in range(2)] for r in range(table.rowCount())]
+    result["g0_panel"] = [sheet.isValid(), list(sheet.JoinNames), [r for r in rows if r[0].endswith(": join")]]
+    press_task_button(QtGui.QDialogButtonBox.Cancel)
+    sheet.Constraints = [c for c in sheet.Constraints if c != join]
+    doc.removeObject(join.Name)
+    doc.recompute()
+    # an attractor's origin is a pin too: dragged, the sheet follows; one undo step
     pull = varsurf.make_constraint(sheet, "PointAttractor", origin=(50.0, 40.0, 20.0),
                                    region=(0.3, 0.7, 0.3, 0.7), name="Pull")
     doc.recompute()

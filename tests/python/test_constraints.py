@@ -243,6 +243,13 @@ def test_join_to_a_tilted_neighbour_along_a_line(sheet, kind):
         angles.append(brep_measure.angle_between(mine, theirs))
     wanted = 0.0 if kind == "G1" else 10.0
     assert max(abs(a - wanted) for a in angles) <= 0.01, (min(angles), max(angles))
+    if kind == "G1":  # the Sheet publishes the same join, measured at 200 points
+        assert list(sheet.JoinNames) == list(sheet.ConstraintNames)
+        assert sheet.JoinGaps[0] < varsurf.DEFAULT_TOLERANCE
+        assert sheet.JoinAngles[0] <= 0.01 and abs(sheet.JoinAngles[0] - max(angles)) < 0.005
+        assert 0.0 <= sheet.JoinCurvatureJumps[0] <= 100.0 + 1e-9  # against a plane: the sheet's own bend
+    else:
+        assert list(sheet.JoinNames) == []  # a ribbon is no join to a neighbour
     assert brep_measure.angle_between(theirs, up) == pytest.approx(20.0, abs=1e-9)  # the neighbour is tilted
 
 

@@ -106,6 +106,9 @@ def test_command_creates_a_valid_sheet(smoke):
 def test_task_panel_previews_and_cancel_restores(smoke):
     assert smoke["task_panel_open"]
     assert smoke["task_panel_rows"] == 2
+    valid, joins, join_rows = smoke["g0_panel"]  # the G0 command's join, measured, in the Sheet's panel
+    assert valid and len(joins) == 1 and len(join_rows) == 1, smoke["g0_panel"]
+    assert join_rows[0][0] == f"{joins[0]}: join" and join_rows[0][1].startswith("gap "), join_rows
     assert smoke["bend_during_edit"] == 5.0
     assert smoke["bend_restored"], (smoke["bend_during_edit"], smoke["bend_after_cancel"])
     assert smoke["task_panel_closed"]

@@ -171,3 +171,4 @@ def test_g0_join_makes_the_sheet_contain_an_edge(sheet):
     assert residual_of(sheet, c) <= varsurf.DEFAULT_TOLERANCE
     assert sheet.Shape.distToShape(lifted.Shape)[0] < 1e-6  # measured by OCCT, independently
     assert sheet.ConstraintUnits[0] == "mm"
+    assert sheet.JoinGaps[0] < 1e-6 and sheet.JoinAngles[0] == -1.0  # no neighbour face: gap only

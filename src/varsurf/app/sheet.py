@@ -9,6 +9,8 @@ boundary). App side only: no GUI import, so it computes in freecadcmd and headle
 
 from __future__ import annotations
 
+import math
+
 import FreeCAD
 import Part
 
@@ -69,6 +71,10 @@ _PROPERTIES = [
     ("ConstraintNames", "App::PropertyStringList", "Result", "The enabled constraints, in the order of ConstraintResiduals", True),
     ("ConstraintResiduals", "App::PropertyFloatList", "Result", "How far each enabled constraint is from met, measured on the result, in ConstraintUnits", True),
     ("ConstraintUnits", "App::PropertyStringList", "Result", "Unit of each of ConstraintResiduals (mm or deg)", True),
+    ("JoinNames", "App::PropertyStringList", "Result", "The G0 and G1 constraints, in the order of JoinGaps, JoinAngles and JoinCurvatureJumps", True),
+    ("JoinGaps", "App::PropertyFloatList", "Result", "Largest distance (mm) between the sheet and its neighbour face (G0: its edge) at 200 points along each join, measured by OpenCASCADE on the result", True),
+    ("JoinAngles", "App::PropertyFloatList", "Result", "Largest angle (degrees) between the sheet's and the neighbour's tangent planes along each G1 join (G0: not measured, -1)", True),
+    ("JoinCurvatureJumps", "App::PropertyFloatList", "Result", "Largest jump (%) of the normal curvature across each G1 join, relative to the larger of the two (G2 would be 0; G0: not measured, -1)", True),
 ]
 
 
@@ -183,7 +189,7 @@ def _clear_results(obj, status):
     obj.CurveNames = []
     obj.ConstraintRank = 0
     for name in ("ConstraintNames", "ConstraintResiduals", "ConstraintUnits", "LCurveResiduals", "LCurveNorms",
-                 "RefinedSpans"):
+                 "RefinedSpans", "JoinNames", "JoinGaps", "JoinAngles", "JoinCurvatureJumps"):
         if name in obj.PropertiesList:
             setattr(obj, name, [])
     for name in ("RefinementDepth", "DegreesOfFreedom"):
@@ -254,6 +260,15 @@ def compute(obj):
         return solve_sheet_on_face(face, edges, values, keep_going=watch, **inputs)
     finally:
         watch.stop()
+
+
+def _write_joins(obj, joins):
+    """Publish the joins' measurements (-1 where a G0 join has no neighbour to measure against)."""
+    measured = lambda x: -1.0 if math.isnan(x) else float(x)  # noqa: E731
+    obj.JoinNames = [j.name for j in joins]
+    obj.JoinGaps = [float(j.gap) for j in joins]
+    obj.JoinAngles = [measured(j.angle) for j in joins]
+    obj.JoinCurvatureJumps = [measured(j.curvature_jump) for j in joins]
 
 
 def _regions(flat):
@@ -335,6 +350,7 @@ class SheetFeature(FeatureProxy):
         obj.ConstraintNames = list(outcome.constraint_names)
         obj.ConstraintResiduals = [float(r) for r in outcome.constraint_residuals]
         obj.ConstraintUnits = list(outcome.constraint_units)
+        _write_joins(obj, outcome.joins)
         if "RefinementDepth" in obj.PropertiesList:
             obj.RefinementDepth = outcome.refinement_depth
             obj.DegreesOfFreedom = outcome.degrees_of_freedom

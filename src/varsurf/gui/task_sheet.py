@@ -14,6 +14,13 @@ _EDITABLE = ("Stretch", "Bend", "FixBoundary", "Tolerance", "Degree", "MinSpans"
              "RestShape", "InstalledRest", "Refinement", "MaxDepth")
 
 
+def _join_text(gap, angle, jump):
+    """A join's gap, and for a G1 join the tangent-plane angle and the curvature jump."""
+    if angle < 0.0:
+        return f"gap {gap:.3g} mm"
+    return f"gap {gap:.3g} mm, {angle:.3g}°, curvature {jump:.3g} %"
+
+
 class TaskPanelSheet(PropertyTaskPanel):
     """Energy weights, tolerance, degree, spans, solve mode and rest shape (install / melt);
     results per curve and constraint. Update previews; OK commits, Cancel undoes."""
@@ -99,12 +106,15 @@ class TaskPanelSheet(PropertyTaskPanel):
 
     def show_results(self):
         obj = self.obj
-        rows = [(name, dev, "mm") for name, dev in zip(obj.CurveNames, obj.MaxDeviations)]
-        rows += list(zip(obj.ConstraintNames, obj.ConstraintResiduals, obj.ConstraintUnits))
+        rows = [(name, f"{dev:.3g} mm") for name, dev in zip(obj.CurveNames, obj.MaxDeviations)]
+        rows += [(name, f"{dev:.3g} {'°' if unit == 'deg' else unit}")
+                 for name, dev, unit in zip(obj.ConstraintNames, obj.ConstraintResiduals, obj.ConstraintUnits)]
+        rows += [(f"{name}: join", _join_text(gap, angle, jump)) for name, gap, angle, jump in
+                 zip(*(getattr(obj, p, []) for p in ("JoinNames", "JoinGaps", "JoinAngles", "JoinCurvatureJumps")))]
         self.table.setRowCount(len(rows))
-        for row, (name, dev, unit) in enumerate(rows):
+        for row, (name, text) in enumerate(rows):
             self.table.setItem(row, 0, QtGui.QTableWidgetItem(name))
-            item = QtGui.QTableWidgetItem(f"{dev:.3g} {'°' if unit == 'deg' else unit}")
+            item = QtGui.QTableWidgetItem(text)
             item.setTextAlignment(QtCore.Qt.AlignRight | QtCore.Qt.AlignVCenter)
             self.table.setItem(row, 1, item)
         text = f"{obj.PoleCountU} × {obj.PoleCountV}, degree {obj.DegreeU} × {obj.DegreeV}"

@@ -43,6 +43,9 @@ class SheetOutcome:
     # what a joint solve of several sheets (varsurf.solve.joint) starts from.
     problem: object = None
     options: object = None
+    # How the result joins its neighbours along each G0 and G1 constraint's edge (continuity.Join:
+    # gap, tangent-plane angle and curvature jump, measured by OCCT on the result face).
+    joins: List[object] = field(default_factory=list)
     # The base face's trim (native BaseTrim): trim.face_brep(surface) bounds and orients any
     # surface of this sheet's space like the result (a drag's or a joint solve's).
     trim: object = None

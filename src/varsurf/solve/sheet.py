@@ -18,7 +18,7 @@ from types import SimpleNamespace
 from typing import List, Optional, Sequence
 
 from varsurf.solve import constraints as constraint_specs
-from varsurf.solve import energy, local_refinement, plane_fit, preimages, shapes
+from varsurf.solve import continuity, energy, local_refinement, plane_fit, preimages, shapes
 from varsurf.solve.errors import CANCELLED, SheetError
 from varsurf.solve.native import build, int_of, native
 from varsurf.solve.outcome import SheetOutcome
@@ -275,7 +275,14 @@ def _outcome(nat, sheet, solved, options, started):
         problem=problem,
         options=options,
         trim=sheet.trim,
+        joins=_joins(shape, placed),
     )
+
+
+def _joins(shape, placed):
+    """The continuity of the result along each G0 (to its edge) and G1 (to its reference face)."""
+    return [continuity.measure(p.spec.name, shape, p.spec.edge, p.spec.reference if p.spec.kind == "G1" else None)
+            for p in placed if p.spec.kind in ("G0", "G1")]
 
 
 def _names_and_projections(edges, names, projections):

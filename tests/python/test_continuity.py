@@ -1,0 +1,94 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""The join measurement (varsurf.solve.continuity) against faces whose gap, angle and curvature
+jump are known exactly, then on solved sheets joined G0 and G1 to their neighbours."""
+
+import math
+
+import FreeCAD
+import Part
+import pytest
+
+from varsurf.solve import continuity
+
+V = FreeCAD.Vector
+LENGTH, WIDTH = 50.0, 30.0
+
+
+def _edge():
+    return Part.LineSegment(V(0, 0, 0), V(LENGTH, 0, 0)).toShape()
+
+
+def _strip(angle_deg, z=0.0):
+    """A plane strip from the x axis, leaving it at ``angle_deg`` from the -y direction (0: flat,
+    on the y < 0 side), lifted by z."""
+    a = math.radians(angle_deg)
+    w = V(0, -math.cos(a), math.sin(a)) * WIDTH
+    return Part.Face(Part.makePolygon([V(0, 0, z), V(LENGTH, 0, z), V(LENGTH, 0, z) + w, V(0, 0, z) + w,
+                                       V(0, 0, z)]))
+
+
+def _sheet():
+    """The 'sheet' side: the plane strip y in [0, WIDTH]."""
+    return Part.makePlane(LENGTH, WIDTH)
+
+
+def _half_cylinder(radius, reverse=False):
+    """A half cylinder along x touching the plane z = 0 along the x axis, on the y < 0 side."""
+    face = Part.makeCylinder(radius, LENGTH, V(0, 0, radius), V(1, 0, 0), 360).Faces[0]
+    half = face.common(Part.makeBox(LENGTH, 2 * radius, 2 * radius, V(0, -2 * radius, 0))).Faces[0]
+    return half.reversed() if reverse else half
+
+
+@pytest.mark.parametrize("angle", [0.0, 10.0, 45.0, 90.0])
+def test_two_planes_meet_at_their_angle(angle):
+    join = continuity.measure("hinge", _sheet(), _edge(), _strip(angle))
+    assert join.samples >= 200
+    assert join.gap < 1e-9
+    assert join.angle == pytest.approx(angle, abs=1e-6)
+    assert join.curvature_jump < 1e-6
+
+
+def test_a_parallel_plane_shows_its_offset_as_the_gap():
+    join = continuity.measure("step", _sheet(), _edge(), _strip(0.0, z=0.3))
+    assert join.gap == pytest.approx(0.3, abs=1e-9)
+    assert join.angle < 1e-6
+
+
+@pytest.mark.parametrize("reverse", [False, True])
+def test_a_plane_tangent_to_a_cylinder_is_g1_not_g2(reverse):
+    """Tangent planes agree (0°); across the edge the cylinder bends at 1/R and the plane not at
+    all: the whole curvature jumps (100 %), whichever way the cylinder's face is oriented."""
+    join = continuity.measure("tangent", _sheet(), _edge(), _half_cylinder(20.0, reverse))
+    assert join.gap < 1e-9
+    assert join.angle < 1e-6
+    assert join.curvature_jump == pytest.approx(100.0, abs=1e-6)
+
+
+@pytest.mark.parametrize("reverse", [False, True])
+def test_two_halves_of_one_cylinder_are_g2(reverse):
+    radius = 15.0
+    whole = Part.makeCylinder(radius, LENGTH, V(0, 0, radius), V(1, 0, 0), 360).Faces[0]
+    upper = whole.common(Part.makeBox(LENGTH, 2 * radius, 2 * radius, V(0, 0, 0))).Faces[0]
+    lower = whole.common(Part.makeBox(LENGTH, 2 * radius, 2 * radius, V(0, -2 * radius, 0))).Faces[0]
+    join = continuity.measure("same", upper, _edge(), lower.reversed() if reverse else lower)
+    assert join.gap < 1e-9 and join.angle < 1e-6
+    assert join.curvature_jump < 1e-6
+
+
+def test_curvatures_of_different_radii_jump_by_their_difference():
+    """Two cylinders of radii 10 and 40 touching along a line, one inside the other's side:
+    normal curvatures 1/10 and 1/40 on the same side, a jump of (1/10 - 1/40) / (1/10) = 75 %."""
+    small = Part.makeCylinder(10.0, LENGTH, V(0, 0, 10.0), V(1, 0, 0), 360).Faces[0]
+    small = small.common(Part.makeBox(LENGTH, 20, 20, V(0, 0, 0))).Faces[0]
+    big = Part.makeCylinder(40.0, LENGTH, V(0, 0, 40.0), V(1, 0, 0), 360).Faces[0]
+    big = big.common(Part.makeBox(LENGTH, 80, 80, V(0, -80, 0))).Faces[0]
+    join = continuity.measure("radii", small, _edge(), big)
+    assert join.angle < 1e-6
+    assert join.curvature_jump == pytest.approx(75.0, abs=1e-6)
+
+
+def test_without_a_neighbour_the_gap_is_from_the_edge_to_the_sheet():
+    lifted = Part.LineSegment(V(0, 5, 0.2), V(LENGTH, 5, 0.2)).toShape()
+    join = continuity.measure("G0", _sheet(), lifted)
+    assert join.gap == pytest.approx(0.2, abs=1e-9)
+    assert math.isnan(join.angle) and math.isnan(join.curvature_jump)
