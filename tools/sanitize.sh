@@ -28,13 +28,18 @@ status=0
 ctest --test-dir build-san --output-on-failure -j2 -R '^core[.]' || status=1
 # OCCT is built without frame pointers: leak stacks through it need the slow unwinder to reach
 # the frames tools/lsan.supp names.
-# One deviation test is left out here: in this clang build one rational face reads 4.9e-5
-# relative above OCCT's 600-sample reference (0.883674 vs 0.883631 mm; the GCC build above is
-# within its 1e-5), and under ASan it takes over four minutes. Whether the reference misses the
-# peak between its samples or the search settles short is not known yet: an open question.
+# Two deviation tests are left out here (both run in the GCC build):
+# - AgreesWithOcctsDistanceOnRationalNonUniformFaces: in this clang build one rational face reads
+#   4.9e-5 relative above OCCT's 600-sample reference (0.883674 vs 0.883631 mm; the GCC build is
+#   within its 1e-5), and under ASan it takes over four minutes. Whether the reference misses the
+#   peak between its samples or the search settles short is not known yet: an open question.
+# - EqualsTheKnownOffsetFromPeriodicFaces: 117 s under ASan (2.4 s in GCC), the longest test of
+#   the stage by far; its closest-point searches are the ones SurfaceInversion.* and the other
+#   MaxDeviation tests run here.
 ASAN_OPTIONS=$ASAN_OPTIONS:fast_unwind_on_malloc=0 \
   ctest --test-dir build-san --output-on-failure -j2 -R '^occ[.]' \
-  -E '^occ[.]MaxDeviation[.]AgreesWithOcctsDistanceOnRationalNonUniformFaces$' || status=1
+  -E '^occ[.]MaxDeviation[.](AgreesWithOcctsDistanceOnRationalNonUniformFaces|EqualsTheKnownOffsetFromPeriodicFaces)$' \
+  || status=1
 
 # Both harnesses at once (one core each). One input may take up to a minute: the bridge's
 # deviation measurement needs ~15 s on the wildest random degree-6 faces (OCCT's global

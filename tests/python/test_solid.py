@@ -4,6 +4,7 @@ pillow example, STEP and save/reopen round trips, edits, and bad inputs."""
 
 import itertools
 import math
+import re
 
 import FreeCAD
 import Part
@@ -63,12 +64,30 @@ def test_pillow_is_a_valid_closed_solid(solid):
     # the same points (measured: within 1.1e-4 degrees).
     assert solid.SeamAngles and all(0.0 <= a < 15.0 for a in solid.SeamAngles), list(solid.SeamAngles)
     assert_seam_angles_measured(solid)
+    # That lip is a knife edge (below 5 degrees), and the Solid says where its sharpest point is.
+    sharpest = min(solid.SeamAngles)
+    knife = re.search(r"knife edges?, the sharpest ([0-9.e-]+)° at \(([^)]*)\)", solid.Status)
+    assert knife and float(knife.group(1)) == pytest.approx(sharpest, rel=0.05), solid.Status
+    at = V(*(float(c) for c in knife.group(2).split(",")))
+    assert solid.Document.getObject("Rim").Shape.distToShape(Part.Vertex(at))[0] <= 0.01  # printed to 4 digits
     assert solid.MaxEdgeTolerance <= solid.Tolerance.Value
     # The seam: the two faces' shared edge lies on the rim (sampled, measured by OCCT).
     rim = solid.Document.getObject("Rim").Shape
     for edge in shape.Edges:
         for p in edge.discretize(50):
             assert rim.distToShape(Part.Vertex(p))[0] <= solid.Tolerance.Value
+
+
+def test_a_knife_edge_asked_for_by_a_hinge_is_not_warned_of():
+    """The knife-edge rule alone: seams below 5 degrees are named, sharpest first, unless a hinge
+    asks for about that angle."""
+    from varsurf.solve.assembly import AssemblyOutcome, knife_edges
+
+    outcome = AssemblyOutcome(shape=None, seam_angles=[(3.0, 20.0), (90.0, 95.0), (0.5, 4.0), (5.0, 9.0)],
+                              seam_sharpest=[(1, 0, 0), (2, 0, 0), (3, 0, 0), (4, 0, 0)])
+    assert knife_edges(outcome) == [(0.5, (3, 0, 0)), (3.0, (1, 0, 0))]
+    assert knife_edges(outcome, hinge_angles=[3.5]) == [(0.5, (3, 0, 0))]
+    assert knife_edges(outcome, hinge_angles=[0.4, 2.5]) == []
 
 
 def test_step_and_save_round_trips(solid, native, tmp_path):
@@ -190,6 +209,7 @@ def test_rounded_box_of_six_sheets_and_twelve_shared_curves(doc, native, tmp_pat
     assert len(measured) == 12
     lo, hi = measured[0]
     assert 100.0 < lo < hi < 120.0, measured
+    assert "knife" not in solid.Status, solid.Status
     assert all(abs(a - lo) <= 1e-5 and abs(b - hi) <= 1e-5 for a, b in measured), measured
     path = str(tmp_path / "box.step")
     varsurf.export_step([solid], path)

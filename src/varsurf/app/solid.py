@@ -269,3 +269,20 @@ class SolidFeature(FeatureProxy):
                     "curve (the sheets cannot bend that way there: more spans, or a compatible angle)\n")
         kind = "solid" if outcome.closed else f"open shell ({outcome.free_edges} free edges)"
         obj.Status = f"OK: {kind} of {outcome.faces} faces, worst edge tolerance {outcome.max_tolerance:.3g} mm"
+        _warn_of_knife_edges(obj, outcome)
+
+
+def _warn_of_knife_edges(obj, outcome):
+    """Say where the faces meet so sharply that FreeCAD's own operations will fail on the seam."""
+    hinges = [h.Angle.Value if hasattr(h.Angle, "Value") else float(h.Angle) for h in obj.Hinges if h.Enabled]
+    knives = assembly.knife_edges(outcome, hinges)
+    if not knives:
+        return
+    angle, (x, y, z) = knives[0]
+    many = f"{len(knives)} seams are knife edges" if len(knives) > 1 else "a seam is a knife edge"
+    obj.Status += f"; {many}, the sharpest {angle:.2g}° at ({x:.4g}, {y:.4g}, {z:.4g})"
+    FreeCAD.Console.PrintWarning(
+        f"VarSurf: {obj.Label}: {many}: its faces meet at {angle:.2g}° at ({x:.4g}, {y:.4g}, {z:.4g}) "
+        f"(below {assembly.KNIFE_EDGE:g}°); booleans, fillets and offsets of FreeCAD fail on such a seam. "
+        "Let the sheets meet at a wider angle (less pressure, curves that open the seam), or hold the angle "
+        "with a Hinge if it is meant\n")
