@@ -42,6 +42,8 @@ _PROPERTIES = [
     ("Stretch", "App::PropertyFloatConstraint", "Sheet", "Stretching weight (alpha, >= 0): penalizes first derivatives, pulls toward a membrane of least area. Default 0", False),
     ("Bend", "App::PropertyFloatConstraint", "Sheet", "Bending weight (beta, >= 0): penalizes second derivatives, pulls toward a fair thin plate. Default 1", False),
     ("FixBoundary", "App::PropertyBool", "Sheet", "Keep the base face's boundary (its boundary poles are held)", False),
+    ("TrimToLoop", "App::PropertyBool", "Sheet", "Without a base face: bound the sheet by the closed loop among its curves (as Surface Filling does), so that it ends on them and sews to the faces around a hole; off: the whole best-fit rectangle", False),
+    ("BoundaryCurves", "App::PropertyStringList", "Result", "The curves of the closed loop that bounds the sheet (TrimToLoop)", True),
     ("Tolerance", "App::PropertyLength", "Sheet", "Distance at which a curve counts as met; the sheet fits the curves this closely and leaves the rest to fairness", False),
     ("SolveMode", "App::PropertyEnumeration", "Solver", "Exact: Lagrange multipliers (KKT). Penalty: penalty with refinement (PenaltyQR: by sparse QR). CG: constraints eliminated, conjugate gradients. TSVD / MTSVD: the L-curve decides how much of the curves is fitted (MTSVD smooths the rest by the energy). Automatic: by size", False),
     ("Refinement", "App::PropertyEnumeration", "Solver", "Uniform: the spans are doubled everywhere until the curves are met (up to MaxSpans). Local: only the spans under curves that are off are refined, layer by layer (up to MaxDepth); the exported sheet is one B-spline on the finest level", False),
@@ -91,6 +93,7 @@ _DEFAULTS = {
     "Stretch": (settings.DEFAULT_STRETCH, 0.0, _FLOAT_MAX, 0.1),
     "Bend": (settings.DEFAULT_BEND, 0.0, _FLOAT_MAX, 0.1),
     "FixBoundary": True,
+    "TrimToLoop": True,
     "RestShape": _set_rest_shapes,
     "Projection": list(projection.MODES),
     "ProjectionDirection": FreeCAD.Vector(0, 0, 1),
@@ -189,7 +192,7 @@ def _clear_results(obj, status):
     obj.CurveNames = []
     obj.ConstraintRank = 0
     for name in ("ConstraintNames", "ConstraintResiduals", "ConstraintUnits", "LCurveResiduals", "LCurveNorms",
-                 "RefinedSpans", "JoinNames", "JoinGaps", "JoinAngles", "JoinCurvatureJumps"):
+                 "RefinedSpans", "JoinNames", "JoinGaps", "JoinAngles", "JoinCurvatureJumps", "BoundaryCurves"):
         if name in obj.PropertiesList:
             setattr(obj, name, [])
     for name in ("RefinementDepth", "DegreesOfFreedom"):
@@ -213,6 +216,7 @@ def settings_of(obj) -> settings.SheetSettings:
         bend_tensor=tensor("BendTensor"),
         pressure=float(getattr(obj, "Pressure", 0.0)),
         fix_boundary=bool(obj.FixBoundary),
+        trim_to_loop=bool(getattr(obj, "TrimToLoop", False)),
         tolerance=float(value(obj, "Tolerance")),
         exact_curves=tuple(getattr(obj, "ExactCurves", []) or []),
         degree=int(getattr(obj, "Degree", settings.SHEET_MIN_DEGREE)),
@@ -309,11 +313,14 @@ class SheetFeature(FeatureProxy):
 
     def onDocumentRestored(self, obj):
         older = "Projection" not in obj.PropertiesList
+        trimmed = "TrimToLoop" in obj.PropertiesList
         super().onDocumentRestored(obj)
         if self.state_problem() is not None:
             return
         if older:  # files from before projection choices projected every curve orthogonally
             obj.Projection = "Normal"
+        if not trimmed:  # files from before trimming to a loop keep their whole rectangle
+            obj.TrimToLoop = False
         # Files from before a mode was added list fewer modes: offer them all, keep the choice.
         if list(obj.getEnumerationsOfProperty("SolveMode")) != list(settings.SOLVE_MODES):
             mode = str(obj.SolveMode)
@@ -351,6 +358,7 @@ class SheetFeature(FeatureProxy):
         obj.ConstraintResiduals = [float(r) for r in outcome.constraint_residuals]
         obj.ConstraintUnits = list(outcome.constraint_units)
         _write_joins(obj, outcome.joins)
+        obj.BoundaryCurves = list(outcome.boundary_curves)
         if "RefinementDepth" in obj.PropertiesList:
             obj.RefinementDepth = outcome.refinement_depth
             obj.DegreesOfFreedom = outcome.degrees_of_freedom

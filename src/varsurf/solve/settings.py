@@ -86,6 +86,8 @@ class SheetSettings:
     bend_tensor: Optional[Sequence[float]] = None
     pressure: float = 0.0  # inflate (> 0) or deflate (< 0), in the energy's units
     fix_boundary: bool = True  # keep the base face's boundary (and its trim's edges)
+    #: Without a base face: bound the sheet by the closed loop among its curves (boundary.py).
+    trim_to_loop: bool = True
     tolerance: float = DEFAULT_TOLERANCE  # mm at which a curve counts as met
     exact_curves: Sequence[str] = ()  # curve names met exactly wherever the space allows
     degree: int = SHEET_MIN_DEGREE  # smallest degree in u and v

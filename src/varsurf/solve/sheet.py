@@ -18,7 +18,7 @@ from types import SimpleNamespace
 from typing import List, Optional, Sequence
 
 from varsurf.solve import constraints as constraint_specs
-from varsurf.solve import continuity, energy, local_refinement, plane_fit, preimages, shapes
+from varsurf.solve import boundary, continuity, energy, local_refinement, plane_fit, preimages, shapes
 from varsurf.solve.errors import CANCELLED, SheetError
 from varsurf.solve.native import build, int_of, native
 from varsurf.solve.outcome import SheetOutcome
@@ -358,14 +358,22 @@ def solve_sheet_on_face(
 
 def solve_sheet_from_curves(edges: Sequence, settings: Optional[SheetSettings] = None, **options) -> SheetOutcome:
     """``solve_sheet_on_face`` on the best-fit plane of the curves (``plane_face_for_curves``),
-    with a free boundary: the sheet is shaped by the curves and its energy alone."""
+    with a free boundary: the sheet is shaped by the curves and its energy alone. With
+    ``trim_to_loop`` (the default) and a closed loop among the curves, the result is bounded by
+    that loop (``boundary_curves`` names its curves)."""
     settings = (settings or SheetSettings()).changed(
         fix_boundary=False, **{k: options.pop(k) for k in list(options) if k in _SETTING_NAMES})
     degree = settings.degree
     if not (isinstance(degree, int) and 2 <= degree <= MAX_DEGREE):
         raise SheetError(f"Degree must be an integer in 2..{MAX_DEGREE} (got {degree})")
-    face = plane_fit.plane_face_for_curves(list(edges), spans=int(settings.min_spans), degree=degree)
-    return solve_sheet_on_face(face, edges, settings, **options)
+    edges = list(edges)
+    face = plane_fit.plane_face_for_curves(edges, spans=int(settings.min_spans), degree=degree)
+    outcome = solve_sheet_on_face(face, edges, settings, **options)
+    loop = boundary.closed_loop(edges) if settings.trim_to_loop else None
+    if loop:
+        outcome.shape = boundary.trimmed_to_loop("the sheet", outcome.shape, edges, loop, settings.tolerance)
+        outcome.boundary_curves = [outcome.curve_names[i] for i in loop]
+    return outcome
 
 
 _SETTING_NAMES = frozenset(f.name for f in SheetSettings.__dataclass_fields__.values())
