@@ -253,6 +253,47 @@ def test_join_to_a_tilted_neighbour_along_a_line(sheet, kind):
     assert brep_measure.angle_between(theirs, up) == pytest.approx(20.0, abs=1e-9)  # the neighbour is tilted
 
 
+def test_g1_joins_whose_faces_disagree_at_their_corner_are_reported_there(sheet, console_errors):
+    """Two G1 joins meeting at (60, 55, 0): one face tilted 20 degrees about x = 60, the other 15
+    degrees about y = 55. The sheet cannot be tangent to both at that corner: the Sheet's error
+    says which joins, where and by how much (the angle between the faces' normals there, from the
+    tilts), instead of only that the constraints contradict each other."""
+    doc = sheet.Document
+    along_y = tilted_face(doc, 20.0)  # contains x = 60 for y in 20..60
+    line_y = doc.addObject("Part::Feature", "SeamY")
+    line_y.Shape = Part.LineSegment(V(60, 25, 0), V(60, 55, 0)).toShape()
+    rot = FreeCAD.Rotation(V(1, 0, 0), -15.0)
+    corners = [V(20, 55, 0), V(70, 55, 0), V(70, 55, 0) + rot.multVec(V(0, 20, 0)),
+               V(20, 55, 0) + rot.multVec(V(0, 20, 0))]
+    along_x = doc.addObject("Part::Feature", "NeighbourX")
+    along_x.Shape = Part.Face(Part.makePolygon(corners + [corners[0]]))
+    line_x = doc.addObject("Part::Feature", "SeamX")
+    line_x.Shape = Part.LineSegment(V(25, 55, 0), V(60, 55, 0)).toShape()
+    doc.recompute()
+    a = varsurf.make_constraint(sheet, "G1", curve=(line_y, "Edge1"), reference=(along_y, "Face1"), name="JoinY")
+    b = varsurf.make_constraint(sheet, "G1", curve=(line_x, "Edge1"), reference=(along_x, "Face1"), name="JoinX")
+    doc.recompute()
+    expected = math.degrees(math.acos(math.cos(math.radians(20.0)) * math.cos(math.radians(15.0))))
+    report = (f"{a.Label} and {b.Label} meet at (60, 55, 0), where their faces' tangent planes differ by "
+              f"{expected:.3g}°: the sheet cannot be tangent to both there")
+    assert not sheet.isValid() and report in sheet.Status, sheet.Status
+    assert report in console_errors()
+    # Faces that agree at the corner (the second one turned into the base's plane): no report.
+    along_x.Shape = Part.Face(Part.makePolygon([V(20, 55, 0), V(70, 55, 0), V(70, 75, 0), V(20, 75, 0),
+                                                V(20, 55, 0)]))
+    along_y.Shape = along_y.Shape.rotated(V(60, 20, 0), V(0, 1, 0), -20.0)  # back into z = 0
+    doc.recompute()
+    assert sheet.isValid(), sheet.getStatusString()
+    assert list(sheet.IncompatibleCorners) == [] and sheet.Status.startswith("OK"), sheet.Status
+    # Slightly apart (0.05 degrees): the sheet is found within the tolerance, and the corner is
+    # still reported, as a warning.
+    along_x.Shape = along_x.Shape.rotated(V(20, 55, 0), V(1, 0, 0), 0.05)
+    doc.recompute()
+    assert sheet.isValid(), sheet.getStatusString()
+    assert len(sheet.IncompatibleCorners) == 1 and "differ by 0.05°" in sheet.IncompatibleCorners[0]
+    assert sheet.Status.startswith("Warning:") and sheet.IncompatibleCorners[0] in sheet.Status
+
+
 def test_deleting_the_vertex_of_a_point_is_an_error_not_a_pull_to_the_origin(sheet, console_errors):
     doc = sheet.Document
     v = vertex(doc, "Pin", (60.0, 50.0, 12.0))

@@ -92,3 +92,31 @@ def test_without_a_neighbour_the_gap_is_from_the_edge_to_the_sheet():
     join = continuity.measure("G0", _sheet(), lifted)
     assert join.gap == pytest.approx(0.2, abs=1e-9)
     assert math.isnan(join.angle) and math.isnan(join.curvature_jump)
+
+
+def _plane_through(axis_point, axis, tilt_axis, degrees, size=30.0):
+    """A square face with one side on the line through ``axis_point`` along ``axis``, turned by
+    ``degrees`` about that line from the plane z = 0 (``tilt_axis``: the in-plane side)."""
+    rot = FreeCAD.Rotation(axis, degrees)
+    side = rot.multVec(tilt_axis) * size
+    a, b = axis_point, axis_point + axis * size
+    return Part.Face(Part.makePolygon([a, b, b + side, a + side, a])), rot.multVec(V(0, 0, 1))
+
+
+def test_two_g1_joins_meeting_where_their_faces_disagree_are_a_corner():
+    along_x = Part.LineSegment(V(0, 0, 0), V(30, 0, 0)).toShape()
+    along_y = Part.LineSegment(V(0, 0, 0), V(0, 30, 0)).toShape()
+    face_x, normal_x = _plane_through(V(0, 0, 0), V(1, 0, 0), V(0, -1, 0), 10.0)
+    face_y, normal_y = _plane_through(V(0, 0, 0), V(0, 1, 0), V(-1, 0, 0), -25.0)
+    expected = math.degrees(math.acos(abs(normal_x.dot(normal_y))))  # from the rotations alone
+    corners = continuity.incompatible_corners([("A", along_x, face_x), ("B", along_y, face_y)], 1e-6)
+    assert len(corners) == 1 and (corners[0].first, corners[0].second) == ("A", "B")
+    assert corners[0].point == pytest.approx((0.0, 0.0, 0.0), abs=1e-12)
+    assert corners[0].angle == pytest.approx(expected, abs=1e-9) and expected > 20.0
+    assert "meet at (0, 0, 0)" in corners[0].message() and f"{expected:.3g}°" in corners[0].message()
+    # Faces in one plane at the corner agree; edges that do not meet make no corner.
+    flat_x, _ = _plane_through(V(0, 0, 0), V(1, 0, 0), V(0, -1, 0), 0.0)
+    flat_y, _ = _plane_through(V(0, 0, 0), V(0, 1, 0), V(-1, 0, 0), 0.0)
+    assert continuity.incompatible_corners([("A", along_x, flat_x), ("B", along_y, flat_y)], 1e-6) == []
+    apart = Part.LineSegment(V(0, 5, 0), V(0, 30, 0)).toShape()
+    assert continuity.incompatible_corners([("A", along_x, face_x), ("B", apart, face_y)], 1e-6) == []

@@ -43,6 +43,7 @@ _PROPERTIES = [
     ("Bend", "App::PropertyFloatConstraint", "Sheet", "Bending weight (beta, >= 0): penalizes second derivatives, pulls toward a fair thin plate. Default 1", False),
     ("FixBoundary", "App::PropertyBool", "Sheet", "Keep the base face's boundary (its boundary poles are held)", False),
     ("TrimToLoop", "App::PropertyBool", "Sheet", "Without a base face: bound the sheet by the closed loop among its curves (as Surface Filling does), so that it ends on them and sews to the faces around a hole; off: the whole best-fit rectangle", False),
+    ("IncompatibleCorners", "App::PropertyStringList", "Result", "Where two G1 joins meet and their faces' tangent planes differ: the sheet cannot be tangent to both there (which joins, where, by how much)", True),
     ("BoundaryCurves", "App::PropertyStringList", "Result", "The curves of the closed loop that bounds the sheet (TrimToLoop)", True),
     ("Tolerance", "App::PropertyLength", "Sheet", "Distance at which a curve counts as met; the sheet fits the curves this closely and leaves the rest to fairness", False),
     ("SolveMode", "App::PropertyEnumeration", "Solver", "Exact: Lagrange multipliers (KKT). Penalty: penalty with refinement (PenaltyQR: by sparse QR). CG: constraints eliminated, conjugate gradients. TSVD / MTSVD: the L-curve decides how much of the curves is fitted (MTSVD smooths the rest by the energy). Automatic: by size", False),
@@ -192,7 +193,8 @@ def _clear_results(obj, status):
     obj.CurveNames = []
     obj.ConstraintRank = 0
     for name in ("ConstraintNames", "ConstraintResiduals", "ConstraintUnits", "LCurveResiduals", "LCurveNorms",
-                 "RefinedSpans", "JoinNames", "JoinGaps", "JoinAngles", "JoinCurvatureJumps", "BoundaryCurves"):
+                 "RefinedSpans", "JoinNames", "JoinGaps", "JoinAngles", "JoinCurvatureJumps", "BoundaryCurves",
+                 "IncompatibleCorners"):
         if name in obj.PropertiesList:
             setattr(obj, name, [])
     for name in ("RefinementDepth", "DegreesOfFreedom"):
@@ -359,6 +361,7 @@ class SheetFeature(FeatureProxy):
         obj.ConstraintUnits = list(outcome.constraint_units)
         _write_joins(obj, outcome.joins)
         obj.BoundaryCurves = list(outcome.boundary_curves)
+        obj.IncompatibleCorners = [c.message() for c in outcome.corners]
         if "RefinementDepth" in obj.PropertiesList:
             obj.RefinementDepth = outcome.refinement_depth
             obj.DegreesOfFreedom = outcome.degrees_of_freedom
@@ -384,3 +387,6 @@ class SheetFeature(FeatureProxy):
             FreeCAD.Console.PrintWarning(
                 f"VarSurf: {obj.Label}: curves farther than the tolerance {float(value(obj, 'Tolerance')):.3g} mm somewhere: "
                 f"{', '.join(off)} (operators pulling the sheet off its curves, or too few spans: see MaxSpans)\n")
+        for corner in outcome.corners:  # reported where it is, not smeared over the sheet
+            obj.Status = obj.Status.replace("OK:", "Warning:", 1) + f"; {corner.message()}"
+            FreeCAD.Console.PrintWarning(f"VarSurf: {obj.Label}: {corner.message()}\n")

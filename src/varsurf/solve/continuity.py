@@ -88,3 +88,40 @@ def measure(name: str, sheet, edge, neighbour=None, samples: int = SAMPLES, size
     if neighbour is None:
         return Join(name, gap, samples=len(points))
     return Join(name, gap, angle, jump, len(points))
+
+
+#: Two G1 joins' neighbours whose tangent planes differ by more than this (degrees) where the
+#: joins' edges meet ask the sheet for two tangent planes at one point.
+CORNER_ANGLE = 0.01
+
+
+@dataclass
+class Corner:
+    """Where two G1 joins meet and their neighbours' tangent planes differ."""
+
+    first: str
+    second: str
+    point: tuple  # (x, y, z)
+    angle: float  # degrees between the two neighbours' tangent planes there
+
+    def message(self) -> str:
+        x, y, z = self.point
+        return (f"{self.first} and {self.second} meet at ({x:.4g}, {y:.4g}, {z:.4g}), where their faces' "
+                f"tangent planes differ by {self.angle:.3g}°: the sheet cannot be tangent to both there")
+
+
+def incompatible_corners(joins, tolerance: float):
+    """The Corners of ``joins`` — (name, edge, neighbour face) of G1 joins — whose edges share an
+    end (within ``tolerance``) where the neighbours' tangent planes differ by more than
+    CORNER_ANGLE."""
+    found = []
+    for i, (name_a, edge_a, face_a) in enumerate(joins):
+        for name_b, edge_b, face_b in joins[i + 1:]:
+            for p in (v.Point for v in edge_a.Vertexes):
+                if min((p - q.Point).Length for q in edge_b.Vertexes) > tolerance:
+                    continue
+                n_a, n_b = _foot(face_a, p)[3], _foot(face_b, p)[3]
+                angle = math.degrees(math.acos(min(1.0, abs(n_a.dot(n_b)))))
+                if angle > CORNER_ANGLE:
+                    found.append(Corner(name_a, name_b, (p.x, p.y, p.z), angle))
+    return found

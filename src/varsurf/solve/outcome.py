@@ -46,6 +46,8 @@ class SheetOutcome:
     # How the result joins its neighbours along each G0 and G1 constraint's edge (continuity.Join:
     # gap, tangent-plane angle and curvature jump, measured by OCCT on the result face).
     joins: List[object] = field(default_factory=list)
+    # Where two G1 joins meet and their neighbours ask for different tangent planes.
+    corners: List[object] = field(default_factory=list)
     # A sheet made from curves alone and trimmed to the closed loop among them: that loop's curves.
     boundary_curves: List[str] = field(default_factory=list)
     # The base face's trim (native BaseTrim): trim.face_brep(surface) bounds and orients any

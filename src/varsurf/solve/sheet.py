@@ -64,6 +64,7 @@ class _Sheet:
     placed: list = None  # placed constraint specs
     energy: object = None  # native ThinPlateWeights
     rest: object = None  # None, "base", or the native surface of an installed rest shape
+    corners: list = None  # continuity.Corner: where two G1 joins ask for two tangent planes
 
 
 def _base(nat, face, settings):
@@ -227,6 +228,7 @@ def _refuse_conflict(nat, sheet, surface, conflict, spans):
         f"{', '.join(worst) or 'none individually'}. Curves that cross must meet in space; "
         "curves close to a kept boundary must reach it smoothly (or turn FixBoundary off); "
         "points must not ask one place of the sheet to be in two."
+        + "".join(f" {c.message()}." for c in sheet.corners)
     )
 
 
@@ -276,6 +278,7 @@ def _outcome(nat, sheet, solved, options, started):
         options=options,
         trim=sheet.trim,
         joins=_joins(shape, placed),
+        corners=sheet.corners,
     )
 
 
@@ -346,6 +349,9 @@ def solve_sheet_on_face(
     sheet.base, sheet.trim = _base(nat, face, settings)
     sheet.curves, sheet.targets = preimages.curve_constraints(nat, sheet.base, edges, names, projections, settings)
     sheet.placed = _constraints(nat, sheet, constraints)
+    sheet.corners = continuity.incompatible_corners(
+        [(p.spec.name, p.spec.edge, p.spec.reference) for p in sheet.placed if p.spec.kind == "G1"],
+        settings.tolerance)
     sheet.rest = _rest(nat, rest)
     sheet.energy = energy.energy_weights(nat, settings.stretch, settings.bend, settings.stretch_tensor,
                                          settings.bend_tensor, energy.parameter_lengths(sheet.base))
