@@ -104,3 +104,65 @@ def test_without_a_loop_or_when_turned_off_the_sheet_is_its_rectangle(doc, nativ
         assert len(sheet.Shape.Faces[0].Edges) == 4
     finally:
         FreeCAD.closeDocument(again.Name)
+
+
+def _polygon(points, lift=2.0):
+    return [_side(points[k], points[(k + 1) % len(points)], lift * (-1) ** k) for k in range(len(points))]
+
+
+@pytest.mark.parametrize("case", ["circle", "concave L, six sides", "eight sides", "10 degree corner"])
+def test_loops_of_one_to_eight_sides_convex_or_concave(doc, native, case):
+    if case == "circle":  # one side, closed
+        loop = [Part.makeCircle(25.0, V(0, 0, 0))]
+    elif case == "concave L, six sides":
+        loop = _polygon([V(0, 0, 0), V(60, 0, 0), V(60, 20, 0), V(20, 20, 0), V(20, 50, 0), V(0, 50, 0)])
+    elif case == "eight sides":
+        loop = _polygon([V(30 * math.cos(k * math.pi / 4), 30 * math.sin(k * math.pi / 4), 0) for k in range(8)])
+    else:  # a thin triangle: its corner at the origin is 10 degrees
+        tip = math.radians(10.0)
+        loop = _polygon([V(0, 0, 0), V(60, 0, 0), V(60 * math.cos(tip), 60 * math.sin(tip), 0)], lift=0.5)
+    inside = [Part.LineSegment(V(5, 1, 0.2), V(15, 1.5, 0.2)).toShape()]
+    if case in ("circle", "10 degree corner"):  # the 10 degree wedge is 0.9 mm wide at x = 5
+        inside = []
+    sheet = _sheet(doc, loop + inside)
+    face = sheet.Shape.Faces[0]
+    assert len(sheet.BoundaryCurves) == len(loop)
+    assert sheet.Shape.isValid() and sheet.Shape.check(True) is None
+    # Every point of the face's boundary is on a loop curve, and every loop curve on the boundary.
+    wire = face.OuterWire
+    for edge in face.Edges:
+        assert min(max(c.distToShape(Part.Vertex(p))[0] for p in edge.discretize(30)) for c in loop) <= 0.001
+    for c in loop:
+        assert max(wire.distToShape(Part.Vertex(p))[0] for p in c.discretize(30)) <= 0.001
+    # The area of OCCT's plate filling of the same loop (measured: within 0.33 % in every case).
+    assert face.Area == pytest.approx(Part.makeFilledFace(loop).Area, rel=0.01)
+
+
+def test_a_loop_left_open_or_crossing_itself_is_refused_by_name(doc, native):
+    corners = [V(0, 0, 0), V(40, 0, 0), V(40, 30, 0), V(0, 30, 0)]
+    sides = [_side(corners[k], corners[k + 1], 1.0) for k in range(3)]
+    gap = _sheet_error(doc, sides + [Part.LineSegment(V(0, 30, 0), V(0, 0.5, 0)).toShape()])
+    assert "nearly close a loop but leave a gap of 0.5 mm between" in gap and "(0, 0.5, 0)" in gap, gap
+    assert all(f"Curve{k}:Edge1" in gap for k in range(4)) and "TrimToLoop off" in gap
+    # A bow tie: its two long sides cross at (20, 15).
+    bow = [Part.LineSegment(a, b).toShape() for a, b in
+           ((V(0, 0, 0), V(40, 30, 0)), (V(40, 30, 0), V(40, 0, 0)), (V(40, 0, 0), V(0, 30, 0)),
+            (V(0, 30, 0), V(0, 0, 0)))]
+    crossing = _sheet_error(doc, bow)
+    assert "crosses itself at (20, 15, 0)" in crossing and "TrimToLoop off" in crossing, crossing
+
+
+def _sheet_error(doc, edges):
+    objs = []
+    for k, edge in enumerate(edges):
+        o = doc.addObject("Part::Feature", f"Curve{k}")
+        o.Shape = edge
+        objs.append((o, "Edge1"))
+    sheet = varsurf.make_sheet(None, objs, tolerance=0.001)
+    doc.recompute()
+    assert not sheet.isValid() and sheet.Status.startswith("Error")
+    message = sheet.Status
+    for o, _sub in objs:
+        doc.removeObject(o.Name)
+    doc.removeObject(sheet.Name)
+    return message

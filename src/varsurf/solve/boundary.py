@@ -3,7 +3,7 @@
 bounds its face by its boundary edges), so that it ends on the curves and sews to the faces
 around a hole.
 
-The loop is found among the curves as Part chains them (Part.sortEdges, in any order and
+The loop is found among the curves by their ends (within the sheet's tolerance, in any order and
 orientation); with several closed loops, the one with the largest extent bounds the sheet (the
 others are interior curves). The face is built by the same joining as a Solid's (one sheet, its
 loop): its edges are the given 3D curves with their pre-images on the sheet as pcurves and
@@ -14,33 +14,93 @@ from __future__ import annotations
 
 from typing import List, Optional, Sequence
 
-from varsurf.solve import assembly, shapes
+from varsurf.solve import assembly
 from varsurf.solve.errors import SheetError
 
 
-def closed_loop(edges: Sequence) -> Optional[List[int]]:
-    """Indices (into ``edges``) of the curves forming the largest closed loop, or None."""
-    if not edges:
-        return None
-    Part = shapes.part()
-    position = {e.hashCode(): i for i, e in enumerate(edges)}
+#: An open chain whose two free ends are closer than this fraction of its extent was meant as a
+#: loop: its gap is reported instead of leaving the sheet untrimmed without a word.
+NEAR_LOOP = 0.1
+
+
+def _chains(edges, tolerance):
+    """The edges grouped by ends that meet (within ``tolerance``): [(indices, free ends, branches)]
+    where free ends are (point, index) of ends that meet no other end and branches counts ends
+    met by more than one other."""
+    ends = [(i, v.Point) for i, e in enumerate(edges) for v in (e.Vertexes[0], e.Vertexes[-1])]
+    parent = list(range(len(edges)))
+
+    def root(i):
+        while parent[i] != i:
+            parent[i] = parent[parent[i]]
+            i = parent[i]
+        return i
+
+    partners = []
+    for k, (i, p) in enumerate(ends):
+        met = [j for m, (j, q) in enumerate(ends) if m != k and (p - q).Length <= tolerance]
+        partners.append(met)
+        for j in met:
+            parent[root(i)] = root(j)
+    groups = {}
+    for i in range(len(edges)):
+        groups.setdefault(root(i), []).append(i)
+    chains = []
+    for members in groups.values():
+        free = [(p, i) for k, (i, p) in enumerate(ends) if i in members and not partners[k]]
+        branches = sum(1 for k, (i, _p) in enumerate(ends) if i in members and len(partners[k]) > 1)
+        chains.append((sorted(members), free, branches))
+    return chains
+
+
+def _extent(edges, members):
+    box = edges[members[0]].BoundBox
+    for i in members[1:]:
+        box.add(edges[i].BoundBox)
+    return box.DiagonalLength
+
+
+def _point(p):
+    return f"({p.x:.4g}, {p.y:.4g}, {p.z:.4g})"
+
+
+def closed_loop(edges: Sequence, names: Sequence[str], tolerance: float) -> Optional[List[int]]:
+    """Indices (into ``edges``) of the curves forming the largest closed loop (ends meeting within
+    ``tolerance``, any order and orientation), or None. SheetError, naming the curves and the
+    place, for a chain that nearly closes (a gap beyond the tolerance) or a loop that crosses
+    itself."""
     best, extent = None, 0.0
-    try:
-        groups = Part.sortEdges(list(edges))
-    except Exception:  # OCC refuses edges it cannot chain: no loop among them
-        return None
-    for group in groups:
-        try:
-            wire = Part.Wire(group)
-        except Exception:
+    for members, free, branches in _chains(edges, tolerance):
+        size = _extent(edges, members)
+        listed = ", ".join(names[i] for i in members)
+        if len(free) == 2 and len(members) > 1:
+            gap = (free[0][0] - free[1][0]).Length
+            if gap <= NEAR_LOOP * size:
+                raise SheetError(
+                    f"the curves {listed} nearly close a loop but leave a gap of {gap:.3g} mm between "
+                    f"{_point(free[0][0])} and {_point(free[1][0])} (more than the Tolerance {tolerance:.3g} mm): "
+                    "close the loop, or turn TrimToLoop off")
+        if free or branches or size <= extent:
             continue
-        if not wire.isClosed():
-            continue
-        size = wire.BoundBox.DiagonalLength
-        ids = [position.get(e.hashCode()) for e in group]  # the same edges, maybe reversed
-        if None not in ids and size > extent:
-            best, extent = sorted(ids), size
+        _refuse_crossing(edges, names, members, tolerance)
+        best, extent = members, size
     return best
+
+
+def _refuse_crossing(edges, names, members, tolerance):
+    """SheetError where two curves of a loop that do not follow each other meet."""
+    def touching(i, j):
+        return any((v.Point - w.Point).Length <= tolerance for v in edges[i].Vertexes for w in edges[j].Vertexes)
+
+    for k, i in enumerate(members):
+        for j in members[k + 1:]:
+            if touching(i, j):
+                continue
+            distance, pairs, _info = edges[i].distToShape(edges[j])
+            if distance <= tolerance:
+                raise SheetError(f"the loop of {', '.join(names[m] for m in members)} crosses itself at "
+                                 f"{_point(pairs[0][0])}, where {names[i]} meets {names[j]}: a sheet cannot be "
+                                 "bounded by it; untangle the loop, or turn TrimToLoop off")
 
 
 def trimmed_to_loop(label: str, face, edges: Sequence, loop: Sequence[int], tolerance: float):

@@ -373,9 +373,10 @@ def solve_sheet_from_curves(edges: Sequence, settings: Optional[SheetSettings] =
     if not (isinstance(degree, int) and 2 <= degree <= MAX_DEGREE):
         raise SheetError(f"Degree must be an integer in 2..{MAX_DEGREE} (got {degree})")
     edges = list(edges)
+    names = options.get("names") or [f"Edge{i + 1}" for i in range(len(edges))]
+    loop = boundary.closed_loop(edges, names, settings.tolerance) if settings.trim_to_loop else None
     face = plane_fit.plane_face_for_curves(edges, spans=int(settings.min_spans), degree=degree)
     outcome = solve_sheet_on_face(face, edges, settings, **options)
-    loop = boundary.closed_loop(edges) if settings.trim_to_loop else None
     if loop:
         outcome.shape = boundary.trimmed_to_loop("the sheet", outcome.shape, edges, loop, settings.tolerance)
         outcome.boundary_curves = [outcome.curve_names[i] for i in loop]
