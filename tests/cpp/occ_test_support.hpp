@@ -76,7 +76,7 @@ inline const double kArea = 2 * M_PI / 6 * (5 * std::sqrt(5.0) - 1);
 
 // z = sign (1 - x^2 - y^2) + wave (3 x^2 y - y^3): bicubic, so exactly a sheet (x = 2.4 u - 1.2).
 // On the unit circle the wave term is wave sin(3 theta).
-inline BSplineSurface dome(double sign, double wave) {
+inline BSplineSurface dome(double sign, double wave = 0.0) {
   BSplineSurface s;
   s.space = SplineSpace::uniform(3, 3, 4, 4);
   s.poles = test::fit_poles(s.space, [sign, wave](double u, double v) {
@@ -86,17 +86,27 @@ inline BSplineSurface dome(double sign, double wave) {
   return s;
 }
 
-// Two domes joined along the unit circle (their pre-image: the circle of radius 1 / 2.4).
-inline occ::ShellResult pillow(double wave) {
+// The pillow's rim: the unit circle in z = 0 as a B-spline, and its pre-image on a dome (the
+// circle of radius 1 / 2.4 about the domain's centre).
+struct Rim {
+  BSplineCurve curve, preimage;
+};
+inline Rim unit_circle_rim() {
   Handle(Geom_TrimmedCurve) circle3 = new Geom_TrimmedCurve(
       new Geom_Circle(gp_Ax2(gp::Origin(), gp::DZ(), gp::DX()), 1.0), 0.0, 2 * M_PI);
-  const BSplineCurve rim = occ::from_geom(GeomConvert::CurveToBSplineCurve(circle3));
   Handle(Geom2d_TrimmedCurve) circle2 = new Geom2d_TrimmedCurve(
       new Geom2d_Circle(gp_Circ2d(gp_Ax2d(gp_Pnt2d(0.5, 0.5), gp_Dir2d(1, 0)), 0.5 / kHalf)), 0.0,
       2 * M_PI);
-  const BSplineCurve pre = occ::from_geom(Geom2dConvert::CurveToBSplineCurve(circle2));
-  return occ::join_sheets({rim}, {{dome(1.0, wave), {0}, {pre}}, {dome(-1.0, 0.0), {0}, {pre}}},
-                          1e-3);
+  return {occ::from_geom(GeomConvert::CurveToBSplineCurve(circle3)),
+          occ::from_geom(Geom2dConvert::CurveToBSplineCurve(circle2))};
+}
+
+// Two domes joined along the unit circle.
+inline occ::ShellResult pillow(double wave) {
+  const Rim rim = unit_circle_rim();
+  return occ::join_sheets(
+      {rim.curve}, {{dome(1.0, wave), {0}, {rim.preimage}}, {dome(-1.0, 0.0), {0}, {rim.preimage}}},
+      1e-3);
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -8,10 +8,6 @@
 #include <Geom2d_BSplineCurve.hxx>
 #include <Geom2d_Circle.hxx>
 #include <Geom2d_TrimmedCurve.hxx>
-#include <GeomConvert.hxx>
-#include <Geom_Circle.hxx>
-#include <Geom_TrimmedCurve.hxx>
-#include <gp_Ax2.hxx>
 #include <gp_Ax2d.hxx>
 #include <gp_Circ2d.hxx>
 
@@ -20,6 +16,7 @@
 #include <cstdio>
 #include <string>
 
+#include "occ_test_support.hpp"
 #include "test_support.hpp"
 #include "varsurf/core/errors.hpp"
 #include "varsurf/occ/geom_convert.hpp"
@@ -30,18 +27,8 @@ using namespace varsurf;
 
 namespace {
 
-constexpr double kHalf = 1.2;  // the sheets span [-1.2, 1.2]^2
-
-// z = sign (1 - x^2 - y^2), exactly representable by a bicubic sheet (x = 2.4 u - 1.2).
-BSplineSurface dome(double sign, int spans = 4) {
-  BSplineSurface s;
-  s.space = SplineSpace::uniform(3, 3, spans, spans);
-  s.poles = test::fit_poles(s.space, [sign](double u, double v) {
-    const double x = 2 * kHalf * u - kHalf, y = 2 * kHalf * v - kHalf;
-    return Eigen::Vector3d(x, y, sign * (1.0 - x * x - y * y));
-  });
-  return s;
-}
+using test::dome;
+using test::kHalf;
 
 // The unit circle's pre-image (center (0.5, 0.5), radius 1 / 2.4), as an exact rational
 // B-spline; `pieces` splits it into that many arcs.
@@ -126,15 +113,9 @@ TEST(ShellBuilder, RejectsOpenLoopsAndCurvesOffTheSheet) {
 
 TEST(JoinSheets, PillowSharesOneRimEdgeSetAndMatchesTheAnalyticVolume) {
   // The same pillow, its rim built once from the 3D unit circle with a pcurve on each dome.
-  Handle(Geom_TrimmedCurve) circle3 = new Geom_TrimmedCurve(
-      new Geom_Circle(gp_Ax2(gp::Origin(), gp::DZ(), gp::DX()), 1.0), 0.0, 2 * M_PI);
-  const BSplineCurve rim = occ::from_geom(GeomConvert::CurveToBSplineCurve(circle3));
-  Handle(Geom2d_TrimmedCurve) circle2 = new Geom2d_TrimmedCurve(
-      new Geom2d_Circle(gp_Circ2d(gp_Ax2d(gp_Pnt2d(0.5, 0.5), gp_Dir2d(1, 0)), 0.5 / kHalf)), 0.0,
-      2 * M_PI);
-  const BSplineCurve pre = occ::from_geom(Geom2dConvert::CurveToBSplineCurve(circle2));
-  const occ::ShellResult r =
-      occ::join_sheets({rim}, {{dome(1.0), {0}, {pre}}, {dome(-1.0), {0}, {pre}}}, 1e-6);
+  const test::Rim rim = test::unit_circle_rim();
+  const occ::ShellResult r = occ::join_sheets(
+      {rim.curve}, {{dome(1.0), {0}, {rim.preimage}}, {dome(-1.0), {0}, {rim.preimage}}}, 1e-6);
   EXPECT_TRUE(r.closed);
   EXPECT_TRUE(r.valid) << r.message;
   EXPECT_EQ(r.faces, 2);
@@ -147,7 +128,9 @@ TEST(JoinSheets, PillowSharesOneRimEdgeSetAndMatchesTheAnalyticVolume) {
   std::remove(path.c_str());
   EXPECT_NEAR(volume(back), volume(r.shape), 1e-6 * M_PI);
   // One sheet alone: an open shell; a curve index that does not exist: refused.
-  const occ::ShellResult open = occ::join_sheets({rim}, {{dome(1.0), {0}, {pre}}}, 1e-6);
+  const occ::ShellResult open =
+      occ::join_sheets({rim.curve}, {{dome(1.0), {0}, {rim.preimage}}}, 1e-6);
   EXPECT_FALSE(open.closed);
-  EXPECT_THROW(occ::join_sheets({rim}, {{dome(1.0), {1}, {pre}}}, 1e-6), InvalidInput);
+  EXPECT_THROW(occ::join_sheets({rim.curve}, {{dome(1.0), {1}, {rim.preimage}}}, 1e-6),
+               InvalidInput);
 }
