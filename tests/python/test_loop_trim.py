@@ -85,20 +85,20 @@ def test_order_and_orientation_of_the_curves_do_not_matter(doc, native):
 def test_without_a_loop_or_when_turned_off_the_sheet_is_its_rectangle(doc, native, tmp_path):
     loop, interior = _loop(), _interior()
     off = _sheet(doc, loop + interior)
-    off.TrimToLoop = False
+    off.Trim = "None"
     doc.recompute()
     assert len(off.Shape.Faces[0].Edges) == 4 and off.BoundaryCurves == []
     open_curves = _sheet(doc, loop[:4] + interior)  # four sides: no closed loop
     assert len(open_curves.Shape.Faces[0].Edges) == 4 and open_curves.BoundaryCurves == []
-    # A file from before TrimToLoop keeps its rectangle when it is opened again.
+    # A file from before Trim keeps its rectangle when it is opened again.
     trimmed = _sheet(doc, loop + interior)
-    trimmed.removeProperty("TrimToLoop")
+    trimmed.removeProperty("Trim")
     path = str(tmp_path / "older.FCStd")
     doc.saveAs(path)
     again = FreeCAD.openDocument(path)
     try:
         sheet = again.getObject(trimmed.Name)
-        assert sheet.TrimToLoop is False
+        assert sheet.Trim == "None"
         sheet.touch()
         again.recompute()
         assert len(sheet.Shape.Faces[0].Edges) == 4
@@ -143,13 +143,13 @@ def test_a_loop_left_open_or_crossing_itself_is_refused_by_name(doc, native):
     sides = [_side(corners[k], corners[k + 1], 1.0) for k in range(3)]
     gap = _sheet_error(doc, sides + [Part.LineSegment(V(0, 30, 0), V(0, 0.5, 0)).toShape()])
     assert "nearly close a loop but leave a gap of 0.5 mm between" in gap and "(0, 0.5, 0)" in gap, gap
-    assert all(f"Curve{k}:Edge1" in gap for k in range(4)) and "TrimToLoop off" in gap
+    assert all(f"Curve{k}:Edge1" in gap for k in range(4)) and "Trim to None" in gap
     # A bow tie: its two long sides cross at (20, 15).
     bow = [Part.LineSegment(a, b).toShape() for a, b in
            ((V(0, 0, 0), V(40, 30, 0)), (V(40, 30, 0), V(40, 0, 0)), (V(40, 0, 0), V(0, 30, 0)),
             (V(0, 30, 0), V(0, 0, 0)))]
     crossing = _sheet_error(doc, bow)
-    assert "crosses itself at (20, 15, 0)" in crossing and "TrimToLoop off" in crossing, crossing
+    assert "crosses itself at (20, 15, 0)" in crossing and "Trim to None" in crossing, crossing
 
 
 def _sheet_error(doc, edges):
@@ -166,3 +166,32 @@ def _sheet_error(doc, edges):
         doc.removeObject(o.Name)
     doc.removeObject(sheet.Name)
     return message
+
+
+def test_a_sheet_on_a_base_face_is_trimmed_to_a_holes_loop_when_asked(doc, native):
+    """A wavy pentagon over a larger flat face: Automatic keeps the base's boundary, Loop bounds
+    the sheet by the pentagon (a patch for that hole), and Loop without a loop says so."""
+    base = doc.addObject("Part::Plane", "Base")
+    base.Length, base.Width, base.Placement.Base = 100.0, 100.0, V(-50, -50, 0)
+    loop = _loop()
+    objs = []
+    for k, edge in enumerate(loop):
+        o = doc.addObject("Part::Feature", f"Side{k}")
+        o.Shape = edge
+        objs.append((o, "Edge1"))
+    doc.recompute()
+    sheet = varsurf.make_sheet((base, "Face1"), objs, tolerance=0.001)
+    doc.recompute()
+    assert sheet.isValid(), sheet.getStatusString()
+    assert sheet.Trim == "Automatic" and len(sheet.Shape.Faces[0].Edges) == 4 and sheet.BoundaryCurves == []
+    whole = sheet.Shape.Area
+    sheet.Trim = "Loop"
+    doc.recompute()
+    assert sheet.isValid(), sheet.getStatusString()
+    face = sheet.Shape.Faces[0]
+    assert len(face.Edges) == 5 and len(sheet.BoundaryCurves) == 5
+    assert face.Area == pytest.approx(Part.makeFilledFace(loop).Area, rel=0.01) and face.Area < whole / 3
+    assert sheet.Shape.check(True) is None
+    sheet.Curves = objs[:4]  # one side gone: no loop left
+    doc.recompute()
+    assert not sheet.isValid() and "Trim is Loop, but no closed loop is among the curves" in sheet.Status

@@ -42,9 +42,9 @@ _PROPERTIES = [
     ("Stretch", "App::PropertyFloatConstraint", "Sheet", "Stretching weight (alpha, >= 0): penalizes first derivatives, pulls toward a membrane of least area. Default 0", False),
     ("Bend", "App::PropertyFloatConstraint", "Sheet", "Bending weight (beta, >= 0): penalizes second derivatives, pulls toward a fair thin plate. Default 1", False),
     ("FixBoundary", "App::PropertyBool", "Sheet", "Keep the base face's boundary (its boundary poles are held)", False),
-    ("TrimToLoop", "App::PropertyBool", "Sheet", "Without a base face: bound the sheet by the closed loop among its curves (as Surface Filling does), so that it ends on them and sews to the faces around a hole; off: the whole best-fit rectangle", False),
+    ("Trim", "App::PropertyEnumeration", "Sheet", "How the sheet is bounded. Automatic: without a base face, by the closed loop among its curves (as Surface Filling does: it ends on them and sews to the faces around a hole), on a base face by the base's boundary. Loop: by the closed loop among its curves, also on a base face (a hole's loop on a larger face). None: the whole base face, or the whole best-fit rectangle", False),
     ("IncompatibleCorners", "App::PropertyStringList", "Result", "Where two G1 joins meet and their faces' tangent planes differ: the sheet cannot be tangent to both there (which joins, where, by how much)", True),
-    ("BoundaryCurves", "App::PropertyStringList", "Result", "The curves of the closed loop that bounds the sheet (TrimToLoop)", True),
+    ("BoundaryCurves", "App::PropertyStringList", "Result", "The curves of the closed loop that bounds the sheet (Trim)", True),
     ("Tolerance", "App::PropertyLength", "Sheet", "Distance at which a curve counts as met; the sheet fits the curves this closely and leaves the rest to fairness", False),
     ("SolveMode", "App::PropertyEnumeration", "Solver", "Exact: Lagrange multipliers (KKT). Penalty: penalty with refinement (PenaltyQR: by sparse QR). CG: constraints eliminated, conjugate gradients. TSVD / MTSVD: the L-curve decides how much of the curves is fitted (MTSVD smooths the rest by the energy). Automatic: by size", False),
     ("Refinement", "App::PropertyEnumeration", "Solver", "Uniform: the spans are doubled everywhere until the curves are met (up to MaxSpans). Local: only the spans under curves that are off are refined, layer by layer (up to MaxDepth); the exported sheet is one B-spline on the finest level", False),
@@ -94,7 +94,7 @@ _DEFAULTS = {
     "Stretch": (settings.DEFAULT_STRETCH, 0.0, _FLOAT_MAX, 0.1),
     "Bend": (settings.DEFAULT_BEND, 0.0, _FLOAT_MAX, 0.1),
     "FixBoundary": True,
-    "TrimToLoop": True,
+    "Trim": list(settings.TRIMS),
     "RestShape": _set_rest_shapes,
     "Projection": list(projection.MODES),
     "ProjectionDirection": FreeCAD.Vector(0, 0, 1),
@@ -218,7 +218,7 @@ def settings_of(obj) -> settings.SheetSettings:
         bend_tensor=tensor("BendTensor"),
         pressure=float(getattr(obj, "Pressure", 0.0)),
         fix_boundary=bool(obj.FixBoundary),
-        trim_to_loop=bool(getattr(obj, "TrimToLoop", False)),
+        trim=str(getattr(obj, "Trim", "None")),
         tolerance=float(value(obj, "Tolerance")),
         exact_curves=tuple(getattr(obj, "ExactCurves", []) or []),
         degree=int(getattr(obj, "Degree", settings.SHEET_MIN_DEGREE)),
@@ -315,14 +315,14 @@ class SheetFeature(FeatureProxy):
 
     def onDocumentRestored(self, obj):
         older = "Projection" not in obj.PropertiesList
-        trimmed = "TrimToLoop" in obj.PropertiesList
+        trimmed = "Trim" in obj.PropertiesList
         super().onDocumentRestored(obj)
         if self.state_problem() is not None:
             return
         if older:  # files from before projection choices projected every curve orthogonally
             obj.Projection = "Normal"
         if not trimmed:  # files from before trimming to a loop keep their whole rectangle
-            obj.TrimToLoop = False
+            obj.Trim = "None"
         # Files from before a mode was added list fewer modes: offer them all, keep the choice.
         if list(obj.getEnumerationsOfProperty("SolveMode")) != list(settings.SOLVE_MODES):
             mode = str(obj.SolveMode)

@@ -79,7 +79,7 @@ def closed_loop(edges: Sequence, names: Sequence[str], tolerance: float) -> Opti
                 raise SheetError(
                     f"the curves {listed} nearly close a loop but leave a gap of {gap:.3g} mm between "
                     f"{_point(free[0][0])} and {_point(free[1][0])} (more than the Tolerance {tolerance:.3g} mm): "
-                    "close the loop, or turn TrimToLoop off")
+                    "close the loop, or set the Sheet's Trim to None")
         if free or branches or size <= extent:
             continue
         _refuse_crossing(edges, names, members, tolerance)
@@ -100,7 +100,18 @@ def _refuse_crossing(edges, names, members, tolerance):
             if distance <= tolerance:
                 raise SheetError(f"the loop of {', '.join(names[m] for m in members)} crosses itself at "
                                  f"{_point(pairs[0][0])}, where {names[i]} meets {names[j]}: a sheet cannot be "
-                                 "bounded by it; untangle the loop, or turn TrimToLoop off")
+                                 "bounded by it; untangle the loop, or set the Sheet's Trim to None")
+
+
+def loop_for(edges, names, settings, has_base: bool):
+    """The loop (indices into ``edges``) that bounds the sheet under ``settings.trim``, or None."""
+    if settings.trim == "None" or (settings.trim == "Automatic" and has_base):
+        return None
+    loop = closed_loop(edges, names, settings.tolerance)
+    if loop is None and settings.trim == "Loop":
+        raise SheetError("Trim is Loop, but no closed loop is among the curves: give the sheet curves that "
+                         "close one (a closed sketch), or set Trim to Automatic")
+    return loop
 
 
 def trimmed_to_loop(label: str, face, edges: Sequence, loop: Sequence[int], tolerance: float):

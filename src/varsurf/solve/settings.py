@@ -40,6 +40,11 @@ DEFAULT_MAX_SPANS = 64
 SOLVE_MODES = ("Automatic", "Exact", "Penalty", "PenaltyQR", "CG", "TSVD", "MTSVD")
 #: Relative singular value below which constraint rows are numerically dependent.
 DEFAULT_RANK_TOLERANCE = 1e-9
+#: How a sheet is bounded: Automatic (a sheet without base face by the closed loop among its
+#: curves when they hold one, a sheet on a base face by the base's own boundary), Loop (by the
+#: closed loop among its curves, with or without base face: a hole's loop on a larger face), None
+#: (the whole base face, or the whole best-fit rectangle).
+TRIMS = ("Automatic", "Loop", "None")
 #: Refinement modes: Uniform doubles the spans everywhere until the curves are met; Local refines
 #: only the spans under the curves that are off (hierarchical layers, Welch & Witkin sec. 3, 4.4).
 REFINEMENTS = ("Uniform", "Local")
@@ -86,8 +91,8 @@ class SheetSettings:
     bend_tensor: Optional[Sequence[float]] = None
     pressure: float = 0.0  # inflate (> 0) or deflate (< 0), in the energy's units
     fix_boundary: bool = True  # keep the base face's boundary (and its trim's edges)
-    #: Without a base face: bound the sheet by the closed loop among its curves (boundary.py).
-    trim_to_loop: bool = True
+    #: One of TRIMS: bound the sheet by the closed loop among its curves (boundary.py).
+    trim: str = "Automatic"
     tolerance: float = DEFAULT_TOLERANCE  # mm at which a curve counts as met
     exact_curves: Sequence[str] = ()  # curve names met exactly wherever the space allows
     degree: int = SHEET_MIN_DEGREE  # smallest degree in u and v
@@ -124,6 +129,8 @@ class SheetSettings:
             raise SheetError(f"SolveMode must be one of {', '.join(SOLVE_MODES)} (got {self.solve_mode!r})")
         if not 0.0 < self.rank_tolerance < 1.0:
             raise SheetError(f"rank tolerance must be in (0, 1) (got {self.rank_tolerance})")
+        if self.trim not in TRIMS:
+            raise SheetError(f"Trim must be one of {', '.join(TRIMS)} (got {self.trim!r})")
         if self.refinement not in REFINEMENTS:
             raise SheetError(f"Refinement must be one of {', '.join(REFINEMENTS)} (got {self.refinement!r})")
         if not math.isfinite(self.pressure):

@@ -339,12 +339,29 @@ def solve_sheet_on_face(
     Raises SheetError (a ValueError) naming the curve or parameter at fault, and lets the
     extension's SolveFailure / GeometryError through for numerical or kernel failures.
     """
+    settings = (settings or SheetSettings()).changed(**changes)
+    return _solve_on(face, list(edges), settings, True, dict(names=names, projections=projections,
+                                                             constraints=constraints, rest=rest,
+                                                             keep_going=keep_going))
+
+
+def _solve_on(face, edges, settings, has_base, inputs):
+    """The stages, and the trim to a loop of the curves when ``settings.trim`` asks for one."""
+    names, projections = _names_and_projections(edges, inputs.get("names"), inputs.get("projections"))
+    settings.check()
+    loop = boundary.loop_for(edges, names, settings, has_base)
+    outcome = _stages(face, edges, settings, names, projections, inputs.get("constraints", ()),
+                      inputs.get("rest"), inputs.get("keep_going"))
+    if loop:
+        outcome.shape = boundary.trimmed_to_loop("the sheet", outcome.shape, edges, loop, settings.tolerance)
+        outcome.boundary_curves = [names[i] for i in loop]
+    return outcome
+
+
+def _stages(face, edges, settings, names, projections, constraints, rest, keep_going):
+    """Base, pre-images, constraints, energy, solve with refinement, and the measured outcome."""
     nat = native()
     started = time.perf_counter()
-    settings = (settings or SheetSettings()).changed(**changes)
-    edges = list(edges)
-    names, projections = _names_and_projections(edges, names, projections)
-    settings.check()
     sheet = _Sheet(settings=settings, names=names)
     sheet.base, sheet.trim = _base(nat, face, settings)
     sheet.curves, sheet.targets = preimages.curve_constraints(nat, sheet.base, edges, names, projections, settings)
@@ -365,22 +382,20 @@ def solve_sheet_on_face(
 def solve_sheet_from_curves(edges: Sequence, settings: Optional[SheetSettings] = None, **options) -> SheetOutcome:
     """``solve_sheet_on_face`` on the best-fit plane of the curves (``plane_face_for_curves``),
     with a free boundary: the sheet is shaped by the curves and its energy alone. With
-    ``trim_to_loop`` (the default) and a closed loop among the curves, the result is bounded by
-    that loop (``boundary_curves`` names its curves)."""
+    ``trim`` Automatic (the default) or Loop and a closed loop among the curves, the result is
+    bounded by that loop (``boundary_curves`` names its curves)."""
     settings = (settings or SheetSettings()).changed(
         fix_boundary=False, **{k: options.pop(k) for k in list(options) if k in _SETTING_NAMES})
     degree = settings.degree
     if not (isinstance(degree, int) and 2 <= degree <= MAX_DEGREE):
         raise SheetError(f"Degree must be an integer in 2..{MAX_DEGREE} (got {degree})")
+    unknown = set(options) - _INPUT_NAMES
+    if unknown:
+        raise TypeError(f"solve_sheet_from_curves() got unexpected keyword arguments: {', '.join(sorted(unknown))}")
     edges = list(edges)
-    names = options.get("names") or [f"Edge{i + 1}" for i in range(len(edges))]
-    loop = boundary.closed_loop(edges, names, settings.tolerance) if settings.trim_to_loop else None
     face = plane_fit.plane_face_for_curves(edges, spans=int(settings.min_spans), degree=degree)
-    outcome = solve_sheet_on_face(face, edges, settings, **options)
-    if loop:
-        outcome.shape = boundary.trimmed_to_loop("the sheet", outcome.shape, edges, loop, settings.tolerance)
-        outcome.boundary_curves = [outcome.curve_names[i] for i in loop]
-    return outcome
+    return _solve_on(face, edges, settings, False, options)
 
 
 _SETTING_NAMES = frozenset(f.name for f in SheetSettings.__dataclass_fields__.values())
+_INPUT_NAMES = frozenset(("names", "projections", "constraints", "rest", "keep_going"))
