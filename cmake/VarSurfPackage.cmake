@@ -29,6 +29,10 @@ install(DIRECTORY src/varsurf/
   FILES_MATCHING PATTERN "*.py"
   PATTERN "__pycache__" EXCLUDE
   PATTERN "tests" EXCLUDE)
+# Debian's place for the licence (machine-readable copyright, pointing to the LGPL's full text).
+install(FILES cmake/copyright
+  DESTINATION ${CMAKE_INSTALL_DATADIR}/doc/varsurf
+  COMPONENT workbench)
 
 # Package metadata comes from package.xml, the file FreeCAD's Addon Manager reads too.
 file(READ ${PROJECT_SOURCE_DIR}/package.xml _varsurf_package_xml)

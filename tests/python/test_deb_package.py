@@ -191,8 +191,11 @@ def test_package_holds_the_workbench_and_nothing_else(deb, contents):
     packaged = {p[len(f"{MOD}/src/varsurf/"):] for p in contents
                 if p.startswith(f"{MOD}/src/varsurf/") and p.endswith(".py")}
     assert packaged == deb["sources"], (packaged ^ deb["sources"])
-    assert not [p for p in contents
-                if not (MOD.startswith(p + "/") or p == MOD or p.startswith(MOD + "/"))], "outside the Mod folder"
+    copyright_file = "usr/share/doc/varsurf/copyright"
+    assert copyright_file in contents  # the licence, where Debian keeps it
+    assert not [p for p in contents if not (MOD.startswith(p + "/") or p == MOD or p.startswith(MOD + "/")
+                                            or copyright_file.startswith(p + "/") or p == copyright_file)], \
+        "outside the Mod folder and the copyright file"
     unwanted = [p for p in files if re.search(r"\.(h|hh|hpp|hxx|a|pyc|cmake)$", p)
                 or "__pycache__" in p or "/tests/" in p or "/bench" in p or "fuzz" in p]
     assert not unwanted, unwanted
