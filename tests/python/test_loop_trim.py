@@ -38,14 +38,19 @@ def _interior():
             Part.LineSegment(V(-4, 6, -1.5), V(8, 12, -1.5)).toShape()]
 
 
-def _sheet(doc, edges, **kwargs):
+def _features(doc, edges, prefix="Curve"):
+    """One Part feature per edge, as (object, "Edge1") links."""
     objs = []
     for k, edge in enumerate(edges):
-        o = doc.addObject("Part::Feature", f"Curve{k}")
+        o = doc.addObject("Part::Feature", f"{prefix}{k}")
         o.Shape = edge
         objs.append((o, "Edge1"))
     doc.recompute()
-    sheet = varsurf.make_sheet(None, objs, tolerance=0.001, **kwargs)
+    return objs
+
+
+def _sheet(doc, edges, **kwargs):
+    sheet = varsurf.make_sheet(None, _features(doc, edges), tolerance=0.001, **kwargs)
     doc.recompute()
     assert sheet.isValid(), sheet.getStatusString()
     return sheet
@@ -153,11 +158,7 @@ def test_a_loop_left_open_or_crossing_itself_is_refused_by_name(doc, native):
 
 
 def _sheet_error(doc, edges):
-    objs = []
-    for k, edge in enumerate(edges):
-        o = doc.addObject("Part::Feature", f"Curve{k}")
-        o.Shape = edge
-        objs.append((o, "Edge1"))
+    objs = _features(doc, edges)
     sheet = varsurf.make_sheet(None, objs, tolerance=0.001)
     doc.recompute()
     assert not sheet.isValid() and sheet.Status.startswith("Error")
@@ -174,12 +175,7 @@ def test_a_sheet_on_a_base_face_is_trimmed_to_a_holes_loop_when_asked(doc, nativ
     base = doc.addObject("Part::Plane", "Base")
     base.Length, base.Width, base.Placement.Base = 100.0, 100.0, V(-50, -50, 0)
     loop = _loop()
-    objs = []
-    for k, edge in enumerate(loop):
-        o = doc.addObject("Part::Feature", f"Side{k}")
-        o.Shape = edge
-        objs.append((o, "Edge1"))
-    doc.recompute()
+    objs = _features(doc, loop, "Side")
     sheet = varsurf.make_sheet((base, "Face1"), objs, tolerance=0.001)
     doc.recompute()
     assert sheet.isValid(), sheet.getStatusString()
