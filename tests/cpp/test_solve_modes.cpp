@@ -193,6 +193,28 @@ TEST(SolveModes, PenaltyRefinesUntilEveryConstraintIsWithinTolerance) {
   }
 }
 
+TEST(SolveModes, PenaltyEndsOnAnEnergyScaleNearTheSmallestDouble) {
+  // An energy weight of 1e-320 (a denormal) makes the energy's scale underflow the penalty's
+  // regularization ladder to 0: it once retried eps = 0 forever (found by fuzzing). The solve must
+  // end, with finite poles that meet the pin or with a SolveFailure.
+  for (double weight : {1e-323, 1e-321, 1e-320, 1e-318, 1e-310, 1e300}) {
+    SheetProblem pb = flat_problem(4);
+    pb.fixed_poles.clear();
+    pb.energy = ThinPlateWeights::isotropic(weight, 0.0);
+    pb.points.push_back(pin(0.5, 0.5, {0.5, 0.5, 0.2}));
+    try {
+      const SolveResult r = solve_sheet(pb, with_mode(SolveMode::penalty));
+      ASSERT_TRUE(r.poles.allFinite()) << weight;
+      EXPECT_LT((evaluate_surface(pb.space, r.poles, 0.5, 0.5, 0).row(0).transpose() -
+                 pb.points[0].target)
+                    .norm(),
+                1e-3)
+          << weight;
+    } catch (const SolveFailure&) {
+    }
+  }
+}
+
 TEST(SolveModes, EveryModeAgreesWhenTheConstraintsDetermineThePoles) {
   // Fixed boundary and one pin per interior pole at its Greville point: the constraints alone
   // determine the sheet, so TSVD (which ignores the energy) must agree too.

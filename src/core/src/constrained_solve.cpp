@@ -232,6 +232,8 @@ ConstrainedSolve::ConstrainedSolve(const Quadratic& pb, const SolveOptions& opt,
   m.q_ff.resize(m.n, m.n);
   m.q_ff.setFromTriplets(qt.begin(), qt.end());
   diag_mean /= m.n;
+  if (!std::isfinite(diag_mean))
+    throw SolveFailure("the energy matrix is not finite (poles or weights too large)");
   const double scale = diag_mean > 0.0 ? diag_mean : 1.0;
   m.eps = opt.regularization * scale;
   // Is the start the energy's unconstrained minimum (a rest shape with nothing else pulling)? Then
@@ -279,8 +281,10 @@ ConstrainedSolve::ConstrainedSolve(const Quadratic& pb, const SolveOptions& opt,
     // it; if even that fails, the exact mode's LU takes the semi-definite system.
     const double first_eps = m.eps;
     bool factored = m.factor_penalty(scale);
+    // eps must grow each step: an energy scale near the smallest double underflows it to 0.
     for (double eps = std::max(first_eps, 1e-13 * scale) * 1e3;
-         !factored && eps <= 1e-4 * scale * (1.0 + 1e-9); eps *= 1e3) {
+         !factored && eps > 0.0 && std::isfinite(eps) && eps <= 1e-4 * scale * (1.0 + 1e-9);
+         eps *= 1e3) {
       m.eps = eps;
       factored = m.factor_penalty(scale);
     }
