@@ -248,6 +248,11 @@ void bind_core_types(py::module_& m) {
       .def_readwrite("fixed_poles", &SheetProblem::fixed_poles, "Flat indices held in place.")
       .def_readwrite("rest_poles", &SheetProblem::rest_poles,
                      "Rest shape (size x 3) or empty: the energy acts on p - rest_poles.")
+      .def_readwrite("kept_region", &SheetProblem::kept_region,
+                     "Region or None: a trimmed sheet's kept part, where the energy and the "
+                     "pressure act.")
+      .def_readwrite("overhang_energy", &SheetProblem::overhang_energy,
+                     "The energy's weight outside kept_region, in [0, 1).")
       .def_readwrite("tangents", &SheetProblem::tangents)
       .def_readwrite("normals", &SheetProblem::normals)
       .def_readwrite("plane_points", &SheetProblem::plane_points)

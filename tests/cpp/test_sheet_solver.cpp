@@ -322,3 +322,66 @@ TEST(SheetSolver, ExactIncidenceMeetsARepresentableCurveWhereTheToleranceFitStop
   EXPECT_GT(fitted, 1e-6);  // it only approached the curve
   EXPECT_LT(fitted, 0.1);   // but it did approach it
 }
+
+TEST(SheetSolver, ATrimmedSheetIsTheFairestSheetOfItsKeptRegionAlone) {
+  // Sheet A spans [0, 1]^2 but keeps only R = [0.25, 0.75]^2 (a trim); sheet B spans R itself,
+  // with the same knot lines. A's splines restricted to R are exactly B's, so with the energy on
+  // R only, A's solution over R must be B's: the overhang must not pull on it. Both hold the
+  // same four curves along R's edges and a point in the middle.
+  auto problem = [](const SplineSpace& sp) {
+    SheetProblem pb;
+    pb.space = sp;
+    pb.initial_poles =
+        test::fit_poles(sp, [](double u, double v) { return Eigen::Vector3d(u, v, 0.0); });
+    pb.energy = ThinPlateWeights::isotropic(0.1, 1.0);
+    const auto height = [](double u, double v) {
+      return 0.5 * (u - 0.5) * (u - 0.5) - (v - 0.5) * (v - 0.5) * (v - 0.5);
+    };
+    const Eigen::Vector2d corner[4] = {{0.25, 0.25}, {0.75, 0.25}, {0.75, 0.75}, {0.25, 0.75}};
+    for (int k = 0; k < 4; ++k) {
+      const Eigen::Vector2d a = corner[k], b = corner[(k + 1) % 4];
+      CurveConstraint c;
+      c.preimage = test::line_curve(a, b);
+      // Cubic along each edge: exactly representable in both spaces.
+      c.target = test::fit_piecewise_curve({0.0, 1.0}, 3, 3, [&](double t) {
+        const Eigen::Vector2d q = a + t * (b - a);
+        return Eigen::VectorXd(Eigen::Vector3d(q(0), q(1), height(q(0), q(1))));
+      });
+      pb.curves.push_back(c);
+    }
+    PointConstraint pin;
+    pin.u = pin.v = 0.5;
+    pin.target = Eigen::Vector3d(0.5, 0.5, 0.2);
+    pb.points.push_back(pin);
+    return pb;
+  };
+  SplineSpace big = SplineSpace::uniform(3, 3, 8, 8);
+  SplineSpace small = SplineSpace::uniform(3, 3, 4, 4);
+  for (auto& k : small.knots_u) k = 0.25 + 0.5 * k;
+  small.knots_v = small.knots_u;
+  SolveOptions exact;
+  exact.mode = SolveMode::exact;
+  const SolveResult reference = solve_sheet(problem(small), exact);
+  SheetProblem trimmed = problem(big);
+  trimmed.kept_region = Region({{0.25, 0.25}, {0.75, 0.25}, {0.75, 0.75}, {0.25, 0.75}});
+  auto largest_difference = [&](const SheetProblem& pb) {
+    const SolveResult r = solve_sheet(pb, exact);
+    double worst = 0.0;
+    for (int i = 0; i <= 20; ++i)
+      for (int j = 0; j <= 20; ++j) {
+        const double u = 0.25 + 0.025 * i, v = 0.25 + 0.025 * j;
+        worst = std::max(worst, (evaluate_surface(big, r.poles, u, v, 0) -
+                                 evaluate_surface(small, reference.poles, u, v, 0))
+                                    .norm());
+      }
+    return worst;
+  };
+  // The overhang's small share of the energy moves the kept part by about that share.
+  trimmed.overhang_energy = 1e-8;
+  EXPECT_LT(largest_difference(trimmed), 1e-6);
+  trimmed.overhang_energy = 1e-4;
+  EXPECT_LT(largest_difference(trimmed), 1e-3 * 0.2);
+  // The untrimmed energy (the overhang counts in full) gives a visibly different sheet.
+  trimmed.kept_region.reset();
+  EXPECT_GT(largest_difference(trimmed), 1e-2 * 0.2);
+}

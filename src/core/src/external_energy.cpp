@@ -199,23 +199,24 @@ void add_shape_attractor_model(const SplineSpace& space, const ShapeAttractor& a
 }
 
 void add_pressure_force(const SplineSpace& space, double pressure, const Eigen::MatrixX3d& poles,
-                        QuadraticTerms& t) {
+                        QuadraticTerms& t, const std::optional<Region>& region) {
   if (!std::isfinite(pressure)) throw InvalidInput("pressure must be finite");
   if (pressure == 0.0) return;
   const Region all{space.u_first(), space.u_last(), space.v_first(), space.v_last()};
-  integrate_region(space, all, t, [&](const BasisSample& s, double dA, PieceAssembler&) {
-    Eigen::Vector3d wu = Eigen::Vector3d::Zero(), wv = Eigen::Vector3d::Zero();
-    for (size_t k = 0; k < s.index.size(); ++k) {
-      wu += s.values(1, static_cast<Eigen::Index>(k)) * poles.row(s.index[k]).transpose();
-      wv += s.values(2, static_cast<Eigen::Index>(k)) * poles.row(s.index[k]).transpose();
-    }
-    // The work P * V has the gradient P * (w_u x w_v) per unit (u, v) area; E = ... - 2 f.x
-    // takes half of it.
-    const Eigen::Vector3d n = 0.5 * pressure * dA * wu.cross(wv);
-    for (size_t k = 0; k < s.index.size(); ++k)
-      for (int a = 0; a < 3; ++a)
-        t.coupled_f(3 * s.index[k] + a) += s.values(0, static_cast<Eigen::Index>(k)) * n(a);
-  });
+  integrate_region(
+      space, region ? *region : all, t, [&](const BasisSample& s, double dA, PieceAssembler&) {
+        Eigen::Vector3d wu = Eigen::Vector3d::Zero(), wv = Eigen::Vector3d::Zero();
+        for (size_t k = 0; k < s.index.size(); ++k) {
+          wu += s.values(1, static_cast<Eigen::Index>(k)) * poles.row(s.index[k]).transpose();
+          wv += s.values(2, static_cast<Eigen::Index>(k)) * poles.row(s.index[k]).transpose();
+        }
+        // The work P * V has the gradient P * (w_u x w_v) per unit (u, v) area; E = ... - 2 f.x
+        // takes half of it.
+        const Eigen::Vector3d n = 0.5 * pressure * dA * wu.cross(wv);
+        for (size_t k = 0; k < s.index.size(); ++k)
+          for (int a = 0; a < 3; ++a)
+            t.coupled_f(3 * s.index[k] + a) += s.values(0, static_cast<Eigen::Index>(k)) * n(a);
+      });
 }
 
 }  // namespace varsurf

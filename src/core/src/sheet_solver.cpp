@@ -36,6 +36,7 @@ void validate_problem(const SheetProblem& pb, const SolveOptions& opt) {
     throw InvalidInput("regularization must be a finite non-negative number");
   if (opt.refinement_steps < 0 || opt.refinement_steps > 20)
     throw InvalidInput("refinement steps must be in 0..20");
+  if (pb.kept_region) check_region(pb.space, *pb.kept_region, "kept region");
 }
 
 // Samples of a list of constraints, naming the failing one.
@@ -128,7 +129,7 @@ Eigen::MatrixXd iterate_nonlinear(const SheetProblem& pb, const SolveOptions& op
         throw InvalidInput("shape attractor " + std::to_string(i) + ": " + e.what());
       }
     }
-    add_pressure_force(pb.space, pb.pressure, current, model);
+    add_pressure_force(pb.space, pb.pressure, current, model, pb.kept_region);
     Quadratic step =
         fixed_system ? Quadratic{Sparse(), base.f, Eigen::MatrixXd(), {}, {}, {}} : base;
     if (model.uses_coupled()) {
@@ -231,7 +232,9 @@ Assembled assemble(const SheetProblem& pb, const SolveOptions& opt, SolveReport&
   const SplineSpace& sp = pb.space;
   const int poles = sp.size();
   Assembled out;
-  Sparse h = assemble_thin_plate(sp, pb.energy);
+  Sparse h = pb.kept_region
+                 ? assemble_thin_plate(sp, pb.energy, *pb.kept_region, pb.overhang_energy)
+                 : assemble_thin_plate(sp, pb.energy);
   QuadraticTerms terms(poles);
   const bool rest = pb.rest_poles.rows() != 0;  // the energy acts on the displacement from it
   if (!pb.attractors.empty() || !pb.directors.empty() || !pb.repellers.empty() ||
@@ -404,6 +407,10 @@ bool same_space(const SplineSpace& a, const SplineSpace& b) {
          a.knots_v == b.knots_v && a.weights.size() == b.weights.size() && a.weights == b.weights;
 }
 
+bool same_region(const Region& a, const Region& b) {
+  return a.loop == b.loop && a.u0 == b.u0 && a.u1 == b.u1 && a.v0 == b.v0 && a.v1 == b.v1;
+}
+
 bool same_curve_shape(const BSplineCurve& a, const BSplineCurve& b) {
   return a.degree == b.degree && a.knots == b.knots && a.poles.rows() == b.poles.rows() &&
          a.poles.cols() == b.poles.cols();
@@ -424,16 +431,18 @@ void check_same_setup(const SheetProblem& pb, const SheetProblem& moved) {
       (pb.rest_poles.rows() == 0 || pb.rest_poles == moved.rest_poles) &&
       pb.attractors.size() == moved.attractors.size() &&
       pb.directors.size() == moved.directors.size() && moved.repellers.empty() &&
-      moved.shape_attractors.empty() && moved.pressure == 0.0;
+      moved.shape_attractors.empty() && moved.pressure == 0.0 &&
+      pb.kept_region.has_value() == moved.kept_region.has_value() &&
+      (!pb.kept_region || same_region(*pb.kept_region, *moved.kept_region)) &&
+      pb.overhang_energy == moved.overhang_energy;
   if (!same_setup)
     throw InvalidInput(
-        "update: only constraints may change (the space, fixed poles, energy, rest shape or "
-        "operators changed): prepare the sheet again");
+        "update: only constraints may change (the space, fixed poles, energy, kept region, rest "
+        "shape or operators changed): prepare the sheet again");
   for (size_t i = 0; i < pb.attractors.size(); ++i) {
     const Attractor &a = pb.attractors[i], &b = moved.attractors[i];
     if (a.kind != b.kind || a.origin != b.origin || a.direction != b.direction ||
-        a.strength != b.strength || a.region.loop != b.region.loop || a.region.u0 != b.region.u0 ||
-        a.region.u1 != b.region.u1 || a.region.v0 != b.region.v0 || a.region.v1 != b.region.v1)
+        a.strength != b.strength || !same_region(a.region, b.region))
       throw InvalidInput("update: an attractor changed: prepare the sheet again");
   }
   for (size_t i = 0; i < pb.directors.size(); ++i)

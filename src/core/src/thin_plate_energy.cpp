@@ -145,4 +145,46 @@ Eigen::SparseMatrix<double> assemble_thin_plate(const SplineSpace& space,
       n, n, static_cast<Eigen::Index>(inner.size()), outer.data(), inner.data(), values.data());
 }
 
+Eigen::SparseMatrix<double> assemble_thin_plate(const SplineSpace& space, const ThinPlateWeights& w,
+                                                const Region& region, double outside) {
+  if (!(outside >= 0.0 && outside < 1.0))
+    throw InvalidInput("the overhang's energy weight must be in [0, 1)");
+  check_region(space, region, "energy region");
+  const Eigen::SparseMatrix<double> whole = assemble_thin_plate(space, w);
+  const int order = w.beta.isZero(0.0) ? 1 : 2;
+  const Eigen::Vector3d hess_w(w.beta(0, 0), w.beta(0, 1) + w.beta(1, 0), w.beta(1, 1));
+  // Quadrature points come piece by piece: one local matrix per piece, flushed when the span
+  // changes, keeps the triplets to one set per piece instead of one per point.
+  std::vector<Eigen::Triplet<double>> trip;
+  std::vector<int> index;
+  Eigen::MatrixXd local;
+  auto flush = [&] {
+    for (size_t c = 0; c < index.size(); ++c)
+      for (size_t r = 0; r < index.size(); ++r)
+        if (local(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) != 0.0)
+          trip.emplace_back(index[r], index[c],
+                            local(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)));
+  };
+  for (const QuadraturePoint& q : region_quadrature(space, region)) {
+    const BasisSample s = space.basis(q.u, q.v, order);
+    if (s.index != index) {
+      flush();
+      index = s.index;
+      local = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(index.size()),
+                                    static_cast<Eigen::Index>(index.size()));
+    }
+    const auto grad = s.values.middleRows(1, 2);
+    local.noalias() += q.weight * (grad.transpose() * w.alpha * grad);
+    if (order == 2) {
+      const auto hess = s.values.middleRows(3, 3);
+      local.noalias() += q.weight * (hess.transpose() * hess_w.asDiagonal() * hess);
+    }
+  }
+  flush();
+  Eigen::SparseMatrix<double> inside(space.size(), space.size());
+  inside.setFromTriplets(trip.begin(), trip.end());
+  // inside + outside * (whole - inside): the rest of the domain's energy is whole - inside.
+  return Eigen::SparseMatrix<double>((1.0 - outside) * inside + outside * whole);
+}
+
 }  // namespace varsurf

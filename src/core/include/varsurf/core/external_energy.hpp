@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <functional>
+#include <optional>
 #include <vector>
 
 #include "varsurf/core/region.hpp"
@@ -101,8 +102,9 @@ void add_shape_attractor_model(const SplineSpace& space, const ShapeAttractor& a
                                const Eigen::MatrixX3d& poles, QuadraticTerms& terms);
 
 // Inflation by a pressure: the work pressure * volume, linearized at the current poles. Adds the
-// force pressure * integral of b_k (w_u x w_v) du dv to every pole (positive: along the normal).
+// force pressure * integral of b_k (w_u x w_v) du dv to every pole (positive: along the normal),
+// over the region (a trimmed sheet's kept part) or, without one, the whole domain.
 void add_pressure_force(const SplineSpace& space, double pressure, const Eigen::MatrixX3d& poles,
-                        QuadraticTerms& terms);
+                        QuadraticTerms& terms, const std::optional<Region>& region = std::nullopt);
 
 }  // namespace varsurf

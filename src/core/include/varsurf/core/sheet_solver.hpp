@@ -12,6 +12,7 @@
 #include <Eigen/Core>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -33,6 +34,12 @@ struct SheetProblem {
   // the sheet keeps the rest shape's detail and only its deviation is made fair (Welch & Witkin
   // eq. 6, Boier-Martin et al. 4.1).
   Eigen::MatrixX3d rest_poles;
+  // A trimmed sheet's kept part of the parameter domain (e.g. the pre-image of its boundary
+  // loop), or none for the whole domain. The energy and the pressure act on it; the rest (the
+  // overhang, cut away by the trim) keeps overhang_energy of the energy's weight, so it cannot
+  // pull on the kept part's shape but stays smooth and determined.
+  std::optional<Region> kept_region;
+  double overhang_energy = 1e-4;
   std::vector<PointConstraint> points;
   std::vector<CurveConstraint> curves;
   std::vector<TangentConstraint> tangents;

@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 
+#include "varsurf/core/region.hpp"
 #include "varsurf/core/spline_space.hpp"
 
 namespace varsurf {
@@ -23,5 +24,13 @@ struct ThinPlateWeights {
 // spaces use two more points per direction.
 Eigen::SparseMatrix<double> assemble_thin_plate(const SplineSpace& space,
                                                 const ThinPlateWeights& w);
+
+// The energy of a trimmed sheet: the thin plate over `region` (the part that is kept) plus
+// `outside` (in [0, 1)) times the thin plate over the rest of the domain. A small `outside` keeps
+// the overhang from pulling on the kept part, while the poles that act only outside stay
+// determined and the overhang smooth (the face's pcurves are computed on it). The region's
+// quadrature is exact like the whole domain's (region_quadrature).
+Eigen::SparseMatrix<double> assemble_thin_plate(const SplineSpace& space, const ThinPlateWeights& w,
+                                                const Region& region, double outside);
 
 }  // namespace varsurf
