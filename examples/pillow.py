@@ -45,6 +45,9 @@ def build(doc):
         sheet.Stretch = 1.0  # membrane tension: what holds a pressure
         sheet.Tolerance = 0.001  # the seam is as tight as the sheets meet the rim
         sheet.Pressure = pressure
+        # The sheet ends on the rim: its energy and pressure act inside the rim only, so the part of
+        # the base beyond it cannot pull the rim into a valley (a knife-edge seam).
+        sheet.Trim = "Loop"
         sheets.append(sheet)
     solid = varsurf.make_solid(sheets, name="Pillow")
     doc.recompute()

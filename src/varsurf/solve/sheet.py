@@ -65,6 +65,7 @@ class _Sheet:
     energy: object = None  # native ThinPlateWeights
     rest: object = None  # None, "base", or the native surface of an installed rest shape
     corners: list = None  # continuity.Corner: where two G1 joins ask for two tangent planes
+    kept: object = None  # native Region the trim to a loop keeps (the energy acts there), or None
 
 
 def _base(nat, face, settings):
@@ -159,6 +160,8 @@ def _problem(nat, sheet, spans):
     problem = build(nat.SheetProblem, space=space, initial_poles=refined.poles, energy=sheet.energy, points=[],
                     curves=sheet.curves, fixed_poles=fixed)
     terms.apply(problem)
+    if sheet.kept is not None:
+        problem.kept_region = sheet.kept
     # The core inflates along Su x Sv; a Reversed base face's outward normal is the opposite.
     problem.pressure = float(settings.pressure) * sheet.trim.normal_sign
     if sheet.rest == "base":
@@ -351,20 +354,32 @@ def _solve_on(face, edges, settings, has_base, inputs):
     settings.check()
     loop = boundary.loop_for(edges, names, settings, has_base)
     outcome = _stages(face, edges, settings, names, projections, inputs.get("constraints", ()),
-                      inputs.get("rest"), inputs.get("keep_going"))
+                      inputs.get("rest"), inputs.get("keep_going"), loop)
     if loop:
         outcome.shape = boundary.trimmed_to_loop("the sheet", outcome.shape, edges, loop, settings.tolerance)
         outcome.boundary_curves = [names[i] for i in loop]
     return outcome
 
 
-def _stages(face, edges, settings, names, projections, constraints, rest, keep_going):
-    """Base, pre-images, constraints, energy, solve with refinement, and the measured outcome."""
+def _kept_region(nat, sheet, loop):
+    """The region a trim to the curves ``loop`` keeps: the energy acts there only, so the overhang
+    of the rectangle the sheet is solved on does not pull on the kept shape."""
+    u0, u1, v0, v1 = sheet.base.space.domain()
+    polygon = [[min(max(u, u0), u1), min(max(v, v0), v1)]
+               for u, v in boundary.kept_polygon([sheet.curves[i].preimage for i in loop])]
+    return nat.Region(loop=polygon)
+
+
+def _stages(face, edges, settings, names, projections, constraints, rest, keep_going, loop=None):
+    """Base, pre-images, constraints, energy, solve with refinement, and the measured outcome
+    (with the energy on the region the trim to ``loop`` keeps)."""
     nat = native()
     started = time.perf_counter()
     sheet = _Sheet(settings=settings, names=names)
     sheet.base, sheet.trim = _base(nat, face, settings)
     sheet.curves, sheet.targets = preimages.curve_constraints(nat, sheet.base, edges, names, projections, settings)
+    if loop:
+        sheet.kept = _kept_region(nat, sheet, loop)
     sheet.placed = _constraints(nat, sheet, constraints)
     sheet.corners = continuity.incompatible_corners(
         [(p.spec.name, p.spec.edge, p.spec.reference) for p in sheet.placed if p.spec.kind == "G1"],
