@@ -91,6 +91,47 @@ def test_sheets_solved_over_their_whole_bases_make_a_knife_edge_and_the_solid_sa
     assert doc.getObject("Rim").Shape.distToShape(Part.Vertex(at))[0] <= 0.01  # printed to 4 digits
 
 
+@pytest.mark.parametrize("angle", [10.0, 45.0, 90.0, 150.0])
+def test_the_wall_inside_a_wedge_is_its_depth_times_the_sine_of_its_angle(angle):
+    """Two planar faces meeting at ``angle`` along the x axis: depth sin(angle) apart that far
+    inside the seam."""
+    from varsurf.solve.assembly import _wall
+
+    a = Part.makePlane(40, 20, V(-20, 0, 0))
+    b = a.copy()
+    b.rotate(V(0, 0, 0), V(1, 0, 0), angle)
+    p = V(3.0, 0, 0)
+    for depth in (0.5, 4.0):
+        wall = _wall(a, b, p, a.normalAt(0, 0), b.normalAt(0, 0), V(1, 0, 0), depth)
+        assert wall == pytest.approx(depth * math.sin(math.radians(angle)), rel=1e-9), (angle, depth)
+
+
+def test_the_thinnest_wall_near_the_seams_is_reported(solid):
+    """The pillow's sheets ending on the rim: a wedge of about 74 degrees, 0.47 mm thick 0.49 mm
+    inside. On their whole bases: a lip (measured: 0.0035 mm); a vertical line 0.65 mm inside the
+    rim, where the sheets curve toward each other, crosses 0.0083 mm of it (OCCT's common of the
+    line and the solid, sampled at 200 rim points)."""
+    doc = solid.Document
+    depth = 0.005 * solid.Shape.BoundBox.DiagonalLength
+    assert solid.ThinnestWall == pytest.approx(depth * math.sin(math.radians(min(solid.SeamAngles))), rel=0.05)
+    assert f"thinnest wall {solid.ThinnestWall:.3g} mm" in solid.Status
+    for name in ("Top", "Bottom"):
+        doc.getObject(name).Trim = "Automatic"
+    doc.recompute()
+    rim = doc.getObject("Rim").Shape.Edges[0]
+    depth = 0.005 * solid.Shape.BoundBox.DiagonalLength
+    chords = []
+    for k in range(200):
+        t = rim.FirstParameter + (rim.LastParameter - rim.FirstParameter) * k / 200
+        p, tangent = rim.valueAt(t), rim.tangentAt(t)
+        inward = V(-tangent.y, tangent.x, 0).normalize()
+        if (V(p.x, p.y, 0) + inward).Length > V(p.x, p.y, 0).Length:
+            inward = -inward
+        q = p + inward * depth
+        chords.append(solid.Shape.common(Part.LineSegment(V(q.x, q.y, -100), V(q.x, q.y, 100)).toShape()).Length)
+    assert solid.ThinnestWall < 0.02 and min(chords) < 0.02, (solid.ThinnestWall, min(chords))
+
+
 def test_a_knife_edge_asked_for_by_a_hinge_is_not_warned_of():
     """The knife-edge rule alone: seams below 5 degrees are named, sharpest first, unless a hinge
     asks for about that angle."""

@@ -38,6 +38,11 @@ class AssemblyOutcome:
     seam_angles: List[tuple] = field(default_factory=list)
     # per entry of seam_angles: where along the seam its smallest angle is, (x, y, z)
     seam_sharpest: List[tuple] = field(default_factory=list)
+    # the solid's thickness WALL_DEPTH of its size inside its seams: the thinnest found (mm), where
+    # (x, y, z), and at what depth (mm); inf when no seam is shared by two faces
+    thinnest_wall: float = math.inf
+    thinnest_wall_at: tuple = ()
+    wall_depth: float = 0.0
 
 
 def _loop_gap(surface) -> float:
@@ -137,11 +142,15 @@ def build_solid(sheets: Sequence, tolerance: float) -> AssemblyOutcome:
     except (nat.InvalidInput, nat.GeometryError) as error:
         raise SheetError(str(error)) from error
     shape = shape_from_brep(result.brep)
-    angles, sharpest = _seam_angles(shape)
+    depth = WALL_DEPTH * shape.BoundBox.DiagonalLength
+    angles, sharpest, (wall, wall_at) = _seam_angles(shape, depth)
     return AssemblyOutcome(
         shape=shape,
         seam_angles=angles,
         seam_sharpest=sharpest,
+        thinnest_wall=wall,
+        thinnest_wall_at=wall_at,
+        wall_depth=depth,
         closed=bool(result.closed),
         valid=bool(result.valid),
         max_tolerance=float(result.max_tolerance),
@@ -186,10 +195,47 @@ def _edge_uv(edge, faces):
     return lookups
 
 
-def _seam_angles(shape):
+#: How far inside a seam its wall is measured, as a fraction of the solid's size (the pillow's
+#: 0.47 mm: where its untrimmed sheets left a lip 0.006 mm thick).
+WALL_DEPTH = 0.005
+#: Every this many angle samples along a seam, the wall is measured too (up to six projections).
+WALL_STRIDE = 2
+
+
+def _surface_distance(face, point):
+    u, v = face.Surface.parameter(point)
+    return (face.Surface.value(u, v) - point).Length
+
+
+def _across(face, other, point, normal, tangent, depth):
+    """From the seam's ``point``, ``depth`` into ``face`` (across the seam in its tangent plane,
+    onto its surface): how far that is from ``other``'s surface. inf if neither way stays on
+    the face."""
+    step = normal.cross(tangent)
+    if step.Length == 0.0:
+        return math.inf
+    step.normalize()
+    for direction in (step, -step):
+        u, v = face.Surface.parameter(point + direction * depth)
+        if face.isPartOfDomain(u, v):
+            return _surface_distance(other, face.Surface.value(u, v))
+    return math.inf
+
+
+def _wall(a, b, point, na, nb, tangent, depth):
+    """The solid's thickness ``depth`` inside the seam of faces a and b at ``point``: from the point
+    that far into either face, the distance to the other face's surface (the smaller). A wedge of
+    angle w is depth sin(w) thick there; faces that curve toward each other beyond the seam (a
+    lip) are thinner than their angle at the seam says."""
+    return min(_across(a, b, point, na, tangent, depth), _across(b, a, point, nb, tangent, depth))
+
+
+def _seam_angles(shape, depth):
     """(min, max) angle between the two faces across each edge they share, in degrees: 180 minus
-    the angle between their outward normals, sampled along the edge; and where each minimum is."""
+    the angle between their outward normals, sampled along the edge; where each minimum is; and
+    the thinnest wall ``depth`` inside the seams, (thickness, (x, y, z))."""
     angles, sharpest = [], []
+    wall, wall_at = math.inf, ()
     faces = shape.Faces
     owners = {}
     for i, f in enumerate(faces):
@@ -209,11 +255,16 @@ def _seam_angles(shape):
             nb = b.normalAt(*uv_b(t))
             values.append(180.0 - math.degrees(na.getAngle(nb)))
             places.append(t)
+            if k % WALL_STRIDE == 1 or values[-1] == min(values):  # and at the sharpest angle
+                p = e.valueAt(t)
+                thickness = _wall(a, b, p, na, nb, e.tangentAt(t), depth)
+                if thickness < wall:
+                    wall, wall_at = thickness, (p.x, p.y, p.z)
         if values:
             angles.append((min(values), max(values)))
             p = e.valueAt(places[values.index(min(values))])
             sharpest.append((p.x, p.y, p.z))
-    return angles, sharpest
+    return angles, sharpest, (wall, wall_at)
 
 
 #: A seam whose faces meet at less than this (degrees) is a knife edge: FreeCAD's booleans,
