@@ -15,6 +15,8 @@
 3. Michalik & Bruderlin's sizes (TSVD / MTSVD) and 4. Du & Qin's sheet sizes.
 6. Local refinement (hierarchical spaces) against uniform refinement: degrees of freedom to meet a
    tolerance on one interior curve (bench/hierarchical_bench.cpp).
+7. N-sided holes against Surface Filling with G1 (and G2) to the face around them
+   (bench/hole_bench.py).
 5. Live dragging in a FreeCAD document (varsurf.app.drag.PointDrag): a 64 x 64 pole Sheet through 10
    curves with a Point constraint; each move's back-substitution and result face against a fresh
    recompute of the same Sheet in the same process.
@@ -344,6 +346,9 @@ def main():
     du_qin()
     live_drag()
     local_refinement()
+    import hole_bench  # here: it puts FreeCAD on the path, which sections 1, 3, 4 and 6 do not need
+
+    hole_bench.main()
 
 
 def platform_line():
