@@ -8,6 +8,7 @@ public API (importable headless, without any GUI module):
     make_sheet(base, curves, stretch=0.0, bend=1.0, fix_boundary=True)  -> Sheet object
     make_constraint(sheet, kind, location=None, uv=None, vector=None, ...) -> Constraint object
     make_solid(sheets, tolerance=None)                                  -> Solid object
+    make_fill_hole(part, "FaceN" or ["EdgeN", ...], curves, "G1")       -> FillHole object
     make_space_curve((obj, "EdgeN"), handle_parameters, handles)        -> SpaceCurve object
     move_handle(space_curve, index, position)
     make_hinge(solid, sheet_a, sheet_b, (obj, "EdgeN"), angle=180)      -> Hinge object
@@ -95,7 +96,7 @@ if not any(isinstance(f, _MovedFinder) for f in sys.meta_path):
 
 #: The document-level API (varsurf.app.api), which needs FreeCAD.
 APP_API = (
-    "make_sheet", "make_constraint", "make_solid", "install_rest_shape", "melt", "export_step",
+    "make_sheet", "make_constraint", "make_solid", "make_fill_hole", "install_rest_shape", "melt", "export_step",
     "make_space_curve", "make_hinge", "move_handle", "selection_to_sheet_args", "selection_problem",
     "create_sheet_from_selection", "sheet_command_lines", "is_sheet", "run_sheet_command",
     "run_space_curve_command", "run_hinge_command",
@@ -138,6 +139,7 @@ __all__ = [
     "is_sheet",
     "run_sheet_command",
     "make_solid",
+    "make_fill_hole",
     "make_space_curve",
     "move_handle",
     "make_hinge",

@@ -11,7 +11,15 @@ from varsurf.app.actions import (
     run_space_curve_command,
 )
 from varsurf.app.macro import constraint_command_lines, sheet_command_lines
-from varsurf.app.make import export_step, install_rest_shape, make_constraint, make_sheet, make_solid, melt
+from varsurf.app.make import (
+    export_step,
+    install_rest_shape,
+    make_constraint,
+    make_fill_hole,
+    make_sheet,
+    make_solid,
+    melt,
+)
 from varsurf.app.make_joints import make_hinge, make_space_curve, move_handle
 from varsurf.app.references import is_sheet, single_element
 from varsurf.app.selection import (
@@ -37,6 +45,7 @@ __all__ = [
     "export_step",
     "install_rest_shape",
     "make_constraint",
+    "make_fill_hole",
     "make_sheet",
     "make_solid",
     "melt",

@@ -19,6 +19,7 @@ import Part
 
 from varsurf.app import preferences, references
 from varsurf.app.constraint import ConstraintFeature
+from varsurf.app.fill_hole import FillHoleFeature
 from varsurf.app.sheet import SheetFeature, apply_settings
 from varsurf.app.solid import SolidFeature
 from varsurf.solve import constraints, settings
@@ -191,6 +192,27 @@ def make_solid(sheets, tolerance=None, name: str = "Solid"):
     if tolerance is not None:
         obj.Tolerance = float(tolerance)
     attach_view_provider(obj, "ViewProviderSolid")
+    return obj
+
+
+def make_fill_hole(part, elements, curves=(), continuity="G1", tolerance=None, name: str = "FillHole"):
+    """Add a VarSurf FillHole: ``part`` (a document object) with the face ``elements`` names
+    ("FaceN") replaced by a sheet, or the hole its free edges ("EdgeN", ...) bound filled by one,
+    G1 (or G0) to the faces around; ``curves``: (object, "EdgeN") links or objects inside the hole
+    that the sheet contains. Its Shape is the whole new part; the part is hidden."""
+    elements = [elements] if isinstance(elements, str) else list(elements)
+    if not elements:
+        raise ValueError("a FillHole needs the face to replace or the free edges of the hole")
+    doc = part.Document
+    obj = doc.addObject("Part::FeaturePython", name)
+    FillHoleFeature(obj)
+    obj.Base = (part, elements)
+    obj.Curves = [c if isinstance(c, tuple) else (c, "") for c in curves]
+    obj.Continuity = continuity
+    if tolerance is not None:
+        obj.Tolerance = float(tolerance)
+    if hasattr(part, "Visibility"):
+        part.Visibility = False  # the FillHole is the whole part now
     return obj
 
 

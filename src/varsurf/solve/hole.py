@@ -1,0 +1,118 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""Filling a hole in a shell or solid, or replacing one of its faces: a sheet trimmed to the
+hole's loop, joined to every face around it (G0, or G1 by default), sewn with the part's other
+faces into one new shape (a solid when it closes).
+
+The hole is given by the face it replaces (its outer wire is the loop, the faces across its
+edges are the neighbours) or by the free edges around it (their faces are the neighbours). The
+sheet is made from the loop and any interior curves as a Sheet from curves is, with one G1
+constraint per loop edge against its neighbour, and ends on the loop, so its edges are the
+part's own edges and the sewing closes them.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import List, Optional, Sequence
+
+from varsurf.solve import continuity
+from varsurf.solve.constraints import ConstraintSpec
+from varsurf.solve.errors import SheetError
+from varsurf.solve.native import native
+from varsurf.solve.outcome import SheetOutcome
+from varsurf.solve.settings import SheetSettings
+from varsurf.solve.shapes import shape_from_brep
+from varsurf.solve.sheet import solve_sheet_from_curves
+
+CONTINUITIES = ("G0", "G1")
+#: The sewing joins the sheet's edges (the loop curves themselves) to the part's within this
+#: multiple of the sheet's tolerance.
+SEW_FACTOR = 4.0
+
+
+@dataclass
+class HoleOutcome:
+    shape: object  # the part with the hole filled: a Part.Solid when it closes, else a shell
+    sheet: SheetOutcome  # the filling sheet's solve
+    closed: bool = False
+    valid: bool = False
+    max_tolerance: float = 0.0  # worst edge/vertex tolerance after sewing (mm)
+    free_edges: int = 0
+    joins: List[continuity.Join] = field(default_factory=list)  # per loop edge, against its neighbour
+
+
+def _same(a, b) -> bool:
+    return a.isSame(b)
+
+
+def _faces_of(shape, edge) -> List[int]:
+    return [i for i, f in enumerate(shape.Faces) if any(_same(e, edge) for e in f.Edges)]
+
+
+def loop_and_neighbours(shape, replace: Sequence[int] = (), edges: Sequence = ()):
+    """(loop edges, their neighbour faces, the indices of the faces kept) of the hole: the outer
+    wire of the one face ``replace`` names (index into shape.Faces), or the free ``edges``."""
+    faces = list(getattr(shape, "Faces", []) or [])
+    if not faces:
+        raise SheetError("the part has no faces: select a solid or shell to fill a hole in")
+    if bool(replace) == bool(edges):
+        raise SheetError("give either the face to replace or the free edges around the hole, not both")
+    if replace:
+        if len(replace) != 1:
+            raise SheetError(f"one face at a time is replaced (got {len(replace)}): replace them one by one")
+        index = replace[0]
+        if not 0 <= index < len(faces):
+            raise SheetError(f"the part has no face {index + 1}: it has {len(faces)}")
+        face = faces[index]
+        if len(face.Wires) > 1:
+            holes = len(face.Wires) - 1
+            raise SheetError(f"Face{index + 1} has {'a hole' if holes == 1 else f'{holes} holes'} of its own: a sheet "
+                             "replaces a face bounded by one loop; fill its holes first")
+        loop = list(face.OuterWire.Edges)
+        kept = [i for i in range(len(faces)) if i != index]
+    else:
+        loop = list(edges)
+        kept = list(range(len(faces)))
+    neighbours = []
+    for k, edge in enumerate(loop):
+        around = [i for i in _faces_of(shape, edge) if i in kept]
+        if len(around) != 1:
+            where = "no face of the part" if not around else f"{len(around)} faces of the part"
+            raise SheetError(f"edge {k + 1} of the hole lies on {where}; a hole's edge bounds exactly one face "
+                             "around it (select the free edges of an open shell, or a face of a solid)")
+        neighbours.append(faces[around[0]])
+    return loop, neighbours, kept
+
+
+def fill_hole(shape, replace: Sequence[int] = (), edges: Sequence = (), curves: Sequence = (),
+              continuity_kind: str = "G1", settings: Optional[SheetSettings] = None) -> HoleOutcome:
+    """The part ``shape`` with a sheet where its face ``replace`` (an index into shape.Faces) was,
+    or filling the hole bounded by its free ``edges``; ``curves`` are interior curves the sheet
+    contains. ``continuity_kind``: G0 (the sheet ends on the edges) or G1 (and is tangent to the
+    face across each). SheetError naming the edge or face at fault."""
+    if continuity_kind not in CONTINUITIES:
+        raise SheetError(f"Continuity must be one of {', '.join(CONTINUITIES)} (got {continuity_kind!r}); "
+                         "G2 is not available yet")
+    settings = (settings or SheetSettings()).changed(trim="Loop")
+    loop, neighbours, kept = loop_and_neighbours(shape, replace, edges)
+    specs = []
+    if continuity_kind == "G1":
+        specs = [ConstraintSpec(kind="G1", name=f"G1 to the face around edge {k + 1}", edge=e, reference=n)
+                 for k, (e, n) in enumerate(zip(loop, neighbours))]
+    names = [f"hole edge {k + 1}" for k in range(len(loop))] + [f"curve {k + 1}" for k in range(len(curves))]
+    sheet = solve_sheet_from_curves(loop + list(curves), settings, names=names, constraints=specs)
+    faces = [shape.Faces[i] for i in kept] + [sheet.shape]
+    nat = native()
+    tolerance = SEW_FACTOR * float(settings.tolerance)
+    try:
+        sewn = nat.sew_faces_brep([f.exportBrepToString() for f in faces], tolerance)
+    except (nat.InvalidInput, nat.GeometryError) as error:
+        raise SheetError(f"the filled hole cannot be sewn to the part: {error}") from error
+    if sewn.free_edges and not edges:
+        raise SheetError(f"the sheet does not close the hole: {sewn.free_edges} edges stay open after sewing "
+                         f"at {tolerance:.3g} mm")
+    joins = [continuity.measure(f"hole edge {k + 1}", sheet.shape, e, n if continuity_kind == "G1" else None)
+             for k, (e, n) in enumerate(zip(loop, neighbours))]
+    return HoleOutcome(shape=shape_from_brep(sewn.brep), sheet=sheet, closed=bool(sewn.closed),
+                       valid=bool(sewn.valid), max_tolerance=float(sewn.max_tolerance),
+                       free_edges=int(sewn.free_edges), joins=joins)
