@@ -39,6 +39,15 @@ def value(obj, name):
     return obj.getPropertyByName(name)
 
 
+def mark_failed(obj, error):
+    """A feature whose recompute failed: its Status says why, a Closed result is False, and the
+    report view gets one line (the caller re-raises, so the object is in error)."""
+    obj.Status = f"Error: {error}"
+    if "Closed" in obj.PropertiesList:
+        obj.Closed = False
+    FreeCAD.Console.PrintError(f"VarSurf: {obj.Label}: {error}\n")
+
+
 class StateError(RuntimeError):
     """An object saved by a newer VarSurf, or with an unreadable state: not recomputed."""
 

@@ -8,10 +8,9 @@ from __future__ import annotations
 
 import re
 
-import FreeCAD
 import Part
 
-from varsurf.app.feature import FeatureProxy, value
+from varsurf.app.feature import FeatureProxy, mark_failed, value
 from varsurf.solve import errors, hole
 from varsurf.solve.settings import SheetSettings
 
@@ -98,9 +97,7 @@ class FillHoleFeature(FeatureProxy):
             if not outcome.valid:
                 raise errors.SheetError("the filled part is not a valid shape")
         except Exception as error:
-            obj.Status = f"Error: {error}"
-            obj.Closed = False
-            FreeCAD.Console.PrintError(f"VarSurf: {obj.Label}: {error}\n")
+            mark_failed(obj, error)
             raise
         obj.Shape = outcome.shape
         obj.Closed = outcome.closed

@@ -20,7 +20,7 @@ from varsurf.app import hinge as hinge_feature
 from varsurf.app import progress
 from varsurf.app import sheet as sheet_feature
 from varsurf.app import space_curve as space_curve_feature
-from varsurf.app.feature import FeatureProxy, value
+from varsurf.app.feature import FeatureProxy, mark_failed, value
 from varsurf.solve import assembly, errors, joint, settings
 
 TYPE = "VarSurf::Solid"
@@ -255,9 +255,7 @@ class SolidFeature(FeatureProxy):
             if not outcome.valid:
                 raise errors.SheetError("the sewn shape is not valid")
         except Exception as error:
-            obj.Status = f"Error: {error}"
-            obj.Closed = False
-            FreeCAD.Console.PrintError(f"VarSurf: {obj.Label}: {error}\n")
+            mark_failed(obj, error)
             raise
         obj.Shape = outcome.shape
         obj.Closed = outcome.closed

@@ -10,10 +10,9 @@ joined along it. App side only.
 
 from __future__ import annotations
 
-import FreeCAD
 import Part
 
-from varsurf.app.feature import FeatureProxy
+from varsurf.app.feature import FeatureProxy, mark_failed
 from varsurf.solve import errors, shapes, space_curve
 from varsurf.solve.native import native
 
@@ -78,8 +77,7 @@ class SpaceCurveFeature(FeatureProxy):
             curve, _rest = variational_curve(obj)
             solved = space_curve.solve_alone(curve)
         except Exception as error:
-            obj.Status = f"Error: {error}"
-            FreeCAD.Console.PrintError(f"VarSurf: {obj.Label}: {error}\n")
+            mark_failed(obj, error)
             raise
         obj.Shape = shapes.part_curve(solved).toShape()
         obj.Status = f"OK: {len(curve.handles)} handles, {len(solved.poles)} poles"
