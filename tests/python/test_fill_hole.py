@@ -107,6 +107,24 @@ def test_the_free_edges_of_an_open_box_are_closed_by_a_flat_lid(doc, native):
     assert filled.Shape.Volume == pytest.approx(50 * 30 * 20, rel=1e-9)
 
 
+def test_a_shell_with_two_holes_keeps_the_one_not_filled(doc, native):
+    """A box shell without top and bottom: filling the top leaves an open shell whose free edges
+    are the bottom's four."""
+    box = Part.makeBox(50, 30, 20)
+    caps = (_face_at_height(box, 20.0), _face_at_height(box, 0.0))
+    shell = Part.Shell([f for i, f in enumerate(box.Faces) if i not in caps])
+    part = doc.addObject("Part::Feature", "Tube")
+    part.Shape = shell
+    doc.recompute()
+    top = [i for i, e in enumerate(shell.Edges)
+           if abs(e.BoundBox.ZMin - 20.0) < 1e-9 and abs(e.BoundBox.ZMax - 20.0) < 1e-9]
+    filled = varsurf.make_fill_hole(part, [f"Edge{i + 1}" for i in top], continuity="G0")
+    doc.recompute()
+    assert filled.isValid(), filled.getStatusString()
+    assert not filled.Closed and "open shell (4 free edges)" in filled.Status
+    assert filled.Shape.Area == pytest.approx(shell.Area + 50 * 30, rel=1e-9)
+
+
 def test_bad_holes_are_errors_that_say_what_to_do(doc, native, console_errors):
     box = doc.addObject("Part::Box", "Box")
     doc.recompute()

@@ -41,12 +41,18 @@ class HoleOutcome:
     joins: List[continuity.Join] = field(default_factory=list)  # per loop edge, against its neighbour
 
 
-def _same(a, b) -> bool:
-    return a.isSame(b)
+def _edge_faces(shape):
+    """Each edge's faces, by hashCode (the same edge in every face that uses it): a face index
+    per use, so a closed face's seam is listed twice and a free edge once."""
+    owners = {}
+    for i, f in enumerate(shape.Faces):
+        for e in f.Edges:
+            owners.setdefault(e.hashCode(), []).append(i)
+    return owners
 
 
-def _faces_of(shape, edge) -> List[int]:
-    return [i for i, f in enumerate(shape.Faces) if any(_same(e, edge) for e in f.Edges)]
+def _free_edges(owners) -> int:
+    return sum(1 for faces in owners.values() if len(faces) == 1)
 
 
 def loop_and_neighbours(shape, replace: Sequence[int] = (), edges: Sequence = ()):
@@ -74,8 +80,9 @@ def loop_and_neighbours(shape, replace: Sequence[int] = (), edges: Sequence = ()
         loop = list(edges)
         kept = list(range(len(faces)))
     neighbours = []
+    owners = _edge_faces(shape)
     for k, edge in enumerate(loop):
-        around = [i for i in _faces_of(shape, edge) if i in kept]
+        around = sorted(set(i for i in owners.get(edge.hashCode(), []) if i in kept))
         if len(around) != 1:
             where = "no face of the part" if not around else f"{len(around)} faces of the part"
             raise SheetError(f"edge {k + 1} of the hole lies on {where}; a hole's edge bounds exactly one face "
@@ -108,7 +115,10 @@ def fill_hole(shape, replace: Sequence[int] = (), edges: Sequence = (), curves: 
         sewn = nat.sew_faces_brep([f.exportBrepToString() for f in faces], tolerance)
     except (nat.InvalidInput, nat.GeometryError) as error:
         raise SheetError(f"the filled hole cannot be sewn to the part: {error}") from error
-    if sewn.free_edges and not edges:
+    # A part that the filled hole closes must come out closed (an open shell with other holes
+    # keeps those: it is reported as an open shell).
+    closes = _free_edges(_edge_faces(shape)) == (len(loop) if edges else 0)
+    if closes and sewn.free_edges:
         raise SheetError(f"the sheet does not close the hole: {sewn.free_edges} edges stay open after sewing "
                          f"at {tolerance:.3g} mm")
     joins = [continuity.measure(f"hole edge {k + 1}", sheet.shape, e, n if continuity_kind == "G1" else None)
