@@ -14,6 +14,8 @@ status=0
 git ls-files -z '*.cpp' '*.hpp' | xargs -0 clang-format --dry-run --Werror || status=1
 /usr/bin/python3 -m flake8 src tests bench examples tools Init.py InitGui.py || status=1
 ctest --test-dir build --output-on-failure -j2 || status=1
-/usr/bin/python3 -m pytest tests/python -q -p no:cacheprovider -n 2 || status=1
+# --dist loadfile: a test file's tests share one worker, so a module fixture runs once (the GUI
+# smoke test's FreeCAD session writes one output folder; two workers running it raced on it).
+/usr/bin/python3 -m pytest tests/python -q -p no:cacheprovider -n 2 --dist loadfile || status=1
 bash tools/sanitize.sh || status=1
 exit $status

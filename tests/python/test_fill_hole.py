@@ -187,3 +187,35 @@ def test_the_crowned_lid_example_follows_its_box_and_sketches(doc, native, tmp_p
         assert type(restored.Proxy).__name__ == "FillHoleFeature"
         recompute_all(again)
         assert restored.isValid() and restored.Shape.Volume == pytest.approx(volume, rel=1e-9)
+
+
+def test_the_fill_hole_command_records_lines_that_make_the_same_part(doc, native):
+    """The command's selection (the box's top, then the arcs' edges), its recorded lines in one
+    undoable transaction, and the part they make equal to the API's; bad selections say what to
+    select."""
+    from scenes import Sel
+    from varsurf.app import actions, macro
+
+    box, arcs, by_api = _crowned_box(doc)
+    top = by_api.Base[1][0]
+    lines = []
+
+    def run(line):
+        lines.append(line)
+        macro.exec_line(line)
+
+    made = actions.run_fill_hole_command([Sel(box, top), Sel(arcs, "Edge1", "Edge2")], do_command=run)
+    assert made is not None and any("make_fill_hole" in line for line in lines), lines
+    # G1 (the command's default) to a box's walls is refused at its corners; G0 is the crown.
+    assert not made.isValid() and "cannot be tangent to both" in made.Status
+    made.Continuity = "G0"
+    doc.recompute()
+    assert made.isValid() and made.Shape.Volume == pytest.approx(by_api.Shape.Volume, rel=1e-12)
+    n = len(doc.Objects)
+    doc.undo()
+    assert len(doc.Objects) == n - 1
+    errors = []
+    assert actions.run_fill_hole_command([], on_error=errors.append) is None
+    assert actions.run_fill_hole_command([Sel(arcs), Sel(box, top)], on_error=errors.append) is None
+    assert actions.run_fill_hole_command([Sel(box, top, "Edge1")], on_error=errors.append) is None
+    assert len(errors) == 3 and all("Select the face of a part to replace" in e for e in errors), errors

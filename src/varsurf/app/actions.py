@@ -16,6 +16,7 @@ TRANSACTION_SOLID = "Add VarSurf solid"
 TRANSACTION_CONSTRAINT = "Add VarSurf constraint"
 TRANSACTION_SPACE_CURVE = "Add VarSurf space curve"
 TRANSACTION_HINGE = "Add VarSurf hinge"
+TRANSACTION_FILL_HOLE = "Fill hole with VarSurf sheet"
 
 
 def _report(error, on_error):
@@ -78,6 +79,18 @@ def run_space_curve_command(selection_ex, do_command=None, on_error=None):
         return None
     return run_in_transaction(obj.Document, TRANSACTION_SPACE_CURVE, macro.space_curve_command_lines(obj, sub),
                               do_command)
+
+
+def run_fill_hole_command(selection_ex, do_command=None, on_error=None):
+    """What VarSurf_FillHole does: a FillHole of the selected part's face or free edges, with the
+    other selected curves inside. Returns the new FillHole or None."""
+    try:
+        part, elements, curves = selection.fill_hole_selection_to_args(selection_ex)
+    except ValueError as error:
+        _report(error, on_error)
+        return None
+    return run_in_transaction(part.Document, TRANSACTION_FILL_HOLE,
+                              macro.fill_hole_command_lines(part, elements, curves), do_command)
 
 
 def run_hinge_command(selection_ex, do_command=None, on_error=None, angle: float = 180.0):

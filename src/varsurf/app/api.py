@@ -5,6 +5,7 @@ each command does (``varsurf.make_sheet`` and the other top-level names come fro
 from varsurf.app.actions import (
     create_sheet_from_selection,
     run_constraint_command,
+    run_fill_hole_command,
     run_hinge_command,
     run_sheet_command,
     run_solid_command,
@@ -24,6 +25,7 @@ from varsurf.app.make_joints import make_hinge, make_space_curve, move_handle
 from varsurf.app.references import is_sheet, single_element
 from varsurf.app.selection import (
     constraint_selection_to_args,
+    fill_hole_selection_to_args,
     hinge_selection_to_args,
     selection_hint,
     selection_problem,
@@ -36,6 +38,7 @@ from varsurf.app.transaction import run_in_transaction
 __all__ = [
     "create_sheet_from_selection",
     "run_constraint_command",
+    "run_fill_hole_command",
     "run_hinge_command",
     "run_sheet_command",
     "run_solid_command",
@@ -55,6 +58,7 @@ __all__ = [
     "is_sheet",
     "single_element",
     "constraint_selection_to_args",
+    "fill_hole_selection_to_args",
     "hinge_selection_to_args",
     "selection_hint",
     "selection_problem",

@@ -44,6 +44,16 @@ def solid_command_lines(sheets) -> List[str]:
     ]
 
 
+def fill_hole_command_lines(part, elements, curves) -> List[str]:
+    """Macro lines that fill a hole in (or replace a face of) a part and recompute."""
+    curve_text = ", ".join(f"({ref(o)}, {sub!r})" for o, sub in curves)
+    return [
+        "import varsurf",
+        f"_fill = varsurf.make_fill_hole({ref(part)}, {list(elements)!r}, curves=[{curve_text}])",
+        f"App.getDocument({part.Document.Name!r}).recompute()",
+    ]
+
+
 def constraint_command_lines(kind: str, sheet, args) -> List[str]:
     """Macro lines that add a constraint with editable defaults and recompute."""
     parts = [ref(sheet), repr(kind)]

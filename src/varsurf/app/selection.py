@@ -95,6 +95,33 @@ def solid_selection_to_sheets(selection_ex) -> List:
     return sheets
 
 
+FILL_HOLE_HINT = ("Select the face of a part to replace, or the free edges around a hole (Ctrl+click), and "
+                  "optionally curves inside it (e.g. a sketch).")
+
+
+def fill_hole_selection_to_args(selection_ex):
+    """(part, its selected face or edges, interior curves as (object, element) links) of a selection:
+    the first object with a selected face or edges is the part; everything selected after it are
+    curves. ValueError saying what to select otherwise."""
+    part, elements, curves = None, [], []
+    for sel in selection_ex or []:
+        obj, names = sel.Object, [n for n in (sel.SubElementNames or []) if n]
+        if part is None and names and all(n.startswith(("Face", "Edge")) for n in names):
+            if references.is_sheet(obj):
+                raise ValueError(f"{obj.Label} is a Sheet: fill holes in parts. {FILL_HOLE_HINT}")
+            part, elements = obj, names
+            continue
+        if part is None:
+            raise ValueError(f"select the part's face or edges first. {FILL_HOLE_HINT}")
+        curves += [(obj, n) for n in names] if names else [(obj, "")]
+    if part is None:
+        raise ValueError(f"nothing to fill is selected. {FILL_HOLE_HINT}")
+    faces = [n for n in elements if n.startswith("Face")]
+    if faces and (len(faces) > 1 or len(faces) != len(elements)):
+        raise ValueError(f"select one face to replace, or edges only. {FILL_HOLE_HINT}")
+    return part, elements, curves
+
+
 #: What to select for each kind, besides the Sheet.
 SELECTION_HINTS = {
     "Point": "Select a Sheet and the vertex it must pass through.",

@@ -94,6 +94,14 @@ SELECTION_COMMANDS = [
          "Join Sheets along the curves they share: each is trimmed to its shared curves and\n"
          "the faces form a shell, a solid when closed. Select two or more Sheets."),
      selection.solid_selection_to_sheets, actions.run_solid_command),
+    ("VarSurf_FillHole", "VarSurf_FillHole.svg",
+     QT_TRANSLATE_NOOP("VarSurf_FillHole", "Fill hole / replace face"),
+     QT_TRANSLATE_NOOP(
+         "VarSurf_FillHole",
+         "Replace a part's face by a sheet, or fill the hole its free edges bound, G1 to the faces\n"
+         "around; the result is the whole part. Select the face (or the free edges) and, optionally,\n"
+         "curves inside it."),
+     selection.fill_hole_selection_to_args, actions.run_fill_hole_command),
     ("VarSurf_SpaceCurve", "VarSurf_SpaceCurve.svg",
      QT_TRANSLATE_NOOP("VarSurf_SpaceCurve", "Variational space curve"),
      QT_TRANSLATE_NOOP(
