@@ -42,6 +42,7 @@ def _hinge_ok(solid, angle):
     shape = solid.Shape
     assert shape.isValid() and shape.check(True) is None
     assert len(shape.Faces) == 2 and not solid.Closed  # an open shell, reported as such
+    assert solid.ThinnestWall == 0.0 and "thinnest wall" not in solid.Status  # it has no walls
     assert max(solid.SeamGaps) <= solid.Tolerance.Value
     assert "joint solve" in solid.JointSolve
 

@@ -270,7 +270,7 @@ class SolidFeature(FeatureProxy):
                     "curve (the sheets cannot bend that way there: more spans, or a compatible angle)\n")
         kind = "solid" if outcome.closed else f"open shell ({outcome.free_edges} free edges)"
         obj.Status = f"OK: {kind} of {outcome.faces} faces, worst edge tolerance {outcome.max_tolerance:.3g} mm"
-        if outcome.closed and math.isfinite(outcome.thinnest_wall):  # an open shell has no walls
+        if math.isfinite(outcome.thinnest_wall):  # measured for closed solids only
             obj.ThinnestWall = outcome.thinnest_wall
             x, y, z = outcome.thinnest_wall_at
             obj.Status += (f"; thinnest wall {outcome.thinnest_wall:.3g} mm at {outcome.wall_depth:.3g} mm inside "

@@ -142,7 +142,8 @@ def build_solid(sheets: Sequence, tolerance: float) -> AssemblyOutcome:
     except (nat.InvalidInput, nat.GeometryError) as error:
         raise SheetError(str(error)) from error
     shape = shape_from_brep(result.brep)
-    depth = WALL_DEPTH * shape.BoundBox.DiagonalLength
+    # An open shell has no walls: the measurement (projections on every seam) is left out.
+    depth = WALL_DEPTH * shape.BoundBox.DiagonalLength if result.closed else None
     angles, sharpest, (wall, wall_at) = _seam_angles(shape, depth)
     return AssemblyOutcome(
         shape=shape,
@@ -150,7 +151,7 @@ def build_solid(sheets: Sequence, tolerance: float) -> AssemblyOutcome:
         seam_sharpest=sharpest,
         thinnest_wall=wall,
         thinnest_wall_at=wall_at,
-        wall_depth=depth,
+        wall_depth=depth or 0.0,
         closed=bool(result.closed),
         valid=bool(result.valid),
         max_tolerance=float(result.max_tolerance),
@@ -233,7 +234,8 @@ def _wall(a, b, point, na, nb, tangent, depth):
 def _seam_angles(shape, depth):
     """(min, max) angle between the two faces across each edge they share, in degrees: 180 minus
     the angle between their outward normals, sampled along the edge; where each minimum is; and
-    the thinnest wall ``depth`` inside the seams, (thickness, (x, y, z))."""
+    the thinnest wall ``depth`` inside the seams, (thickness, (x, y, z)), or (inf, ()) without a
+    depth."""
     angles, sharpest = [], []
     wall, wall_at = math.inf, ()
     faces = shape.Faces
@@ -255,7 +257,7 @@ def _seam_angles(shape, depth):
             nb = b.normalAt(*uv_b(t))
             values.append(180.0 - math.degrees(na.getAngle(nb)))
             places.append(t)
-            if k % WALL_STRIDE == 1 or values[-1] == min(values):  # and at the sharpest angle
+            if depth is not None and (k % WALL_STRIDE == 1 or values[-1] == min(values)):  # and the sharpest
                 p = e.valueAt(t)
                 thickness = _wall(a, b, p, na, nb, e.tangentAt(t), depth)
                 if thickness < wall:
