@@ -7,8 +7,8 @@
 A smooth host face (a bicubic B-spline, 140 mm square, a few mm of waves) has a hole cut by a
 prism: three, five and six sides, a concave L, and one with a 170 degree corner. Both fill the
 hole from its edges with the host as the neighbour on every edge: Filling with BoundaryFaces and
-order G1 (and one case G2), VarSurf with a G1 constraint per edge and the sheet trimmed to the
-loop. Measured on the results by OCCT (varsurf.solve.continuity, 200 points an edge), not by
+order G1 (and one case G2), VarSurf with a G1 (G2) constraint per edge and the sheet trimmed to
+the loop. Measured on the results by OCCT (varsurf.solve.continuity, 200 points an edge), not by
 either solver: the largest gap to the host, angle between the tangent planes and relative jump
 of the normal curvature across the edges; degree and poles; and the fairness, the integral of
 k1^2 + k2^2 over the trimmed face.
@@ -102,7 +102,8 @@ def run(doc, name, host):
     doc.recompute()
     fill_s = time.perf_counter() - t
     ok_f = filling.isValid() and not filling.Shape.isNull() and bool(filling.Shape.Faces)
-    specs = [ConstraintSpec(kind="G1", name=f"G1 {k}", edge=e, reference=around) for k, e in enumerate(edges)]
+    kind = "G2" if order == 2 else "G1"
+    specs = [ConstraintSpec(kind=kind, name=f"{kind} {k}", edge=e, reference=around) for k, e in enumerate(edges)]
     t = time.perf_counter()
     try:
         ours = solve_sheet_from_curves(edges, tolerance=0.001, constraints=specs).shape
@@ -110,7 +111,7 @@ def run(doc, name, host):
     except Exception as error:  # the row says what failed
         ours_s, ok_o, why = time.perf_counter() - t, False, str(error)[:80]
     rows = []
-    for label, ok, seconds, face in (("VarSurf G1", ok_o, ours_s, ours if ok_o else None),
+    for label, ok, seconds, face in ((f"VarSurf {kind}", ok_o, ours_s, ours if ok_o else None),
                                      (f"Filling {'G2' if order == 2 else 'G1'}", ok_f, fill_s,
                                       filling.Shape.Faces[0] if ok_f else None)):
         if not ok:

@@ -258,6 +258,7 @@ void bind_core_types(py::module_& m) {
       .def_readwrite("plane_points", &SheetProblem::plane_points)
       .def_readwrite("line_points", &SheetProblem::line_points)
       .def_readwrite("ribbons", &SheetProblem::ribbons)
+      .def_readwrite("curvatures", &SheetProblem::curvatures, "G2 conditions (iterated).")
       .def_readwrite("attractors", &SheetProblem::attractors)
       .def_readwrite("directors", &SheetProblem::directors)
       .def_readwrite("repellers", &SheetProblem::repellers)
@@ -316,6 +317,9 @@ void bind_core_types(py::module_& m) {
                      "Nonlinear steps allowed (repellers, shape attractors, pressure).")
       .def_readwrite("step_limit", &SolveOptions::step_limit,
                      "Largest pole move per nonlinear step, relative to the sheet's size.")
+      .def_readwrite("curvature_tolerance", &SolveOptions::curvature_tolerance,
+                     "G2: stop when every sample's relative curvature jump is below this.")
+      .def_readwrite("max_curvature_iterations", &SolveOptions::max_curvature_iterations)
       .def_readwrite("nonlinear_tolerance", &SolveOptions::nonlinear_tolerance,
                      "Converged when no pole moves more than this (relative to the size).")
       .def_readwrite("force_coupled", &SolveOptions::force_coupled,
@@ -365,6 +369,10 @@ void bind_core_types(py::module_& m) {
                     "where it has them, not fitted to their data.")
       .def_readonly("coupled", &SolveReport::coupled, "True if one 3n system was solved.")
       .def_readonly("iterations", &SolveReport::iterations, "Nonlinear steps taken.")
+      .def_readonly("curvature_iterations", &SolveReport::curvature_iterations,
+                    "Newton steps of the G2 conditions (0 without them).")
+      .def_readonly("curvature_jump", &SolveReport::curvature_jump,
+                    "Largest relative curvature jump of the G2 conditions after the solve.")
       .def_readonly("converged", &SolveReport::converged)
       .def_readonly("last_step", &SolveReport::last_step,
                     "Largest pole move of the last nonlinear step.")

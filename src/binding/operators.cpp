@@ -4,6 +4,7 @@
 #include <pybind11/stl.h>
 
 #include "binding.hpp"
+#include "varsurf/core/curvature_constraint.hpp"
 #include "varsurf/core/external_energy.hpp"
 #include "varsurf/core/point_constraints.hpp"
 #include "varsurf/core/ribbon_constraint.hpp"
@@ -84,6 +85,30 @@ void bind_operators(py::module_& m) {
          int samples) { return ribbon_angle_error(space, poles, c, samples); },
       "space"_a, "poles"_a, "ribbon"_a, "samples"_a = 200,
       "Largest angle (radians) between the sheet's normal and the ribbon's field.");
+
+  py::class_<CurvatureConstraint>(
+      m, "CurvatureConstraint",
+      "G2 along the 2D preimage: the sheet's normal curvature across it equals the neighbour's, "
+      "given as its normal field normals(t) and its second fundamental form shape(t) (6 "
+      "components xx, yy, zz, xy, xz, yz). Not linear: solve_sheet iterates.")
+      .def(py::init(
+               [](BSplineCurve preimage, BSplineCurve normals, BSplineCurve shape, double weight) {
+                 return CurvatureConstraint{std::move(preimage), std::move(normals),
+                                            std::move(shape), weight};
+               }),
+           "preimage"_a, "normals"_a, "shape"_a, "weight"_a = 1.0)
+      .def_readwrite("preimage", &CurvatureConstraint::preimage)
+      .def_readwrite("normals", &CurvatureConstraint::normals)
+      .def_readwrite("shape", &CurvatureConstraint::shape)
+      .def_readwrite("weight", &CurvatureConstraint::weight);
+
+  m.def(
+      "curvature_jump",
+      [](const SplineSpace& space, const Eigen::MatrixX3d& poles, const CurvatureConstraint& c,
+         double floor, int samples) { return curvature_jump(space, poles, c, floor, samples); },
+      "space"_a, "poles"_a, "curvature"_a, "floor"_a, "samples"_a = 200,
+      "Largest relative jump between the sheet's and the neighbour's normal curvature across the "
+      "pre-image, relative to max(|k|, floor).");
 
   py::class_<Region>(m, "Region",
                      "A region of the parameter domain: the rectangle [u0, u1] x [v0, v1], or "

@@ -235,6 +235,20 @@ def case_constraint_bad_reference(sc):
     return c, ["Location vertex", c.Label], fix
 
 
+def case_g2_on_a_degree_two_sheet(sc):
+    c = varsurf.make_constraint(sc.sheet, "G2", curve=(sc.ridge, "Edge1"), reference=(sc.base, "Face1"))
+    sc.sheet.Degree = 2
+    plane = Part.Plane(V(0, 0, 0), V(0, 0, 1)).toShape(0, 100, 0, 80)  # degree 1: elevated to 2 only
+    put_back = sc.use_base(plane)
+
+    def fix():
+        sc.sheet.Constraints = []
+        sc.doc.removeObject(c.Name)
+        sc.sheet.Degree = 3
+        put_back()
+    return sc.sheet, ["G2", "degree 3", "Degree"], fix
+
+
 def case_nan_stretch(sc):
     return sc.sheet, ["Stretch", "nan"], sc.set(Stretch=float("nan"))
 

@@ -50,6 +50,7 @@ VALID = {
     "Ribbon": lambda o: dict(curve=(o["seam"], "Edge1"), reference=(o["second"], "Edge1"), angle=5.0),
     "G1": lambda o: dict(curve=(o["seam"], "Edge1"), reference=(o["flat"], "Face1")),
     "G0": lambda o: dict(curve=(o["lifted"], "Edge1")),
+    "G2": lambda o: dict(curve=(o["seam"], "Edge1"), reference=(o["flat"], "Face1")),
 }
 
 
@@ -115,6 +116,8 @@ BAD = [
     ("Ribbon", dict(Angle=NAN), "Angle must be finite"),
     ("G1", dict(Reference=None), "needs a Curve (an edge) and a Reference"),
     ("G1", dict(Reference="roof"), "from its reference face"),
+    ("G2", dict(Reference=None), "needs a Curve (an edge) and a Reference"),
+    ("G2", dict(Reference="roof"), "from its reference face"),
     ("G0", dict(Curve=None), "needs a Curve"),
     ("G0", dict(Curve="beyond"), "beyond"),
 ]

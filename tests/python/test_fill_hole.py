@@ -130,8 +130,9 @@ def test_bad_holes_are_errors_that_say_what_to_do(doc, native, console_errors):
     doc.recompute()
     n = len(doc.Objects)
     g2 = varsurf.make_fill_hole(box, "Face6", continuity="G1")
+    assert list(g2.getEnumerationsOfProperty("Continuity")) == ["G0", "G1", "G2"]
     with pytest.raises(ValueError):
-        g2.Continuity = "G2"  # not offered yet
+        g2.Continuity = "G3"  # not a continuity
     holed = doc.addObject("Part::Feature", "Holed")
     plate = Part.makeBox(40, 40, 5).cut(Part.makeCylinder(5, 10, V(20, 20, -1)))
     holed.Shape = plate

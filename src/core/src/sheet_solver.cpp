@@ -211,7 +211,7 @@ std::vector<ConstraintSamples> sample_constraints(const SheetProblem& pb, bool c
 
 bool has_coupled_constraints(const SheetProblem& pb) {
   return !pb.normals.empty() || !pb.plane_points.empty() || !pb.line_points.empty() ||
-         !pb.ribbons.empty();
+         !pb.ribbons.empty() || !pb.curvatures.empty();
 }
 
 // Before anything large is allocated: the solve's size, 3 unknowns a pole if it couples x, y, z.
@@ -296,6 +296,70 @@ Eigen::MatrixX3d to_poles(const Eigen::MatrixXd& x, bool coupled) {
   return coupled ? unflatten(x) : Eigen::MatrixX3d(x);
 }
 
+// G2: Newton steps, each the whole constrained solve with the curvature rows linearized at the
+// last poles (the first solve, without them, is the G1 answer they start from). The energy's
+// Hessian lacks the conditions' curvature (their multipliers are not kept), so convergence is
+// linear (measured: the jump falls about 4x a step); it stops when every sample's relative jump
+// is below curvature_tolerance, the poles stop moving or the jump stops falling, and keeps the
+// best step.
+Eigen::MatrixXd iterate_curvature(const SheetProblem& pb, const SolveOptions& opt,
+                                  const Assembled& as, Eigen::MatrixXd x, SolveReport& rep) {
+  if (!(opt.curvature_tolerance > 0.0) || opt.max_curvature_iterations < 1)
+    throw InvalidInput("G2: curvature_tolerance and max_curvature_iterations must be > 0");
+  const Eigen::Vector3d extent =
+      pb.initial_poles.colwise().maxCoeff() - pb.initial_poles.colwise().minCoeff();
+  const double size = std::max(extent.norm(), 1e-300);
+  const double tol = opt.nonlinear_tolerance * size;
+  const auto jump_at = [&](const Eigen::MatrixXd& y) {
+    double worst = 0.0;
+    for (const CurvatureConstraint& c : pb.curvatures)
+      worst = std::max(worst, curvature_jump(pb.space, unflatten(y), c, 1.0 / size));
+    return worst;
+  };
+  Eigen::MatrixXd best = x;
+  double best_jump = jump_at(x);
+  int stalled = 0;
+  rep.converged = false;
+  for (int it = 1; it <= opt.max_curvature_iterations; ++it) {
+    check_keep_going(opt);
+    const Eigen::MatrixX3d current = unflatten(x);
+    Quadratic step = as.quad;
+    for (size_t i = 0; i < pb.curvatures.size(); ++i) {
+      try {
+        step.blocks.push_back(sample_curvature(pb.space, pb.curvatures[i], current));
+      } catch (const InvalidInput& e) {
+        throw InvalidInput("curvature constraint " + std::to_string(i) + ": " + e.what());
+      }
+    }
+    SolveReport inner;
+    inner.coupled = true;
+    Eigen::MatrixXd next = solve_quadratic(step, opt, inner);
+    if (as.nonlinear) next = iterate_nonlinear(pb, opt, as.scales, step, next, inner);
+    const double move = (next - x).cwiseAbs().maxCoeff();
+    if (!std::isfinite(move)) throw SolveFailure("G2 iterations diverged (poles not finite)");
+    x = std::move(next);
+    const double jump = jump_at(x);
+    rep.curvature_iterations = it;
+    rep.last_step = move;
+    // What the space can do is done when the jump stops falling (the rows are met in least
+    // squares, or only to the fit tolerance): stop after two steps that gain less than 1 %.
+    stalled = jump > 0.99 * best_jump ? stalled + 1 : 0;
+    if (jump < best_jump) {
+      best = x, best_jump = jump;
+      rep.constraint_samples = inner.constraint_samples;
+      rep.constraint_rank = inner.constraint_rank;
+      rep.constraint_residual = inner.constraint_residual;
+      rep.conflict = inner.conflict;
+    }
+    if (jump <= opt.curvature_tolerance || move <= tol || stalled >= 2) {
+      rep.converged = best_jump <= opt.curvature_tolerance;
+      break;
+    }
+  }
+  rep.curvature_jump = best_jump;
+  return best;
+}
+
 }  // namespace
 
 Quadratic coupled_sheet_quadratic(const SheetProblem& pb, const SolveOptions& opt, bool fold_rest) {
@@ -303,6 +367,10 @@ Quadratic coupled_sheet_quadratic(const SheetProblem& pb, const SolveOptions& op
   SolveOptions coupled = opt;
   coupled.force_coupled = true;
   SolveReport rep;
+  if (!pb.curvatures.empty())
+    throw InvalidInput(
+        "G2 conditions are iterated per sheet: they cannot be part of a joint or hierarchical "
+        "solve (solve that sheet on its own, on a uniform space)");
   Assembled as = assemble(pb, coupled, rep);
   if (as.nonlinear)
     throw InvalidInput(
@@ -327,6 +395,7 @@ SolveResult solve_sheet(const SheetProblem& pb, const SolveOptions& opt) {
   rep.assemble_seconds = seconds_since(t);
   Eigen::MatrixXd x = solve_quadratic(as.quad, opt, rep);
   if (as.nonlinear) x = iterate_nonlinear(pb, opt, as.scales, as.quad, x, rep);
+  if (!pb.curvatures.empty()) x = iterate_curvature(pb, opt, as, x, rep);
   result.poles = to_poles(x, rep.coupled);
   rep.total_seconds = seconds_since(start);
   return result;
@@ -359,9 +428,9 @@ PreparedSheet::PreparedSheet(const SheetProblem& pb, const SolveOptions& opt) : 
     return st.curve_blocks.back();
   });
   rep.assemble_seconds = seconds_since(t);
-  if (st.assembled.nonlinear)
+  if (st.assembled.nonlinear || !pb.curvatures.empty())
     throw InvalidInput(
-        "repellers, shape attractors and pressure are solved by iteration: "
+        "repellers, shape attractors, pressure and G2 are solved by iteration: "
         "there is no factorization to keep");
   st.solver = std::make_unique<ConstrainedSolve>(st.assembled.quad, opt, rep);
   const Eigen::MatrixXd x = st.solver->solve(st.assembled.quad.f, st.solver->reduced_rhs(), rep);
@@ -431,7 +500,7 @@ void check_same_setup(const SheetProblem& pb, const SheetProblem& moved) {
       (pb.rest_poles.rows() == 0 || pb.rest_poles == moved.rest_poles) &&
       pb.attractors.size() == moved.attractors.size() &&
       pb.directors.size() == moved.directors.size() && moved.repellers.empty() &&
-      moved.shape_attractors.empty() && moved.pressure == 0.0 &&
+      moved.shape_attractors.empty() && moved.pressure == 0.0 && moved.curvatures.empty() &&
       pb.kept_region.has_value() == moved.kept_region.has_value() &&
       (!pb.kept_region || same_region(*pb.kept_region, *moved.kept_region)) &&
       pb.overhang_energy == moved.overhang_energy;

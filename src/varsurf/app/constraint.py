@@ -33,8 +33,8 @@ _PROPERTIES = [
     ("RegionV1", "App::PropertyFloat", "Region", "Normalized region end along v"),
     ("Weight", "App::PropertyFloat", "Constraint", "Weight of a constraint, or strength of an operator (>= 0)"),
     ("RegionLoop", "App::PropertyLinkSub", "Region", "Closed edges (e.g. a sketch): the region is the part of the sheet they enclose, projected onto the base; overrides RegionU0..V1"),
-    ("Curve", "App::PropertyLinkSub", "Ribbon", "Ribbon and G1: the edge along which the sheet's orientation is set; CurveAttractor: the edge pulled onto"),
-    ("Reference", "App::PropertyLinkSub", "Ribbon", "G1, Ribbon: the face whose normal the sheet follows along Curve (Ribbon: or a second edge; empty: the base's normal); SurfaceAttractor: the face pulled onto"),
+    ("Curve", "App::PropertyLinkSub", "Ribbon", "Ribbon, G1 and G2: the edge along which the sheet's orientation is set; CurveAttractor: the edge pulled onto"),
+    ("Reference", "App::PropertyLinkSub", "Ribbon", "G1, G2, Ribbon: the face whose normal (G2: and curvature) the sheet follows along Curve (Ribbon: or a second edge; empty: the base's normal); SurfaceAttractor: the face pulled onto"),
     ("Angle", "App::PropertyAngle", "Ribbon", "Ribbon: the sheet's normal is the Reference's turned by this angle about Curve"),
 ]
 

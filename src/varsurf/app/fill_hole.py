@@ -21,7 +21,7 @@ DEFAULT_TOLERANCE = 0.001
 _PROPERTIES = [
     ("Base", "App::PropertyLinkSub", "FillHole", "The part and either the face to replace (one FaceN) or the free edges around the hole (EdgeN...)", False),
     ("Curves", "App::PropertyLinkSubList", "FillHole", "Curves inside the hole that the sheet contains (e.g. a sketch's arcs)", False),
-    ("Continuity", "App::PropertyEnumeration", "FillHole", "G1: the sheet is tangent to the face across each edge; G0: it only ends on the edges", False),
+    ("Continuity", "App::PropertyEnumeration", "FillHole", "G1: the sheet is tangent to the face across each edge; G2: it also continues its curvature (iterated); G0: it only ends on the edges", False),
     ("Tolerance", "App::PropertyLength", "FillHole", "How closely the sheet meets its edges and curves (mm); the sewing joins within four times this", False),
     ("Closed", "App::PropertyBool", "Result", "True if the filled part is a closed solid", True),
     ("MaxEdgeTolerance", "App::PropertyFloat", "Result", "Worst edge/vertex tolerance after sewing (mm)", True),
@@ -84,9 +84,11 @@ class FillHoleFeature(FeatureProxy):
 
     def add_properties(self, obj):
         super().add_properties(obj)
-        if not obj.getEnumerationsOfProperty("Continuity"):
-            obj.Continuity = list(hole.CONTINUITIES[::-1])  # G1 first: the default
-            obj.Continuity = "G1"
+        enumerations = list(obj.getEnumerationsOfProperty("Continuity"))
+        if enumerations != list(hole.CONTINUITIES):  # new, or saved before G2 existed
+            was = str(obj.Continuity) if enumerations else "G1"  # G1: the default
+            obj.Continuity = list(hole.CONTINUITIES)
+            obj.Continuity = was
 
     def execute(self, obj):
         try:
@@ -111,3 +113,6 @@ class FillHoleFeature(FeatureProxy):
                       f"around {max(obj.JoinGaps, default=0.0):.3g} mm")
         if obj.JoinAngles:
             obj.Status += f", largest angle {max(obj.JoinAngles):.3g}°"
+        if str(obj.Continuity) == "G2":
+            obj.Status += (f", largest curvature jump {max(obj.JoinCurvatureJumps, default=0.0):.3g} % "
+                           f"(G2 in {outcome.sheet.curvature_iterations} Newton steps)")

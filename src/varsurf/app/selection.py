@@ -132,6 +132,7 @@ SELECTION_HINTS = {
     "Ribbon": ("Select a Sheet, the edge along which its normal is set and, optionally, a face or a second edge "
                "to follow."),
     "G1": "Select a Sheet, the edge along which it joins, and the face it must follow there.",
+    "G2": "Select a Sheet, the edge along which it joins, and the face whose curvature it must continue there.",
     "G0": "Select a Sheet and the edge it must contain (e.g. the edge of the neighbouring face).",
 }
 #: Kinds that need a picked vertex from the GUI (their target is a location).
@@ -201,8 +202,8 @@ def constraint_selection_to_args(kind: str, selection_ex: Sequence):
     refuse("Vertex")
     if kind in constraints.CURVE_KINDS or kind in ("CurveAttractor", "G0"):
         edges, faces = of["Edge"], of["Face"]
-        if kind == "G1" and (len(edges) != 1 or len(faces) != 1):
-            raise ValueError(f"a G1 needs exactly one edge and one face. {hint}")
+        if kind in constraints.JOIN_KINDS and (len(edges) != 1 or len(faces) != 1):
+            raise ValueError(f"a {kind} needs exactly one edge and one face. {hint}")
         if kind in ("CurveAttractor", "G0") and (len(edges) != 1 or faces):
             raise ValueError(f"a {kind} needs exactly one edge. {hint}")
         if kind == "Ribbon" and (not edges or len(edges) + len(faces) > 2 or len(faces) > 1):

@@ -74,10 +74,10 @@ _PROPERTIES = [
     ("ConstraintNames", "App::PropertyStringList", "Result", "The enabled constraints, in the order of ConstraintResiduals", True),
     ("ConstraintResiduals", "App::PropertyFloatList", "Result", "How far each enabled constraint is from met, measured on the result, in ConstraintUnits", True),
     ("ConstraintUnits", "App::PropertyStringList", "Result", "Unit of each of ConstraintResiduals (mm or deg)", True),
-    ("JoinNames", "App::PropertyStringList", "Result", "The G0 and G1 constraints, in the order of JoinGaps, JoinAngles and JoinCurvatureJumps", True),
+    ("JoinNames", "App::PropertyStringList", "Result", "The G0, G1 and G2 constraints, in the order of JoinGaps, JoinAngles and JoinCurvatureJumps", True),
     ("JoinGaps", "App::PropertyFloatList", "Result", "Largest distance (mm) between the sheet and its neighbour face (G0: its edge) at 200 points along each join, measured by OpenCASCADE on the result", True),
-    ("JoinAngles", "App::PropertyFloatList", "Result", "Largest angle (degrees) between the sheet's and the neighbour's tangent planes along each G1 join (G0: not measured, -1)", True),
-    ("JoinCurvatureJumps", "App::PropertyFloatList", "Result", "Largest jump (%) of the normal curvature across each G1 join, relative to the larger of the two (G2 would be 0; G0: not measured, -1)", True),
+    ("JoinAngles", "App::PropertyFloatList", "Result", "Largest angle (degrees) between the sheet's and the neighbour's tangent planes along each G1 or G2 join (G0: not measured, -1)", True),
+    ("JoinCurvatureJumps", "App::PropertyFloatList", "Result", "Largest jump (%) of the normal curvature across each G1 or G2 join, relative to the larger of the two (a G2 join's target: under 1; G0: not measured, -1)", True),
 ]
 
 
@@ -380,6 +380,9 @@ class SheetFeature(FeatureProxy):
             f"OK: {outcome.pole_count_u} x {outcome.pole_count_v} poles, {n} curve"
             f"{'' if n == 1 else 's'}, max deviation {outcome.max_deviation:.3g} mm"
         )
+        if outcome.curvature_iterations:  # G2 is not linear: say that it was iterated, and how far it got
+            obj.Status += (f", G2 in {outcome.curvature_iterations} Newton steps (largest curvature jump "
+                           f"{100.0 * outcome.curvature_jump:.3g} % at the solver's samples)")
         off = [f"{name} ({dev:.3g} mm)" for name, dev in zip(outcome.curve_names, outcome.max_deviations)
                if dev > float(value(obj, "Tolerance"))]
         if off:  # met in the RMS the solve fits to, but farther somewhere: say so, in the result too

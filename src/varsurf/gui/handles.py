@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
 """Coin3D handles of a Constraint in the 3D view: a draggable pin for a Point, arrows for normals,
 tangents and directors, a plane patch or a line for points held in a plane or on a line, a star
-for attractors (red for a repeller), the curve with ticks along it for ribbons and G1 joins.
+for attractors (red for a repeller), the curve with ticks along it for ribbons and G1/G2 joins.
 
 Dragging a pin moves the Point's target and re-solves its Sheet live (varsurf.app.drag.PointDrag);
 releasing it commits one undoable step.
@@ -218,7 +218,7 @@ class ConstraintHandles:
             u = u0 + 0.5 * (c.RegionU0 + c.RegionU1) * (u1 - u0)
             v = v0 + 0.5 * (c.RegionV0 + c.RegionV1) * (v1 - v0)
             _arrow(self.root, face.valueAt(u, v), V(c.Vector), 4 * size, ARROW)
-        elif kind in ("Ribbon", "G1") and c.Curve is not None:
+        elif kind in ("Ribbon", "G1", "G2") and c.Curve is not None:
             self._ribbon(c, sheet, size)
 
     def _ribbon(self, c, sheet, size):

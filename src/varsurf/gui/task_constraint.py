@@ -97,7 +97,7 @@ class TaskPanelConstraint(PropertyTaskPanel):
             w.setEnabled(kind in constraints.REGION_KINDS)
         curve_kind = kind in constraints.CURVE_KINDS or kind in ("G0", "CurveAttractor")
         self.child(QtGui.QPushButton, "curvePick").setEnabled(curve_kind)
-        self.child(QtGui.QPushButton, "referencePick").setEnabled(kind in ("Ribbon", "G1", "SurfaceAttractor"))
+        self.child(QtGui.QPushButton, "referencePick").setEnabled(kind in ("Ribbon", "G1", "G2", "SurfaceAttractor"))
         self.angle.setEnabled(kind == "Ribbon")
 
     def load(self):

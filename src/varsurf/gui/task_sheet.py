@@ -15,7 +15,7 @@ _EDITABLE = ("Stretch", "Bend", "FixBoundary", "Tolerance", "Degree", "MinSpans"
 
 
 def _join_text(gap, angle, jump):
-    """A join's gap, and for a G1 join the tangent-plane angle and the curvature jump."""
+    """A join's gap, and for a G1 or G2 join the tangent-plane angle and the curvature jump."""
     if angle < 0.0:
         return f"gap {gap:.3g} mm"
     return f"gap {gap:.3g} mm, {angle:.3g}°, curvature {jump:.3g} %"

@@ -41,9 +41,13 @@ KINDS: Dict[str, Tuple[str, str]] = {
                "edge; without Reference the base's own normal), turned by Angle", "deg"),
     "G0": ("the sheet contains Curve: position continuity with the face it bounds (residual: max distance)", "mm"),
     "G1": ("the sheet contains Curve and joins Reference there tangent-continuously", "deg"),
+    "G2": ("the sheet contains Curve and joins Reference there curvature-continuously (not linear: iterated; "
+           "residual: the largest relative jump of the normal curvature across Curve)", "%"),
 }
 POINT_KINDS = ("Point", "TangentU", "TangentV", "Normal", "PointInPlane", "PointOnLine")
-CURVE_KINDS = ("Ribbon", "G1")
+CURVE_KINDS = ("Ribbon", "G1", "G2")
+#: Curve kinds that join a Reference face (the sheet contains the curve).
+JOIN_KINDS = ("G1", "G2")
 REGION_KINDS = ("PointAttractor", "PlaneAttractor", "LineAttractor", "Director", "Repeller",
                 "FrozenRegion", "SurfaceAttractor", "CurveAttractor")
 #: Region kinds pulled onto another shape (closest points, iterated).
@@ -105,7 +109,7 @@ class ConstraintSpec:
         if self.kind in CURVE_KINDS:
             if not _is_shape(self.edge, "Edge"):
                 raise fail("needs a Curve (an edge) along which to set the sheet's normal")
-            if self.kind == "G1" and not _is_shape(self.reference, "Face"):
+            if self.kind in JOIN_KINDS and not _is_shape(self.reference, "Face"):
                 raise fail("needs a Curve (an edge) and a Reference (the face to join)")
             if self.reference is not None and not (_is_shape(self.reference, "Face")
                                                    or _is_shape(self.reference, "Edge")):
@@ -141,7 +145,8 @@ class PlacedSpec:
     region: Tuple[float, float, float, float] = (0.0, 1.0, 0.0, 1.0)
     start_distance: float = 0.0  # location to base surface, when a location was given
     ribbon: object = None  # native RibbonConstraint of a curve kind
-    curve: object = None  # native CurveConstraint of a G1
+    curve: object = None  # native CurveConstraint of a G1 or G2
+    curvature: object = None  # native CurvatureConstraint of a G2
     loop: object = None  # the region's closed loop in the sheet's (u, v), or None
     target: object = None  # native ClosestPointTarget of a shape attractor
 
@@ -261,8 +266,62 @@ def _place_curve(p: PlacedSpec, base, nat):
     except (nat.InvalidInput, nat.GeometryError) as error:
         raise ConstraintError(f"{s.name}: {error}") from error
     p.ribbon = nat.RibbonConstraint(preimage=pre.curve, normals=normals, weight=s.weight)
-    if s.kind == "G1":
+    if s.kind in JOIN_KINDS:
         p.curve = nat.CurveConstraint(preimage=pre.curve, target=curve, weight=1.0)
+    if s.kind == "G2":
+        normals, shape = curvature_fields(curve, s.reference, nat)
+        p.curvature = nat.CurvatureConstraint(preimage=pre.curve, normals=normals, shape=shape, weight=s.weight)
+
+
+#: Points along a G2 curve where the neighbour's normal and curvature are taken (the fields
+#: between them are linear: the neighbour's curvature varies slowly along an edge).
+CURVATURE_SAMPLES = 201
+
+
+def shape_operator(surface, u: float, v: float):
+    """The unit normal (the surface's own) and the second fundamental form of ``surface`` (a
+    Part surface) at (u, v) as a symmetric 3D tensor K (II(T, T) = T . K T for tangent T), from
+    the fundamental forms: K = J G^-1 B G^-1 J^T (J = [Su Sv]). Unlike principal directions this
+    is defined at umbilic points (planes, spheres)."""
+    su, sv = surface.getDN(u, v, 1, 0), surface.getDN(u, v, 0, 1)
+    suu, suv, svv = surface.getDN(u, v, 2, 0), surface.getDN(u, v, 1, 1), surface.getDN(u, v, 0, 2)
+    n = su.cross(sv)
+    if n.Length == 0.0:
+        raise ValueError("the surface is degenerate there (no normal)")
+    n.normalize()
+    g11, g12, g22 = su.dot(su), su.dot(sv), sv.dot(sv)
+    det = g11 * g22 - g12 * g12
+    i11, i12, i22 = g22 / det, -g12 / det, g11 / det  # G^-1
+    b11, b12, b22 = n.dot(suu), n.dot(suv), n.dot(svv)
+    # M = G^-1 B G^-1 (2 x 2), then K = J M J^T.
+    a11, a12, a21, a22 = i11 * b11 + i12 * b12, i11 * b12 + i12 * b22, i12 * b11 + i22 * b12, i12 * b12 + i22 * b22
+    m11, m12, m22 = a11 * i11 + a12 * i12, a11 * i12 + a12 * i22, a21 * i12 + a22 * i22
+    cols = ((su.x, sv.x), (su.y, sv.y), (su.z, sv.z))
+
+    def k(r, c):
+        (p0, p1), (q0, q1) = cols[r], cols[c]
+        return p0 * (m11 * q0 + m12 * q1) + p1 * (m12 * q0 + m22 * q1)
+
+    return n, (k(0, 0), k(1, 1), k(2, 2), k(0, 1), k(0, 2), k(1, 2))
+
+
+def curvature_fields(curve, face, nat):
+    """The neighbour ``face``'s unit normal and second fundamental form along ``curve`` (a native
+    3D BSplineCurve on its boundary), as piecewise-linear native fields over the curve's range."""
+    t0, t1 = curve.first(), curve.last()
+    ts = [t0 + (t1 - t0) * i / (CURVATURE_SAMPLES - 1) for i in range(CURVATURE_SAMPLES)]
+    surface = face.Surface
+    Vector = type(face.BoundBox.Center)
+    normals, shapes_ = [], []
+    for t in ts:
+        p = [float(x) for x in curve.evaluate(t)]
+        u, v = surface.parameter(Vector(*p))
+        n, k = shape_operator(surface, u, v)
+        normals.append([n.x, n.y, n.z])
+        shapes_.append(list(k))
+    knots = [t0] + ts + [t1]
+    return (nat.BSplineCurve(degree=1, knots=knots, poles=normals),
+            nat.BSplineCurve(degree=1, knots=knots, poles=shapes_))
 
 
 @dataclass
@@ -278,11 +337,12 @@ class NativeTerms:
     ribbons: list = field(default_factory=list)
     shape_attractors: list = field(default_factory=list)
     curves: list = field(default_factory=list)
+    curvatures: list = field(default_factory=list)
     frozen_poles: list = field(default_factory=list)
 
     def apply(self, problem):
         for name in ("points", "tangents", "normals", "plane_points", "line_points", "attractors", "directors",
-                     "repellers", "ribbons", "curves", "shape_attractors"):
+                     "repellers", "ribbons", "curves", "shape_attractors", "curvatures"):
             setattr(problem, name, list(getattr(problem, name)) + getattr(self, name))
 
 
@@ -317,6 +377,8 @@ def native_terms(placed: Sequence[PlacedSpec], space, nat) -> NativeTerms:
             out.ribbons.append(p.ribbon)
             if p.curve is not None:
                 out.curves.append(p.curve)
+            if p.curvature is not None:
+                out.curvatures.append(p.curvature)
         elif kind == "G0":
             out.curves.append(p.curve)
         elif kind in SHAPE_KINDS:
@@ -376,6 +438,9 @@ def residual(p: PlacedSpec, surface, base) -> float:
     s, kind = p.spec, p.spec.kind
     if kind == "G0":
         return native().max_deviation(surface, p.curve.target)
+    if kind == "G2":
+        return 100.0 * native().curvature_jump(surface.space, surface.poles, p.curvature,
+                                               1.0 / max(p.spec.reference.BoundBox.DiagonalLength, 1e-300))
     if kind in CURVE_KINDS:
         return math.degrees(native().ribbon_angle_error(surface.space, surface.poles, p.ribbon))
     if kind in POINT_KINDS:

@@ -24,7 +24,7 @@ from varsurf.solve.settings import SheetSettings
 from varsurf.solve.shapes import shape_from_brep
 from varsurf.solve.sheet import solve_sheet_from_curves
 
-CONTINUITIES = ("G0", "G1")
+CONTINUITIES = ("G0", "G1", "G2")
 #: The sewing joins the sheet's edges (the loop curves themselves) to the part's within this
 #: multiple of the sheet's tolerance.
 SEW_FACTOR = 4.0
@@ -95,16 +95,17 @@ def fill_hole(shape, replace: Sequence[int] = (), edges: Sequence = (), curves: 
               continuity_kind: str = "G1", settings: Optional[SheetSettings] = None) -> HoleOutcome:
     """The part ``shape`` with a sheet where its face ``replace`` (an index into shape.Faces) was,
     or filling the hole bounded by its free ``edges``; ``curves`` are interior curves the sheet
-    contains. ``continuity_kind``: G0 (the sheet ends on the edges) or G1 (and is tangent to the
-    face across each). SheetError naming the edge or face at fault."""
+    contains. ``continuity_kind``: G0 (the sheet ends on the edges), G1 (and is tangent to the
+    face across each) or G2 (and has its normal curvature across each: iterated). SheetError
+    naming the edge or face at fault."""
     if continuity_kind not in CONTINUITIES:
-        raise SheetError(f"Continuity must be one of {', '.join(CONTINUITIES)} (got {continuity_kind!r}); "
-                         "G2 is not available yet")
+        raise SheetError(f"Continuity must be one of {', '.join(CONTINUITIES)} (got {continuity_kind!r})")
     settings = (settings or SheetSettings()).changed(trim="Loop")
     loop, neighbours, kept = loop_and_neighbours(shape, replace, edges)
     specs = []
-    if continuity_kind == "G1":
-        specs = [ConstraintSpec(kind="G1", name=f"G1 to the face around edge {k + 1}", edge=e, reference=n)
+    if continuity_kind != "G0":
+        specs = [ConstraintSpec(kind=continuity_kind, name=f"{continuity_kind} to the face around edge {k + 1}",
+                                edge=e, reference=n)
                  for k, (e, n) in enumerate(zip(loop, neighbours))]
     names = [f"hole edge {k + 1}" for k in range(len(loop))] + [f"curve {k + 1}" for k in range(len(curves))]
     sheet = solve_sheet_from_curves(loop + list(curves), settings, names=names, constraints=specs)
@@ -121,7 +122,7 @@ def fill_hole(shape, replace: Sequence[int] = (), edges: Sequence = (), curves: 
     if closes and sewn.free_edges:
         raise SheetError(f"the sheet does not close the hole: {sewn.free_edges} edges stay open after sewing "
                          f"at {tolerance:.3g} mm")
-    joins = [continuity.measure(f"hole edge {k + 1}", sheet.shape, e, n if continuity_kind == "G1" else None)
+    joins = [continuity.measure(f"hole edge {k + 1}", sheet.shape, e, n if continuity_kind != "G0" else None)
              for k, (e, n) in enumerate(zip(loop, neighbours))]
     return HoleOutcome(shape=shape_from_brep(sewn.brep), sheet=sheet, closed=bool(sewn.closed),
                        valid=bool(sewn.valid), max_tolerance=float(sewn.max_tolerance),

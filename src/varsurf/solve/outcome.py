@@ -29,6 +29,10 @@ class SheetOutcome:
     constraint_units: List[str] = field(default_factory=list)  # "mm" or "deg"
     iterations: int = 0  # nonlinear steps (repellers, pressure)
     converged: bool = True
+    # G2 joins are not linear: Newton steps taken and the largest relative curvature jump left
+    # at the solver's samples (the joins' measured jumps are in ``joins``).
+    curvature_iterations: int = 0
+    curvature_jump: float = 0.0
     solve_mode: str = ""  # the mode used, and why
     lcurve_residuals: List[float] = field(default_factory=list)  # TSVD/MTSVD: rho_k
     lcurve_norms: List[float] = field(default_factory=list)  # eta_k

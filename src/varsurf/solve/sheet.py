@@ -91,6 +91,12 @@ def _constraints(nat, sheet, constraints):
     """Stage 3: the constraints placed on the base, refused where the trim does not keep them;
     a kept boundary's edges join the curves (after the named ones: outcome.problem.curves starts
     in curve_names order)."""
+    # The solve elevates the base to the Degree setting; below 3 the curvature jumps at every knot.
+    degree = max(sheet.settings.degree, min(sheet.base.space.degree_u, sheet.base.space.degree_v))
+    g2 = [c.name for c in constraints if c.kind == "G2"]
+    if g2 and degree < 3:
+        raise SheetError(f"{', '.join(g2)}: G2 needs a sheet of degree 3 or more (this one has degree {degree}: its "
+                         "curvature jumps at every knot line): raise the Sheet's Degree to 3, or join with G1")
     try:
         placed = constraint_specs.place(list(constraints), sheet.base, nat)
     except constraint_specs.ConstraintError as error:
@@ -194,7 +200,8 @@ def _solve(nat, sheet, budget, keep_going):
             result = SimpleNamespace(poles=solved.poles, report=solved.report.solve)
             return solved.space, result, problem, local, None  # what is left is measured and reported
         result = budget.run(nat.solve_sheet, problem, budget.options)
-        if not result.report.converged:
+        if not result.report.converged and result.report.curvature_iterations == 0:
+            # G2 iterations that stop short are reported (the joins' measured jumps), not refused.
             raise SheetError(
                 f"the nonlinear terms (pressure, repellers, shape attractors) did not settle in "
                 f"{result.report.iterations} steps (the last moved poles {result.report.last_step:.3g} mm); "
@@ -267,7 +274,10 @@ def _outcome(nat, sheet, solved, options, started):
         constraint_residuals=[float(constraint_specs.residual(p, surface, sheet.base)) for p in placed],
         constraint_units=[constraint_specs.KINDS[p.spec.kind][1] for p in placed],
         iterations=int(report.iterations),
-        converged=bool(report.converged),
+        # G2 steps that stop short are measured and reported, not a failed nonlinear solve.
+        converged=bool(report.converged) or int(report.curvature_iterations) > 0,
+        curvature_iterations=int(report.curvature_iterations),
+        curvature_jump=float(report.curvature_jump),
         report=report,
         solve_mode=local_refinement.mode_used(report, local),
         lcurve_residuals=[float(x) for x in report.lcurve.residual],
@@ -286,9 +296,10 @@ def _outcome(nat, sheet, solved, options, started):
 
 
 def _joins(shape, placed):
-    """The continuity of the result along each G0 (to its edge) and G1 (to its reference face)."""
-    return [continuity.measure(p.spec.name, shape, p.spec.edge, p.spec.reference if p.spec.kind == "G1" else None)
-            for p in placed if p.spec.kind in ("G0", "G1")]
+    """The continuity of the result along each G0 (to its edge), G1 and G2 (to its reference face)."""
+    joins = constraint_specs.JOIN_KINDS
+    return [continuity.measure(p.spec.name, shape, p.spec.edge, p.spec.reference if p.spec.kind in joins else None)
+            for p in placed if p.spec.kind == "G0" or p.spec.kind in joins]
 
 
 def _names_and_projections(edges, names, projections):
@@ -382,7 +393,8 @@ def _stages(face, edges, settings, names, projections, constraints, rest, keep_g
         sheet.kept = _kept_region(nat, sheet, loop)
     sheet.placed = _constraints(nat, sheet, constraints)
     sheet.corners = continuity.incompatible_corners(
-        [(p.spec.name, p.spec.edge, p.spec.reference) for p in sheet.placed if p.spec.kind == "G1"],
+        [(p.spec.name, p.spec.edge, p.spec.reference) for p in sheet.placed
+         if p.spec.kind in constraint_specs.JOIN_KINDS],
         settings.tolerance)
     sheet.rest = _rest(nat, rest)
     sheet.energy = energy.energy_weights(nat, settings.stretch, settings.bend, settings.stretch_tensor,

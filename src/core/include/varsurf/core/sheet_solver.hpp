@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "varsurf/core/constraints.hpp"
+#include "varsurf/core/curvature_constraint.hpp"
 #include "varsurf/core/external_energy.hpp"
 #include "varsurf/core/lcurve.hpp"
 #include "varsurf/core/point_constraints.hpp"
@@ -47,10 +48,13 @@ struct SheetProblem {
   std::vector<PlanePointConstraint> plane_points;  // couples x, y, z
   std::vector<LinePointConstraint> line_points;    // couples x, y, z
   std::vector<RibbonConstraint> ribbons;           // couples x, y, z
-  std::vector<Attractor> attractors;               // plane and line kinds couple x, y, z
-  std::vector<Director> directors;                 // couples x, y, z
-  std::vector<Repeller> repellers;                 // not quadratic: iterated, couples x, y, z
-  std::vector<ShapeAttractor> shape_attractors;    // not quadratic: iterated, couples x, y, z
+  // G2 along curves the sheet also contains with G1: not linear, so Newton iterations on the
+  // whole constrained solve (each linearized at the last poles); couples x, y, z.
+  std::vector<CurvatureConstraint> curvatures;
+  std::vector<Attractor> attractors;             // plane and line kinds couple x, y, z
+  std::vector<Director> directors;               // couples x, y, z
+  std::vector<Repeller> repellers;               // not quadratic: iterated, couples x, y, z
+  std::vector<ShapeAttractor> shape_attractors;  // not quadratic: iterated, couples x, y, z
   double pressure = 0.0;         // inflate (> 0, along w_u x w_v) or deflate (< 0): iterated
   std::vector<int> fixed_poles;  // flat indices held at initial_poles
 };
@@ -111,6 +115,11 @@ struct SolveOptions {
   int max_iterations = 100;
   double step_limit = 0.05;
   double nonlinear_tolerance = 1e-9;
+  // G2 (curvature constraints): Newton steps until every sample's curvature jump, relative to
+  // the larger curvature (and to no less than one over the sheet's size), is below
+  // curvature_tolerance, at most max_curvature_iterations.
+  double curvature_tolerance = 1e-4;
+  int max_curvature_iterations = 30;
   // Penalty mode: mu^2 relative to the energy's mean diagonal; refinement also continues while
   // a sample of a constraint is farther than max_fit_factor * fit_tolerance from it.
   double penalty_weight = 1e4;
@@ -147,8 +156,10 @@ struct SolveReport {
   LCurve lcurve;                      // tsvd and mtsvd: the L-curve and its corner
   int unknowns = 0;                   // free poles (per coordinate), or free coordinates if coupled
   bool coupled = false;
-  int iterations = 0;      // nonlinear steps taken (0 for a quadratic problem)
-  bool converged = true;   // false if max_iterations ran out
+  int iterations = 0;            // nonlinear steps taken (0 for a quadratic problem)
+  int curvature_iterations = 0;  // Newton steps of the G2 conditions (0 without them)
+  double curvature_jump = 0.0;   // their largest relative curvature jump after the solve
+  bool converged = true;         // false if max_iterations ran out
   double last_step = 0.0;  // largest pole move of the last nonlinear step (model units)        //
                            // one 3n system instead of three n systems sharing one
   int constraint_samples = 0;  // least-squares rows before reduction
