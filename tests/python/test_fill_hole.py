@@ -48,6 +48,27 @@ def test_a_flat_top_replaced_g1_to_its_fillet_is_the_flat_top(doc, native, tmp_p
     assert not fillet.Visibility
 
 
+@pytest.mark.xfail(strict=True, reason="the sheet's rim is sewn to the fillet's circle edge, whose pcurve on the sheet "
+                   "deviates by 7e-7 mm with peaks inside the edge; split there (as B-spline and straight edges are) "
+                   "the circle's pieces are re-parametrized by the STEP reader and still come back 3 % under their "
+                   "deviation, so check(True) finds BOPAlgo_InvalidCurveOnSurface")
+def test_a_top_filled_g1_to_its_fillet_reads_back_from_step(doc, native, tmp_path):
+    cylinder = doc.addObject("Part::Cylinder", "Cylinder")
+    cylinder.Radius, cylinder.Height = 20, 30
+    fillet = doc.addObject("Part::Fillet", "Fillet")
+    fillet.Base = cylinder
+    doc.recompute()
+    top_edge = next(i for i, e in enumerate(cylinder.Shape.Edges)
+                    if e.Curve.TypeId == "Part::GeomCircle" and abs(e.BoundBox.ZMin - 30) < 1e-9)
+    fillet.Edges = [(top_edge + 1, 3.0, 3.0)]
+    doc.recompute()
+    filled = varsurf.make_fill_hole(fillet, f"Face{_face_at_height(fillet.Shape, 30.0) + 1}")
+    doc.recompute()
+    path = tmp_path / "filleted_top.step"
+    varsurf.export_step([filled], str(path))
+    assert_reads_back(filled.Shape, path, native)
+
+
 def _crowned_box(doc):
     box = doc.addObject("Part::Box", "Box")
     box.Length, box.Width, box.Height = 100, 60, 40
@@ -153,10 +174,6 @@ def test_bad_holes_are_errors_that_say_what_to_do(doc, native, console_errors):
     assert len(doc.Objects) == n + 5  # nothing else added, nothing removed
 
 
-@pytest.mark.xfail(strict=True, reason="the filled part is sewn (BRepBuilderAPI_Sewing): the sewn edges' pcurves on "
-                   "the part's own faces pass the BOP check in memory, but read back from STEP they fail it "
-                   "(BOPAlgo_InvalidCurveOnSurface on the sheet and on the face across each edge). Building the "
-                   "sheet's face on the part's own edges instead of sewing is the open fix")
 def test_a_filled_part_reads_back_from_step(doc, native, tmp_path):
     _box, _arcs, filled = _crowned_box(doc)
     path = tmp_path / "crown.step"

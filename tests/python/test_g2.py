@@ -9,6 +9,7 @@ import FreeCAD
 import pytest
 
 import varsurf
+from step_check import assert_reads_back
 from varsurf.solve import continuity
 
 V = FreeCAD.Vector
@@ -43,7 +44,7 @@ def _meridian_curvatures(face, rim, samples=60):
     return out
 
 
-def test_a_sphere_cap_filled_g2_takes_the_spheres_curvature_across_its_rim(doc, native):
+def test_a_sphere_cap_filled_g2_takes_the_spheres_curvature_across_its_rim(doc, native, tmp_path):
     """The flat cap of a cut sphere replaced by a sheet: G1 leaves the sheet flatter than the ball
     at the rim (a curvature jump); G2 bends it by 1/R across the rim, as the sphere does."""
     _sphere, cut, disc = _capless_sphere(doc)
@@ -66,6 +67,10 @@ def test_a_sphere_cap_filled_g2_takes_the_spheres_curvature_across_its_rim(doc, 
     # Bent like the ball at its rim, the G2 cap is nearer the ball's own volume than the G1 cap.
     ball = 4.0 / 3.0 * math.pi * R ** 3
     assert abs(g2.Shape.Volume - ball) < abs(g1.Shape.Volume - ball)
+    for filled in (g1, g2):
+        path = tmp_path / f"{filled.Name}.step"
+        varsurf.export_step([filled], str(path))
+        assert_reads_back(filled.Shape, path, native)
 
 
 def test_a_g2_constraint_on_a_sheet_from_curves(doc, native):

@@ -8,6 +8,7 @@
 #include <BRep_Tool.hxx>
 #include <Geom2d_BSplineCurve.hxx>
 #include <Geom_BSplineCurve.hxx>
+#include <Geom_Line.hxx>
 #include <TopExp.hxx>
 #include <TopExp_Explorer.hxx>
 #include <TopLoc_Location.hxx>
@@ -116,25 +117,37 @@ int knot_count(const Handle(Geom2d_Curve) & c) {
   return b.IsNull() ? 0 : b->NbKnots();
 }
 
-// The piece [a, b] of a (forward) edge: its B-spline curves cut exactly (Segment), between the
-// given vertices.
+// The curve restricted to [a, b]: a B-spline cut exactly (Segment keeps its parametrization),
+// any other curve (a line, a circle: parametrized on their own) shared as it is.
+Handle(Geom_Curve) piece_of(const Handle(Geom_Curve) & c, double a, double b) {
+  Handle(Geom_BSplineCurve) spline = Handle(Geom_BSplineCurve)::DownCast(c);
+  if (spline.IsNull()) return c;
+  spline = Handle(Geom_BSplineCurve)::DownCast(spline->Copy());
+  spline->Segment(a, b);
+  return spline;
+}
+
+Handle(Geom2d_Curve) piece_of(const Handle(Geom2d_Curve) & c, double a, double b) {
+  Handle(Geom2d_BSplineCurve) spline = Handle(Geom2d_BSplineCurve)::DownCast(c);
+  if (spline.IsNull()) return c;
+  spline = Handle(Geom2d_BSplineCurve)::DownCast(spline->Copy());
+  spline->Segment(a, b);
+  return spline;
+}
+
+// The piece [a, b] of a (forward) edge, on the same curves and parameters, between the given
+// vertices.
 TopoDS_Edge edge_piece(const TopoDS_Edge& edge, const std::vector<TopoDS_Face>& faces, double a,
                        double b, const TopoDS_Vertex& first, const TopoDS_Vertex& last,
                        double tolerance) {
   BRep_Builder builder;
   TopLoc_Location loc;
   double f = 0.0, l = 0.0;
-  Handle(Geom_BSplineCurve) curve =
-      Handle(Geom_BSplineCurve)::DownCast(BRep_Tool::Curve(edge, loc, f, l)->Copy());
-  curve->Segment(a, b);
   TopoDS_Edge piece;
-  builder.MakeEdge(piece, curve, loc, tolerance);
-  for (const TopoDS_Face& face : faces) {
-    Handle(Geom2d_BSplineCurve) pcurve =
-        Handle(Geom2d_BSplineCurve)::DownCast(BRep_Tool::CurveOnSurface(edge, face, f, l)->Copy());
-    pcurve->Segment(a, b);
-    builder.UpdateEdge(piece, pcurve, face, tolerance);
-  }
+  builder.MakeEdge(piece, piece_of(BRep_Tool::Curve(edge, loc, f, l), a, b), loc, tolerance);
+  for (const TopoDS_Face& face : faces)
+    builder.UpdateEdge(piece, piece_of(BRep_Tool::CurveOnSurface(edge, face, f, l), a, b), face,
+                       tolerance);
   builder.Range(piece, a, b);
   builder.Add(piece, first.Oriented(TopAbs_FORWARD));
   builder.Add(piece, last.Oriented(TopAbs_REVERSED));
@@ -143,17 +156,20 @@ TopoDS_Edge edge_piece(const TopoDS_Edge& edge, const std::vector<TopoDS_Face>& 
   return piece;
 }
 
-// Whether the edge can be cut: B-spline 3D curve and pcurves, same range and parameter, not a
-// seam.
+// Whether the edge can be cut: a 3D curve and pcurves, same range and parameter, not a seam.
+// (Lines count: a part's straight edge sewn to a sheet has the sheet's B-spline pcurve, whose
+// deviation peaks inside the edge.)
 bool splittable(const TopoDS_Edge& edge, const std::vector<TopoDS_Face>& faces) {
   if (BRep_Tool::Degenerated(edge) || !BRep_Tool::SameParameter(edge) ||
       !BRep_Tool::SameRange(edge) || faces.empty())
     return false;
   double f = 0.0, l = 0.0;
-  if (knot_count(BRep_Tool::Curve(edge, f, l)) == 0) return false;
+  const Handle(Geom_Curve) curve = BRep_Tool::Curve(edge, f, l);
+  if (curve.IsNull() || !(knot_count(curve) > 0 || curve->IsKind(STANDARD_TYPE(Geom_Line))))
+    return false;
   for (const TopoDS_Face& face : faces) {
     if (BRep_Tool::IsClosed(edge, face)) return false;
-    if (knot_count(BRep_Tool::CurveOnSurface(edge, face, f, l)) == 0) return false;
+    if (BRep_Tool::CurveOnSurface(edge, face, f, l).IsNull()) return false;
   }
   return true;
 }

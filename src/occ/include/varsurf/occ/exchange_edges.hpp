@@ -25,7 +25,8 @@ struct ExchangeShape {
 // shorter than 20 times the largest deviation (a reader removes edges shorter than the file's
 // uncertainty; step_io writes twice the deviation). Geometry is unchanged: the pieces
 // keep the edge's curves; the new vertices' tolerances cover the deviation there. Edges on a
-// surface's seam, and curves that are not B-splines, are left as they are. A null shape is
+// surface's seam are left as they are; B-spline curves are cut exactly, others (lines, circles)
+// shared with a narrower range. A null shape is
 // returned unchanged.
 ExchangeShape prepare_for_exchange(const TopoDS_Shape& shape);
 
