@@ -100,11 +100,11 @@ ConstraintSamples sample_curvature(const SplineSpace& space, const CurvatureCons
 }
 
 double curvature_jump(const SplineSpace& space, const Eigen::MatrixX3d& poles,
-                      const CurvatureConstraint& c, double floor, int samples) {
+                      const CurvatureConstraint& c, double floor, int samples, double* rms) {
   validate(space, c);
   BSplineSurface{space, poles}.validate();
   if (samples < 2) throw InvalidInput("curvature_jump needs at least 2 samples");
-  double worst = 0.0;
+  double worst = 0.0, sum = 0.0;
   const double t0 = c.preimage.first(), t1 = c.preimage.last();
   for (int i = 0; i < samples; ++i) {
     const double t = t0 + (t1 - t0) * i / (samples - 1);
@@ -121,8 +121,11 @@ double curvature_jump(const SplineSpace& space, const Eigen::MatrixX3d& poles,
     const double k_sheet = n.dot(wdd) / len2;
     const double k_neighbour = wd.dot(shape_tensor(c.shape.evaluate(t)) * wd) / len2;
     const double scale = std::max({std::abs(k_sheet), std::abs(k_neighbour), floor});
-    if (scale > 0.0) worst = std::max(worst, std::abs(k_sheet - k_neighbour) / scale);
+    const double jump = scale > 0.0 ? std::abs(k_sheet - k_neighbour) / scale : 0.0;
+    worst = std::max(worst, jump);
+    sum += jump * jump;
   }
+  if (rms) *rms = std::sqrt(sum / samples);
   return worst;
 }
 

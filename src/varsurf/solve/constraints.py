@@ -17,7 +17,7 @@ import math
 from dataclasses import dataclass, field
 from typing import Dict, List, Optional, Sequence, Tuple
 
-from varsurf.solve import shapes
+from varsurf.solve import continuity, shapes
 from varsurf.solve.native import native
 
 #: Kind -> (what it does, unit of its residual).
@@ -278,33 +278,6 @@ def _place_curve(p: PlacedSpec, base, nat):
 CURVATURE_SAMPLES = 201
 
 
-def shape_operator(surface, u: float, v: float):
-    """The unit normal (the surface's own) and the second fundamental form of ``surface`` (a
-    Part surface) at (u, v) as a symmetric 3D tensor K (II(T, T) = T . K T for tangent T), from
-    the fundamental forms: K = J G^-1 B G^-1 J^T (J = [Su Sv]). Unlike principal directions this
-    is defined at umbilic points (planes, spheres)."""
-    su, sv = surface.getDN(u, v, 1, 0), surface.getDN(u, v, 0, 1)
-    suu, suv, svv = surface.getDN(u, v, 2, 0), surface.getDN(u, v, 1, 1), surface.getDN(u, v, 0, 2)
-    n = su.cross(sv)
-    if n.Length == 0.0:
-        raise ValueError("the surface is degenerate there (no normal)")
-    n.normalize()
-    g11, g12, g22 = su.dot(su), su.dot(sv), sv.dot(sv)
-    det = g11 * g22 - g12 * g12
-    i11, i12, i22 = g22 / det, -g12 / det, g11 / det  # G^-1
-    b11, b12, b22 = n.dot(suu), n.dot(suv), n.dot(svv)
-    # M = G^-1 B G^-1 (2 x 2), then K = J M J^T.
-    a11, a12, a21, a22 = i11 * b11 + i12 * b12, i11 * b12 + i12 * b22, i12 * b11 + i22 * b12, i12 * b12 + i22 * b22
-    m11, m12, m22 = a11 * i11 + a12 * i12, a11 * i12 + a12 * i22, a21 * i12 + a22 * i22
-    cols = ((su.x, sv.x), (su.y, sv.y), (su.z, sv.z))
-
-    def k(r, c):
-        (p0, p1), (q0, q1) = cols[r], cols[c]
-        return p0 * (m11 * q0 + m12 * q1) + p1 * (m12 * q0 + m22 * q1)
-
-    return n, (k(0, 0), k(1, 1), k(2, 2), k(0, 1), k(0, 2), k(1, 2))
-
-
 def curvature_fields(curve, face, nat):
     """The neighbour ``face``'s unit normal and second fundamental form along ``curve`` (a native
     3D BSplineCurve on its boundary), as piecewise-linear native fields over the curve's range."""
@@ -316,7 +289,7 @@ def curvature_fields(curve, face, nat):
     for t in ts:
         p = [float(x) for x in curve.evaluate(t)]
         u, v = surface.parameter(Vector(*p))
-        n, k = shape_operator(surface, u, v)
+        n, k = continuity.shape_operator(surface, u, v)
         normals.append([n.x, n.y, n.z])
         shapes_.append(list(k))
     knots = [t0] + ts + [t1]

@@ -90,6 +90,33 @@ def measure(name: str, sheet, edge, neighbour=None, samples: int = SAMPLES, size
     return Join(name, gap, angle, jump, len(points))
 
 
+def shape_operator(surface, u: float, v: float):
+    """The unit normal (the surface's own) and the second fundamental form of ``surface`` (a
+    Part surface) at (u, v) as a symmetric 3D tensor K (II(T, T) = T . K T for tangent T), from
+    the fundamental forms: K = J G^-1 B G^-1 J^T (J = [Su Sv]). Unlike principal directions this
+    is defined at umbilic points (planes, spheres)."""
+    su, sv = surface.getDN(u, v, 1, 0), surface.getDN(u, v, 0, 1)
+    suu, suv, svv = surface.getDN(u, v, 2, 0), surface.getDN(u, v, 1, 1), surface.getDN(u, v, 0, 2)
+    n = su.cross(sv)
+    if n.Length == 0.0:
+        raise ValueError("the surface is degenerate there (no normal)")
+    n.normalize()
+    g11, g12, g22 = su.dot(su), su.dot(sv), sv.dot(sv)
+    det = g11 * g22 - g12 * g12
+    i11, i12, i22 = g22 / det, -g12 / det, g11 / det  # G^-1
+    b11, b12, b22 = n.dot(suu), n.dot(suv), n.dot(svv)
+    # M = G^-1 B G^-1 (2 x 2), then K = J M J^T.
+    a11, a12, a21, a22 = i11 * b11 + i12 * b12, i11 * b12 + i12 * b22, i12 * b11 + i22 * b12, i12 * b12 + i22 * b22
+    m11, m12, m22 = a11 * i11 + a12 * i12, a11 * i12 + a12 * i22, a21 * i12 + a22 * i22
+    cols = ((su.x, sv.x), (su.y, sv.y), (su.z, sv.z))
+
+    def k(r, c):
+        (p0, p1), (q0, q1) = cols[r], cols[c]
+        return p0 * (m11 * q0 + m12 * q1) + p1 * (m12 * q0 + m22 * q1)
+
+    return n, (k(0, 0), k(1, 1), k(2, 2), k(0, 1), k(0, 2), k(1, 2))
+
+
 #: Two G1 joins' neighbours whose tangent planes differ by more than this (degrees) where the
 #: joins' edges meet ask the sheet for two tangent planes at one point.
 CORNER_ANGLE = 0.01
@@ -108,6 +135,72 @@ class Corner:
         x, y, z = self.point
         return (f"{self.first} and {self.second} meet at ({x:.4g}, {y:.4g}, {z:.4g}), where their faces' "
                 f"tangent planes differ by {self.angle:.3g}°: the sheet cannot be tangent to both there")
+
+
+#: Two G2 joins' neighbours whose curvatures (second fundamental forms) differ by more than this
+#: (percent of the larger, as a join's curvature jump) where the joins' edges meet ask the sheet
+#: for two curvatures at one point.
+CORNER_CURVATURE = 1.0
+
+
+@dataclass
+class CurvatureCorner:
+    """Where two G2 joins meet and their neighbours' curvatures differ."""
+
+    first: str
+    second: str
+    point: tuple  # (x, y, z)
+    jump: float  # percent
+
+    def message(self) -> str:
+        x, y, z = self.point
+        return (f"{self.first} and {self.second} meet at ({x:.4g}, {y:.4g}, {z:.4g}), where their faces' "
+                f"curvatures differ by {self.jump:.3g} %: the sheet cannot continue both curvatures there "
+                "(join one of them G1)")
+
+
+def _plane_form(face, point, frame=None):
+    """The face's second fundamental form at its point nearest ``point`` in an orthonormal
+    ``frame`` (e1, e2) of a tangent plane (its own if None), signed along frame's normal."""
+    surface = face.Surface
+    u, v = surface.parameter(point)
+    n, k = shape_operator(surface, u, v)
+    if frame is None:
+        e1 = surface.getDN(u, v, 1, 0)
+        e1.normalize()
+        frame = (e1, n.cross(e1), n)
+    e1, e2, normal = frame
+    sign = 1.0 if n.dot(normal) >= 0.0 else -1.0
+    kxx, kyy, kzz, kxy, kxz, kyz = k
+
+    def form(a, b):
+        return sign * (a.x * (kxx * b.x + kxy * b.y + kxz * b.z) + a.y * (kxy * b.x + kyy * b.y + kyz * b.z)
+                       + a.z * (kxz * b.x + kyz * b.y + kzz * b.z))
+
+    return (form(e1, e1), form(e1, e2), form(e2, e2)), frame
+
+
+def curvature_corners(joins, tolerance: float):
+    """The CurvatureCorners of ``joins`` — (name, edge, neighbour face) of G2 joins — whose edges
+    share an end (within ``tolerance``) where the neighbours' second fundamental forms differ by
+    more than CORNER_CURVATURE percent (of the larger, and of no less than one over the faces'
+    size): a G2 sheet must take both there."""
+    found = []
+    for i, (name_a, edge_a, face_a) in enumerate(joins):
+        for name_b, edge_b, face_b in joins[i + 1:]:
+            box = face_a.BoundBox
+            box.add(face_b.BoundBox)
+            floor = 1.0 / box.DiagonalLength if box.DiagonalLength > 0.0 else 0.0
+            for p in (v.Point for v in edge_a.Vertexes):
+                if min((p - q.Point).Length for q in edge_b.Vertexes) > tolerance:
+                    continue
+                form_a, frame = _plane_form(face_a, p)
+                form_b, _ = _plane_form(face_b, p, frame)
+                scale = max(max(abs(x) for x in form_a), max(abs(x) for x in form_b), floor)
+                jump = 100.0 * max(abs(x - y) for x, y in zip(form_a, form_b)) / scale if scale > 0.0 else 0.0
+                if jump > CORNER_CURVATURE:
+                    found.append(CurvatureCorner(name_a, name_b, (p.x, p.y, p.z), jump))
+    return found
 
 
 def incompatible_corners(joins, tolerance: float):

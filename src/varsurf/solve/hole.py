@@ -74,7 +74,9 @@ def loop_and_neighbours(shape, replace: Sequence[int] = (), edges: Sequence = ()
             holes = len(face.Wires) - 1
             raise SheetError(f"Face{index + 1} has {'a hole' if holes == 1 else f'{holes} holes'} of its own: a sheet "
                              "replaces a face bounded by one loop; fill its holes first")
-        loop = list(face.OuterWire.Edges)
+        # A collapsed edge (a sphere's pole, where a fillet corner patch narrows to a point)
+        # bounds nothing: the loop is the rest.
+        loop = [e for e in face.OuterWire.Edges if not e.Degenerated]
         kept = [i for i in range(len(faces)) if i != index]
     else:
         loop = list(edges)

@@ -396,6 +396,12 @@ def _stages(face, edges, settings, names, projections, constraints, rest, keep_g
         [(p.spec.name, p.spec.edge, p.spec.reference) for p in sheet.placed
          if p.spec.kind in constraint_specs.JOIN_KINDS],
         settings.tolerance)
+    g2_corners = continuity.curvature_corners(
+        [(p.spec.name, p.spec.edge, p.spec.reference) for p in sheet.placed if p.spec.kind == "G2"],
+        settings.tolerance)
+    if g2_corners:  # refused before the solve: its Newton steps would fold the sheet there
+        raise SheetError("G2 cannot hold where two G2 joins meet with different curvatures: "
+                         + "; ".join(c.message() for c in g2_corners))
     sheet.rest = _rest(nat, rest)
     sheet.energy = energy.energy_weights(nat, settings.stretch, settings.bend, settings.stretch_tensor,
                                          settings.bend_tensor, energy.parameter_lengths(sheet.base))

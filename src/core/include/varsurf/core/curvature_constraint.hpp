@@ -40,7 +40,9 @@ ConstraintSamples sample_curvature(const SplineSpace& space, const CurvatureCons
 
 // Largest |N . w_dd / |w_d|^2 - K(T, T)|, T = w_d / |w_d|, over `samples` parameters, relative to
 // max(|k_sheet|, |k_neighbour|, floor): the curvature jump across the curve as the solver sees it.
+// `rms`, if given, receives the root mean square of the same relative jumps.
 double curvature_jump(const SplineSpace& space, const Eigen::MatrixX3d& poles,
-                      const CurvatureConstraint& c, double floor, int samples = 200);
+                      const CurvatureConstraint& c, double floor, int samples = 200,
+                      double* rms = nullptr);
 
 }  // namespace varsurf
