@@ -439,6 +439,30 @@ def run(result):
         press_task_button(QtGui.QDialogButtonBox.Cancel)
         result["solid_panel_restored"] = float(solid.Tolerance) == tolerance and solid.isValid()
 
+    # 6b. a FillHole (the crowned lid example): its icon and child, its panel's joins; a tolerance
+    # previewed with Update, then cancelled
+    import crowned_lid
+
+    ldoc = App.newDocument("LidSmoke")
+    lid = crowned_lid.build(ldoc)
+    result["fill_hole_icon"] = lid.ViewObject.Proxy.getIcon()
+    result["fill_hole_children"] = [o.Name for o in lid.ViewObject.Proxy.claimChildren()]
+    Gui.ActiveDocument.setEdit(lid.Name, 0)
+    Gui.updateGui()
+    widgets = task_widgets("VarSurfFillHole")
+    table = widgets["joinTable"]
+    result["fill_hole_panel_rows"] = [[table.item(r, c).text() for c in range(table.columnCount())]
+                                      for r in range(table.rowCount())]
+    result["fill_hole_panel_continuity"] = widgets["continuityCombo"].currentText()
+    tolerance = float(lid.Tolerance)
+    widgets["toleranceSpin"].setValue(tolerance * 2)
+    widgets["updateButton"].click()
+    Gui.updateGui()
+    result["fill_hole_panel_preview"] = [float(lid.Tolerance) / tolerance, lid.isValid()]
+    result["fill_hole_image_stats"] = image_stats(snapshot("fill_hole.png"))
+    press_task_button(QtGui.QDialogButtonBox.Cancel)
+    result["fill_hole_panel_restored"] = float(lid.Tolerance) == tolerance and lid.isValid()
+
     # 7. the Hinge and SpaceCurve commands on the hinge-pair example (built without its hinge)
     import hinge_pair
 
@@ -514,7 +538,7 @@ def every_constraint_command(result, doc, sheet, surface, rail):
             Gui.Selection.addSelection(doc.Name, vertex.Name, "Vertex1")
         if kind in constraints.CURVE_KINDS or kind in ("G0", "CurveAttractor"):
             Gui.Selection.addSelection(doc.Name, rail.Name, "Edge1")
-        if kind in ("G1", "SurfaceAttractor"):
+        if kind in ("G1", "G2", "SurfaceAttractor"):
             Gui.Selection.addSelection(doc.Name, surface.Name, "Face1")
         active = bool(Gui.Command.get(name).isActive())
         began = time.perf_counter()

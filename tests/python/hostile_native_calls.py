@@ -70,6 +70,11 @@ def normals3():
     return curve([0.0, 0.0, 1.0], [0.0, 0.0, 1.0])
 
 
+def shape6():
+    """A neighbour's second fundamental form along a curve: a cylinder's, bent along y."""
+    return curve([0.0, 0.5, 0.0, 0.0, 0.0, 0.0], [0.0, 0.5, 0.0, 0.0, 0.0, 0.0])
+
+
 def square_loop(uv=False):
     pts = [[0.1, 0.1], [0.9, 0.1], [0.9, 0.9], [0.1, 0.9]] if uv else \
         [[1.0, 1.0, 0.0], [9.0, 1.0, 0.0], [9.0, 9.0, 0.0], [1.0, 9.0, 0.0]]
@@ -243,6 +248,8 @@ def hostile_problems():
         variant(curves=[nat.CurveConstraint(line2(), c, 1.0, True)])
         variant(ribbons=[nat.RibbonConstraint(c, normals3(), 1.0)])
         variant(ribbons=[nat.RibbonConstraint(line2(), c, 1.0)])
+        variant(curvatures=[nat.CurvatureConstraint(line2(), normals3(), c, 1.0)])
+        variant(curvatures=[nat.CurvatureConstraint(c, normals3(), shape6(), 1.0)])
     for r in hostile_regions():
         variant(attractors=[nat.Attractor(nat.AttractorKind.plane, r, np.zeros(3), np.array([0, 0, 1.0]), 1.0)])
         variant(directors=[nat.Director(r, np.array([0.0, 0.0, 1.0]), 1.0)])
@@ -402,6 +409,8 @@ CLASS_VALUES = {
     "AttractorKind": (lambda: nat.AttractorKind.point, lambda: list(nat.AttractorKind.__members__.values())),
     "ClosestPointTarget": (lambda: nat.ClosestPointTarget(FACE_BREP), lambda: []),
     "RibbonConstraint": (lambda: nat.RibbonConstraint(line2(), normals3(), 1.0), lambda: hostile_ribbons()),
+    "CurvatureConstraint": (lambda: nat.CurvatureConstraint(line2(), normals3(), shape6(), 1.0),
+                            lambda: hostile_curvatures()),
     "CurveConstraint": (lambda: problem().curves[0], lambda: hostile_curve_constraints()),
     "List[CurveConstraint]": (lambda: problem().curves, lambda: [[]] + [[c] for c in hostile_curve_constraints()]),
     "List[PointConstraint]": (lambda: [nat.PointConstraint(0.5, 0.5, np.array([5.0, 5.0, 1.0]), 1.0)],
@@ -423,6 +432,14 @@ def hostile_ribbons():
     return out
 
 
+def hostile_curvatures():
+    out = [nat.CurvatureConstraint(c, normals3(), shape6(), 1.0) for c in hostile_curves()]
+    out += [nat.CurvatureConstraint(line2(), c, shape6(), 1.0) for c in hostile_curves()]
+    out += [nat.CurvatureConstraint(line2(), normals3(), c, 1.0) for c in hostile_curves()]
+    out += [nat.CurvatureConstraint(line2(), normals3(), shape6(), x) for x in hostile_floats()]
+    return out
+
+
 def valid_and_hostile(pname, ptype):
     """A valid value for the parameter, and its hostile values (all of its type)."""
     t = ptype.replace("varsurf._native.", "").replace("varsurf::", "")
@@ -434,6 +451,8 @@ def valid_and_hostile(pname, ptype):
             return line2(), hostile_curves()
         if pname == "normals":
             return normals3(), hostile_curves()
+        if pname == "shape":
+            return shape6(), hostile_curves()
         return line3(), hostile_curves()
     if t.startswith("Optional[") and t.endswith("]"):
         valid, hostile = valid_and_hostile(pname, t[len("Optional["):-1])

@@ -275,3 +275,16 @@ def test_refined_spans_are_outlined(smoke):
     valid, depth, drawn, spans, change = smoke["refinement_view"]
     assert valid and depth >= 1 and drawn == spans > 0
     assert change > 0.002, change
+
+
+def test_fill_hole_panel_lists_its_joins(smoke):
+    """The crowned lid's FillHole: its own icon with the box as its child, its panel's four rows
+    (the top's edges, G0: no angle), a tolerance previewed and cancelled, a picture of it."""
+    assert smoke["fill_hole_icon"].endswith("VarSurf_FillHole.svg"), smoke["fill_hole_icon"]
+    assert smoke["fill_hole_children"] == ["Box"], smoke["fill_hole_children"]
+    rows = smoke["fill_hole_panel_rows"]
+    assert [r[0] for r in rows] == [f"hole edge {k}" for k in range(1, 5)], rows
+    assert all(float(r[1]) <= 0.001 and r[2] == "—" for r in rows), rows
+    assert smoke["fill_hole_panel_continuity"] == "G0"
+    assert smoke["fill_hole_panel_preview"] == [2.0, True] and smoke["fill_hole_panel_restored"]
+    assert smoke["fill_hole_image_stats"]["variance"] > 50.0, smoke["fill_hole_image_stats"]  # the lid is drawn

@@ -300,6 +300,7 @@ def _constraint_picks(kind, sheet, pin, o):
         return [Sel(sheet), Sel(pin, "Vertex1")]
     special = {"Ribbon": [Sel(o.seam, "Edge1")], "CurveAttractor": [Sel(o.second, "Edge1")],
                "G0": [Sel(o.second, "Edge1")], "G1": [Sel(o.second, "Edge1"), Sel(o.flat, "Face1")],
+               "G2": [Sel(o.second, "Edge1"), Sel(o.flat, "Face1")],
                "SurfaceAttractor": [Sel(o.roof, "Face1")], "FrozenRegion": LOOP_EDGES(o)}
     if kind in special:
         return [Sel(sheet)] + special[kind]

@@ -213,6 +213,7 @@ def make_fill_hole(part, elements, curves=(), continuity="G1", tolerance=None, n
         obj.Tolerance = float(tolerance)
     if hasattr(part, "Visibility"):
         part.Visibility = False  # the FillHole is the whole part now
+    attach_view_provider(obj, "ViewProviderFillHole")
     return obj
 
 

@@ -207,6 +207,21 @@ class ViewProviderSolid(_EditedInPanel, _ViewProvider):
         return True
 
 
+class ViewProviderFillHole(_EditedInPanel, _ViewProvider):
+    """Tree icon of a FillHole, with the part it fills as its child (the part is hidden, as Part
+    features hide the shapes they consume); its panel edits the continuity and tolerance."""
+
+    TYPE = "VarSurf::ViewProviderFillHole"
+    ICON = "VarSurf_FillHole.svg"
+    PANEL = ("varsurf.gui.task_fill_hole", "TaskPanelFillHole")
+    EDIT_TEXT = QT_TRANSLATE_NOOP("VarSurf", "Edit fill hole")
+
+    def claimChildren(self):
+        obj = getattr(self, "Object", None)
+        base = getattr(obj, "Base", None) if obj is not None else None
+        return [base[0]] if base else []
+
+
 class ViewProviderSpaceCurve(_ViewProvider):
     """Tree icon of a variational SpaceCurve, drawn thick so it reads as a handle-driven curve,
     with a draggable pin on each handle (gui.handles.CurveHandles)."""
