@@ -8,6 +8,7 @@
 #include "varsurf/core/external_energy.hpp"
 #include "varsurf/core/point_constraints.hpp"
 #include "varsurf/core/ribbon_constraint.hpp"
+#include "varsurf/core/seam_ties.hpp"
 
 namespace py = pybind11;
 using namespace pybind11::literals;
@@ -109,6 +110,15 @@ void bind_operators(py::module_& m) {
       "space"_a, "poles"_a, "curvature"_a, "floor"_a, "samples"_a = 200,
       "Largest relative jump between the sheet's and the neighbour's normal curvature across the "
       "pre-image, relative to max(|k|, floor).");
+
+  m.def(
+      "seam_mismatch",
+      [](const SplineSpace& space, const Eigen::MatrixX3d& poles, int direction, int samples) {
+        return seam_mismatch(space, poles, direction, samples);
+      },
+      "space"_a, "poles"_a, "direction"_a, "samples"_a = 100,
+      "How far the sheet is from closed along u (direction 0) or v (1): the largest difference "
+      "of position and derivatives (scaled by the span length) across its seam.");
 
   py::class_<Region>(m, "Region",
                      "A region of the parameter domain: the rectangle [u0, u1] x [v0, v1], or "

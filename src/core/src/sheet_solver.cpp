@@ -191,6 +191,15 @@ std::vector<ConstraintSamples> sample_constraints(const SheetProblem& pb, bool c
   sample_all(
       pb.tangents, "tangent constraint", [&](const auto& c) { return sample_tangent(sp, c); },
       separable);
+  if (pb.closed_u || pb.closed_v) {
+    std::vector<bool> fixed(static_cast<size_t>(sp.size()), false);
+    for (int k : pb.fixed_poles) fixed[static_cast<size_t>(k)] = true;
+    for (int direction : {0, 1}) {
+      if (!(direction == 0 ? pb.closed_u : pb.closed_v)) continue;
+      ConstraintSamples seam = sample_seam(sp, direction, fixed);
+      if (seam.rows() > 0) separable.push_back(std::move(seam));
+    }
+  }
   sample_all(
       pb.normals, "normal constraint", [&](const auto& c) { return sample_normal(sp, c); },
       coupled);
@@ -509,7 +518,8 @@ void check_same_setup(const SheetProblem& pb, const SheetProblem& moved) {
   const bool same_setup =
       same_space(pb.space, moved.space) && pb.fixed_poles == moved.fixed_poles &&
       pb.energy.alpha == moved.energy.alpha && pb.energy.beta == moved.energy.beta &&
-      pb.rest_poles.rows() == moved.rest_poles.rows() &&
+      pb.rest_poles.rows() == moved.rest_poles.rows() && pb.closed_u == moved.closed_u &&
+      pb.closed_v == moved.closed_v &&
       (pb.rest_poles.rows() == 0 || pb.rest_poles == moved.rest_poles) &&
       pb.attractors.size() == moved.attractors.size() &&
       pb.directors.size() == moved.directors.size() && moved.repellers.empty() &&

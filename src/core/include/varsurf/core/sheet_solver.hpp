@@ -22,6 +22,7 @@
 #include "varsurf/core/lcurve.hpp"
 #include "varsurf/core/point_constraints.hpp"
 #include "varsurf/core/ribbon_constraint.hpp"
+#include "varsurf/core/seam_ties.hpp"
 #include "varsurf/core/spline_space.hpp"
 #include "varsurf/core/thin_plate_energy.hpp"
 
@@ -55,6 +56,10 @@ struct SheetProblem {
   std::vector<Director> directors;               // couples x, y, z
   std::vector<Repeller> repellers;               // not quadratic: iterated, couples x, y, z
   std::vector<ShapeAttractor> shape_attractors;  // not quadratic: iterated, couples x, y, z
+  // Closed along u (v): the space's two u (v) ends are one seam, tied C2 (sample_seam), as on a
+  // cylinder, a revolved face or a tube through closed sections.
+  bool closed_u = false;
+  bool closed_v = false;
   double pressure = 0.0;         // inflate (> 0, along w_u x w_v) or deflate (< 0): iterated
   std::vector<int> fixed_poles;  // flat indices held at initial_poles
 };

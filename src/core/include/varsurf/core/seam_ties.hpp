@@ -1,0 +1,33 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+// Closed sheets: a clamped space whose two ends along u (or v) are one seam. The sheet's position
+// and its derivatives across the seam are tied equal on both sides, up to order degree - 1 for a
+// polynomial space (a periodic spline: the seam is like any simple knot line, and the sheet does
+// not depend on where it is) and min(2, degree - 1) for a rational one, so the seam is an interior
+// curve of the closed surface: the energy and the constraints treat it like any other. The result
+// exports as a closed (seam-split) B-spline face.
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "varsurf/core/constraints.hpp"
+#include "varsurf/core/spline_space.hpp"
+
+namespace varsurf {
+
+// The ties of the seam along `direction` (0: the space is closed along u, its u ends meet; 1:
+// along v), at the Greville abscissae of the other direction (where a spline of the other
+// direction is determined by its values; polynomial spaces: per pole of the other direction):
+// separable, exact rows, derivative rows scaled by the
+// mean span length to the power of their order. Rows whose poles are all `fixed` (flags per
+// pole, or empty) are left out: nothing can move to meet them.
+ConstraintSamples sample_seam(const SplineSpace& space, int direction,
+                              const std::vector<bool>& fixed = {});
+
+// Largest |d^k w / d^k s (first) - d^k w / d^k s (last)| over k = 0 .. min(2, order tied) and
+// `samples` points along the seam, each derivative scaled as in sample_seam: how far the seam is
+// from closed (0 for a closed sheet, up to rounding).
+double seam_mismatch(const SplineSpace& space, const Eigen::MatrixX3d& poles, int direction,
+                     int samples = 100);
+
+}  // namespace varsurf

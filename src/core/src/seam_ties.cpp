@@ -1,0 +1,165 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+#include "varsurf/core/seam_ties.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <string>
+
+#include "varsurf/core/errors.hpp"
+#include "varsurf/core/knot_vector.hpp"
+
+namespace varsurf {
+
+namespace {
+
+struct Seam {
+  int degree = 0;  // along the closed direction
+  int order = 0;   // highest derivative tied
+  double first = 0.0, last = 0.0, scale = 1.0;
+  std::vector<double> across;  // Greville abscissae of the other direction
+};
+
+Seam seam_of(const SplineSpace& space, int direction) {
+  space.validate();
+  if (direction != 0 && direction != 1)
+    throw InvalidInput("seam: direction must be 0 (closed along u) or 1 (along v)");
+  Seam s;
+  const std::vector<double>& knots = direction == 0 ? space.knots_u : space.knots_v;
+  const std::vector<double>& other = direction == 0 ? space.knots_v : space.knots_u;
+  s.degree = direction == 0 ? space.degree_u : space.degree_v;
+  const int other_degree = direction == 0 ? space.degree_v : space.degree_u;
+  if (s.degree < 1) throw InvalidInput("seam: a closed direction needs degree 1 or more");
+  // A polynomial space is tied like a periodic spline (C^(p-1), as at its simple knots), so the
+  // seam is no different from any other knot line and the sheet does not depend on where it is;
+  // a rational one (its rows from the bivariate basis) to C2.
+  s.order = space.rational() ? std::min(2, s.degree - 1) : s.degree - 1;
+  s.first = knots.front(), s.last = knots.back();
+  std::vector<double> distinct(knots);
+  distinct.erase(std::unique(distinct.begin(), distinct.end()), distinct.end());
+  s.scale = (s.last - s.first) / std::max<size_t>(distinct.size() - 1, 1);
+  const int n = static_cast<int>(other.size()) - other_degree - 1;
+  for (int j = 0; j < n; ++j) {
+    double g = 0.0;
+    for (int k = 1; k <= other_degree; ++k) g += other[static_cast<size_t>(j + k)];
+    s.across.push_back(other_degree > 0 ? g / other_degree : other[static_cast<size_t>(j)]);
+  }
+  return s;
+}
+
+// Row of BasisSample::values holding the k-th derivative along the closed direction.
+int derivative_row(int direction, int k) {
+  static const int rows[2][3] = {{0, 1, 3}, {0, 2, 5}};
+  return rows[direction][k];
+}
+
+BasisSample basis_at(const SplineSpace& space, int direction, double along, double across) {
+  return direction == 0 ? space.basis(along, across, 2) : space.basis(across, along, 2);
+}
+
+}  // namespace
+
+namespace {
+
+// One tie row: the coefficients of `row` (pole -> value), unless every pole in it is fixed.
+void add_row(const std::map<int, double>& row, const std::vector<bool>& fixed,
+             ConstraintSamples& out) {
+  std::vector<int> cols;
+  std::vector<double> values;
+  bool movable = fixed.empty();
+  for (const auto& [pole, value] : row) {
+    if (value == 0.0) continue;
+    cols.push_back(pole);
+    values.push_back(value);
+    if (!fixed.empty() && !fixed[static_cast<size_t>(pole)]) movable = true;
+  }
+  if (cols.empty() || !movable) return;
+  out.index.push_back(std::move(cols));
+  out.coeff.push_back(
+      Eigen::Map<Eigen::VectorXd>(values.data(), static_cast<Eigen::Index>(values.size())));
+  out.weight.push_back(1.0);
+}
+
+// Polynomial spaces: pole by pole of the other direction (a spline of the other direction is
+// zero exactly when its poles are), the k-th derivative at the first end minus at the last.
+void polynomial_ties(const SplineSpace& space, int direction, const Seam& s,
+                     const std::vector<bool>& fixed, ConstraintSamples& out) {
+  const std::vector<double>& knots = direction == 0 ? space.knots_u : space.knots_v;
+  const int p = s.degree, n = direction == 0 ? space.nu() : space.nv();
+  const int across = direction == 0 ? space.nv() : space.nu();
+  const int first_span = find_span(knots, p, s.first), last_span = find_span(knots, p, s.last);
+  Eigen::MatrixXd a(p + 1, p + 1), b(p + 1, p + 1);
+  basis_derivatives(knots, p, first_span, s.first, p, a);
+  basis_derivatives(knots, p, last_span, s.last, p, b);
+  for (int j = 0; j < across; ++j) {
+    for (int k = 0; k <= s.order; ++k) {
+      const double scale = std::pow(s.scale, k);
+      std::map<int, double> row;
+      for (int i = 0; i <= p; ++i) {
+        const int ia = first_span - p + i, ib = last_span - p + i;
+        if (ia >= 0 && ia < n)
+          row[direction == 0 ? space.index(ia, j) : space.index(j, ia)] += scale * a(k, i);
+        if (ib >= 0 && ib < n)
+          row[direction == 0 ? space.index(ib, j) : space.index(j, ib)] -= scale * b(k, i);
+      }
+      add_row(row, fixed, out);
+    }
+  }
+}
+
+}  // namespace
+
+ConstraintSamples sample_seam(const SplineSpace& space, int direction,
+                              const std::vector<bool>& fixed) {
+  const Seam s = seam_of(space, direction);
+  if (!fixed.empty() && static_cast<int>(fixed.size()) != space.size())
+    throw InvalidInput("seam: one fixed flag per pole expected");
+  ConstraintSamples out;
+  out.exact = true;
+  if (!space.rational()) {
+    polynomial_ties(space, direction, s, fixed, out);
+    out.rhs = Eigen::MatrixXd::Zero(out.rows(), 3);
+    return out;
+  }
+  for (const double c : s.across) {
+    const BasisSample a = basis_at(space, direction, s.first, c);
+    const BasisSample b = basis_at(space, direction, s.last, c);
+    for (int k = 0; k <= s.order; ++k) {
+      const double scale = std::pow(s.scale, k);
+      std::map<int, double> row;
+      for (size_t i = 0; i < a.index.size(); ++i)
+        row[a.index[i]] +=
+            scale * a.values(derivative_row(direction, k), static_cast<Eigen::Index>(i));
+      for (size_t i = 0; i < b.index.size(); ++i)
+        row[b.index[i]] -=
+            scale * b.values(derivative_row(direction, k), static_cast<Eigen::Index>(i));
+      add_row(row, fixed, out);
+    }
+  }
+  out.rhs = Eigen::MatrixXd::Zero(out.rows(), 3);
+  return out;
+}
+
+double seam_mismatch(const SplineSpace& space, const Eigen::MatrixX3d& poles, int direction,
+                     int samples) {
+  const Seam s = seam_of(space, direction);
+  BSplineSurface{space, poles}.validate();
+  if (samples < 2 || samples > 1000000)
+    throw InvalidInput("seam_mismatch takes 2 to 1,000,000 samples");
+  const double lo = s.across.front(), hi = s.across.back();
+  double worst = 0.0;
+  for (int i = 0; i < samples; ++i) {
+    const double c = lo + (hi - lo) * i / (samples - 1);
+    const Eigen::MatrixXd a = direction == 0 ? evaluate_surface(space, poles, s.first, c, 2)
+                                             : evaluate_surface(space, poles, c, s.first, 2);
+    const Eigen::MatrixXd b = direction == 0 ? evaluate_surface(space, poles, s.last, c, 2)
+                                             : evaluate_surface(space, poles, c, s.last, 2);
+    for (int k = 0; k <= std::min(s.order, 2); ++k) {
+      const int r = derivative_row(direction, k);
+      worst = std::max(worst, std::pow(s.scale, k) * (a.row(r) - b.row(r)).norm());
+    }
+  }
+  return worst;
+}
+
+}  // namespace varsurf

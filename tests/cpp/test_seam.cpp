@@ -1,0 +1,108 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "test_support.hpp"
+#include "varsurf/core/errors.hpp"
+#include "varsurf/core/sheet_solver.hpp"
+
+using namespace varsurf;
+
+namespace {
+
+// The uniform cubic B-spline on [0, 4].
+double cardinal(double x) {
+  if (x < 0.0 || x >= 4.0) return 0.0;
+  if (x < 1.0) return x * x * x / 6.0;
+  if (x < 2.0) return (-3 * x * x * x + 12 * x * x - 12 * x + 4) / 6.0;
+  if (x < 3.0) return (3 * x * x * x - 24 * x * x + 60 * x - 44) / 6.0;
+  const double y = 4.0 - x;
+  return y * y * y / 6.0;
+}
+
+constexpr int kSpans = 8;
+
+// A closed section: a periodic cubic spline of period 1 on kSpans uniform spans, controlled by an
+// irregular octagon in the xy plane.
+Eigen::Vector3d section(double u) {
+  Eigen::Vector3d p = Eigen::Vector3d::Zero();
+  for (int i = 0; i < kSpans; ++i) {
+    const double angle = 2.0 * M_PI * i / kSpans, radius = 1.0 + 0.15 * std::sin(3.0 * i);
+    const double x = std::fmod(kSpans * u - i + 2.0 * kSpans, static_cast<double>(kSpans));
+    p += cardinal(x) * Eigen::Vector3d(radius * std::cos(angle), radius * std::sin(angle), 0.0);
+  }
+  return p;
+}
+
+// A tube between two sections (the second 1.2 times the first, one unit up) through a ring 1.5
+// times the section at half height, its parametrization starting `shift` along the section: the
+// same tube whatever the shift, seen through a seam elsewhere.
+SheetProblem tube(double shift, bool closed) {
+  SheetProblem pb;
+  pb.space = SplineSpace::uniform(3, 3, kSpans, 6);
+  pb.initial_poles = test::fit_poles(pb.space, [&](double u, double v) {
+    return Eigen::Vector3d((1.0 + 0.2 * v) * section(u + shift) + Eigen::Vector3d(0.0, 0.0, v));
+  });
+  pb.energy = ThinPlateWeights::isotropic(0.1, 1.0);
+  for (int i = 0; i < pb.space.nu(); ++i) {
+    pb.fixed_poles.push_back(pb.space.index(i, 0));
+    pb.fixed_poles.push_back(pb.space.index(i, pb.space.nv() - 1));
+  }
+  std::vector<double> breaks;
+  for (int k = 0; k <= kSpans; ++k) breaks.push_back(static_cast<double>(k) / kSpans);
+  CurveConstraint ring;
+  ring.preimage = test::line_curve(Eigen::Vector2d(0.0, 0.5), Eigen::Vector2d(1.0, 0.5));
+  ring.target = test::fit_piecewise_curve(breaks, 3, 3, [&](double u) {
+    return Eigen::VectorXd(1.5 * section(u + shift) + Eigen::Vector3d(0.0, 0.0, 0.5));
+  });
+  pb.curves.push_back(ring);
+  pb.closed_u = closed;
+  return pb;
+}
+
+// Largest distance between tube A at (u + shift, v) and tube B at (u, v).
+double difference(const SheetProblem& a, const Eigen::MatrixX3d& pa, const SheetProblem& b,
+                  const Eigen::MatrixX3d& pb, double shift) {
+  double worst = 0.0;
+  for (int i = 0; i <= 40; ++i)
+    for (int j = 0; j <= 10; ++j) {
+      const double u = (1.0 - shift) * i / 40.0, v = j / 10.0;
+      const Eigen::Vector3d p = evaluate_surface(a.space, pa, u + shift, v, 0).row(0);
+      const Eigen::Vector3d q = evaluate_surface(b.space, pb, u, v, 0).row(0);
+      worst = std::max(worst, (p - q).norm());
+    }
+  return worst;
+}
+
+}  // namespace
+
+TEST(Seam, AClosedTubeDoesNotDependOnWhereItsSeamIs) {
+  // Seam at 0 and seam three spans on: the same periodic spline space, the same data; a closed
+  // sheet must come out the same surface.
+  const double shift = 3.0 / kSpans;
+  const SheetProblem a = tube(0.0, true), b = tube(shift, true);
+  const SolveResult ra = solve_sheet(a), rb = solve_sheet(b);
+  EXPECT_LT(difference(a, ra.poles, b, rb.poles, shift), 1e-9);
+  EXPECT_LT(seam_mismatch(a.space, ra.poles, 0), 1e-10);
+  EXPECT_LT(incidence_error(a.space, ra.poles, a.curves[0]), 1e-9);
+  // Not closed (the seam free like a boundary): the seam opens and the two differ.
+  const SheetProblem c = tube(0.0, false), d = tube(shift, false);
+  const SolveResult rc = solve_sheet(c), rd = solve_sheet(d);
+  EXPECT_GT(seam_mismatch(c.space, rc.poles, 0), 1e-3);
+  EXPECT_GT(difference(c, rc.poles, d, rd.poles, shift), 1e-3);
+}
+
+TEST(Seam, TiesLeaveOutRowsOfFixedPolesAndRefuseBadInput) {
+  const SplineSpace sp = SplineSpace::uniform(3, 3, 4, 4);
+  const ConstraintSamples all = sample_seam(sp, 0);
+  EXPECT_TRUE(all.exact);
+  EXPECT_EQ(all.rows(), 3 * sp.nv());  // position, first and second derivative per abscissa
+  std::vector<bool> fixed(static_cast<size_t>(sp.size()), false);
+  for (int i = 0; i < sp.nu(); ++i) fixed[static_cast<size_t>(sp.index(i, 0))] = true;
+  EXPECT_EQ(sample_seam(sp, 0, fixed).rows(), 3 * (sp.nv() - 1));  // the clamped end row is fixed
+  EXPECT_EQ(sample_seam(SplineSpace::uniform(2, 2, 4, 4), 1).rows(), 2 * 6);  // degree 2: C1
+  EXPECT_THROW(sample_seam(sp, 2), InvalidInput);
+  EXPECT_THROW(sample_seam(sp, 0, std::vector<bool>(3, false)), InvalidInput);
+  EXPECT_THROW(seam_mismatch(sp, test::flat_poles(sp), 0, 1), InvalidInput);
+}
