@@ -20,11 +20,8 @@ def _face_at_height(shape, z, kind="Part::GeomPlane"):
                 if f.Surface.TypeId == kind and abs(f.CenterOfMass.z - z) < 1e-6)
 
 
-@pytest.mark.parametrize("radius", [3.0, 6.0])
-def test_a_flat_top_replaced_g1_to_its_fillet_is_the_flat_top(doc, native, tmp_path, radius):
-    """A cylinder with its top edge filleted: the top is a disc bounded by the fillet's torus, which
-    meets it with a horizontal tangent. Replaced by a sheet G1 to the torus, the fairest sheet is
-    that disc: the part comes back with its own volume."""
+def _filleted_cylinder(doc, radius):
+    """A Part Cylinder (radius 20, height 30) with its top edge filleted by a Part Fillet."""
     cylinder = doc.addObject("Part::Cylinder", "Cylinder")
     cylinder.Radius, cylinder.Height = 20, 30
     fillet = doc.addObject("Part::Fillet", "Fillet")
@@ -34,6 +31,15 @@ def test_a_flat_top_replaced_g1_to_its_fillet_is_the_flat_top(doc, native, tmp_p
                     if e.Curve.TypeId == "Part::GeomCircle" and abs(e.BoundBox.ZMin - 30) < 1e-9)
     fillet.Edges = [(top_edge + 1, radius, radius)]
     doc.recompute()
+    return fillet
+
+
+@pytest.mark.parametrize("radius", [3.0, 6.0])
+def test_a_flat_top_replaced_g1_to_its_fillet_is_the_flat_top(doc, native, tmp_path, radius):
+    """A cylinder with its top edge filleted: the top is a disc bounded by the fillet's torus, which
+    meets it with a horizontal tangent. Replaced by a sheet G1 to the torus, the fairest sheet is
+    that disc: the part comes back with its own volume."""
+    fillet = _filleted_cylinder(doc, radius)
     top = _face_at_height(fillet.Shape, 30.0)
     filled = varsurf.make_fill_hole(fillet, f"Face{top + 1}")
     doc.recompute()
@@ -53,15 +59,7 @@ def test_a_flat_top_replaced_g1_to_its_fillet_is_the_flat_top(doc, native, tmp_p
                    "the circle's pieces are re-parametrized by the STEP reader and still come back 3 % under their "
                    "deviation, so check(True) finds BOPAlgo_InvalidCurveOnSurface")
 def test_a_top_filled_g1_to_its_fillet_reads_back_from_step(doc, native, tmp_path):
-    cylinder = doc.addObject("Part::Cylinder", "Cylinder")
-    cylinder.Radius, cylinder.Height = 20, 30
-    fillet = doc.addObject("Part::Fillet", "Fillet")
-    fillet.Base = cylinder
-    doc.recompute()
-    top_edge = next(i for i, e in enumerate(cylinder.Shape.Edges)
-                    if e.Curve.TypeId == "Part::GeomCircle" and abs(e.BoundBox.ZMin - 30) < 1e-9)
-    fillet.Edges = [(top_edge + 1, 3.0, 3.0)]
-    doc.recompute()
+    fillet = _filleted_cylinder(doc, 3.0)
     filled = varsurf.make_fill_hole(fillet, f"Face{_face_at_height(fillet.Shape, 30.0) + 1}")
     doc.recompute()
     path = tmp_path / "filleted_top.step"

@@ -186,21 +186,27 @@ def curvature_corners(joins, tolerance: float):
     more than CORNER_CURVATURE percent (of the larger, and of no less than one over the faces'
     size): a G2 sheet must take both there."""
     found = []
+    for (name_a, face_a), (name_b, face_b), p in _meeting_ends(joins, tolerance):
+        box = face_a.BoundBox
+        box.add(face_b.BoundBox)
+        floor = 1.0 / box.DiagonalLength if box.DiagonalLength > 0.0 else 0.0
+        form_a, frame = _plane_form(face_a, p)
+        form_b, _ = _plane_form(face_b, p, frame)
+        scale = max(max(abs(x) for x in form_a), max(abs(x) for x in form_b), floor)
+        jump = 100.0 * max(abs(x - y) for x, y in zip(form_a, form_b)) / scale if scale > 0.0 else 0.0
+        if jump > CORNER_CURVATURE:
+            found.append(CurvatureCorner(name_a, name_b, (p.x, p.y, p.z), jump))
+    return found
+
+
+def _meeting_ends(joins, tolerance: float):
+    """((name, face), (name, face), point) for every two of ``joins`` — (name, edge, neighbour
+    face) — and each end of the first's edge within ``tolerance`` of an end of the second's."""
     for i, (name_a, edge_a, face_a) in enumerate(joins):
         for name_b, edge_b, face_b in joins[i + 1:]:
-            box = face_a.BoundBox
-            box.add(face_b.BoundBox)
-            floor = 1.0 / box.DiagonalLength if box.DiagonalLength > 0.0 else 0.0
             for p in (v.Point for v in edge_a.Vertexes):
-                if min((p - q.Point).Length for q in edge_b.Vertexes) > tolerance:
-                    continue
-                form_a, frame = _plane_form(face_a, p)
-                form_b, _ = _plane_form(face_b, p, frame)
-                scale = max(max(abs(x) for x in form_a), max(abs(x) for x in form_b), floor)
-                jump = 100.0 * max(abs(x - y) for x, y in zip(form_a, form_b)) / scale if scale > 0.0 else 0.0
-                if jump > CORNER_CURVATURE:
-                    found.append(CurvatureCorner(name_a, name_b, (p.x, p.y, p.z), jump))
-    return found
+                if min((p - q.Point).Length for q in edge_b.Vertexes) <= tolerance:
+                    yield (name_a, face_a), (name_b, face_b), p
 
 
 def incompatible_corners(joins, tolerance: float):
@@ -208,13 +214,9 @@ def incompatible_corners(joins, tolerance: float):
     end (within ``tolerance``) where the neighbours' tangent planes differ by more than
     CORNER_ANGLE."""
     found = []
-    for i, (name_a, edge_a, face_a) in enumerate(joins):
-        for name_b, edge_b, face_b in joins[i + 1:]:
-            for p in (v.Point for v in edge_a.Vertexes):
-                if min((p - q.Point).Length for q in edge_b.Vertexes) > tolerance:
-                    continue
-                n_a, n_b = _foot(face_a, p)[3], _foot(face_b, p)[3]
-                angle = math.degrees(math.acos(min(1.0, abs(n_a.dot(n_b)))))
-                if angle > CORNER_ANGLE:
-                    found.append(Corner(name_a, name_b, (p.x, p.y, p.z), angle))
+    for (name_a, face_a), (name_b, face_b), p in _meeting_ends(joins, tolerance):
+        n_a, n_b = _foot(face_a, p)[3], _foot(face_b, p)[3]
+        angle = math.degrees(math.acos(min(1.0, abs(n_a.dot(n_b)))))
+        if angle > CORNER_ANGLE:
+            found.append(Corner(name_a, name_b, (p.x, p.y, p.z), angle))
     return found
