@@ -58,11 +58,13 @@ void bind_core_functions(py::module_& m) {
 
   m.def(
       "boundary_pole_indices",
-      [](const SplineSpace& space) {
+      [](const SplineSpace& space, bool closed_u, bool closed_v) {
         space.validate();
-        return boundary_pole_indices(space);
+        return boundary_pole_indices(space, closed_u, closed_v);
       },
-      "space"_a, "Flat indices of the poles on the four boundary rows of the space.");
+      "space"_a, "closed_u"_a = false, "closed_v"_a = false,
+      "Flat indices of the poles on the four boundary rows of the space (the rows at the ends of "
+      "a closed direction are a seam and are left out).");
 
   m.def(
       "incidence_error",

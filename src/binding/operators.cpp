@@ -120,6 +120,14 @@ void bind_operators(py::module_& m) {
       "How far the sheet is from closed along u (direction 0) or v (1): the largest difference "
       "of position and derivatives (scaled by the span length) across its seam.");
 
+  m.def(
+      "seam_continuity",
+      [](const SplineSpace& space, const Eigen::MatrixX3d& poles, int direction, double tolerance,
+         int samples) { return seam_continuity(space, poles, direction, tolerance, samples); },
+      "space"_a, "poles"_a, "direction"_a, "tolerance"_a = 1e-9, "samples"_a = 100,
+      "Highest derivative order up to which the poles are continuous across the seam along u "
+      "(direction 0) or v (1), relative to their extent; -1 when the two ends do not meet.");
+
   py::class_<Region>(m, "Region",
                      "A region of the parameter domain: the rectangle [u0, u1] x [v0, v1], or "
                      "the area enclosed by `loop` (a closed polygon of (u, v) points) if given.")

@@ -106,3 +106,95 @@ TEST(Seam, TiesLeaveOutRowsOfFixedPolesAndRefuseBadInput) {
   EXPECT_THROW(sample_seam(sp, 0, std::vector<bool>(3, false)), InvalidInput);
   EXPECT_THROW(seam_mismatch(sp, test::flat_poles(sp), 0, 1), InvalidInput);
 }
+
+namespace {
+
+// The tube's start with the pole column `column` (from the seam at u = 0) moved up by `lift`: a
+// cubic's end derivatives of order k at u = 0 are made of columns 0 .. k only, so moving column
+// k leaves the seam continuous in orders below k and breaks order k.
+SheetProblem tube_with_moved_column(int column, double lift) {
+  SheetProblem pb = tube(0.0, true);
+  for (int j = 0; j < pb.space.nv(); ++j) pb.initial_poles(pb.space.index(column, j), 2) += lift;
+  return pb;
+}
+
+// The k-th u-derivative at u = 0 minus that at u = 1, at v.
+Eigen::Vector3d end_difference(const SheetProblem& pb, const Eigen::MatrixX3d& poles, int k,
+                               double v) {
+  static const int row[3] = {0, 1, 3};
+  return (evaluate_surface(pb.space, poles, 0.0, v, 2).row(row[k]) -
+          evaluate_surface(pb.space, poles, 1.0, v, 2).row(row[k]))
+      .transpose();
+}
+
+}  // namespace
+
+TEST(Seam, ContinuityCountsTheOrdersInWhichTheEndsAgree) {
+  const SheetProblem closed = tube(0.0, true);
+  EXPECT_EQ(seam_continuity(closed.space, closed.initial_poles, 0), 2);  // cubic: C2, as tied
+  EXPECT_EQ(seam_continuity(closed.space, closed.initial_poles, 1), -1);  // v: two sections
+  for (int column = 0; column <= 2; ++column) {
+    const SheetProblem moved = tube_with_moved_column(column, 0.05);
+    EXPECT_EQ(seam_continuity(moved.space, moved.initial_poles, 0), column - 1) << column;
+  }
+  // A quintic: beyond second derivatives the poles answer, up to C4.
+  SplineSpace quintic = SplineSpace::uniform(5, 3, 6, 2);
+  Eigen::MatrixX3d poles = test::fit_poles(quintic, [](double u, double v) {
+    return Eigen::Vector3d(std::cos(2.0 * M_PI * u), std::sin(2.0 * M_PI * u), v);
+  });
+  EXPECT_GE(seam_continuity(quintic, poles, 0, 1e-3), 0);
+  EXPECT_THROW(seam_continuity(closed.space, closed.initial_poles, 0, -1.0), InvalidInput);
+}
+
+TEST(Seam, TiesTheDisplacementSoAStartSmoothOnlyToC1KeepsItsOwnSecondDerivativeStep) {
+  // A rational circle's parametrization is C1 across a cylinder's seam, not C2: the ties make
+  // the change from the start continuous, so the result's step in each derivative across the
+  // seam is the start's own, while half a ring (away from the seam: a whole ring with its own
+  // C2 parametrization would contradict the start's) pulls the tube far from its start.
+  SheetProblem pb = tube_with_moved_column(2, 0.05);
+  std::vector<double> breaks;
+  for (int k = 2; k <= 6; ++k) breaks.push_back(static_cast<double>(k) / kSpans);
+  pb.curves[0].preimage = test::line_curve(Eigen::Vector2d(0.25, 0.5), Eigen::Vector2d(0.75, 0.5), 0.25,
+                                            0.75);
+  pb.curves[0].target = test::fit_piecewise_curve(breaks, 3, 3, [&](double u) {
+    return Eigen::VectorXd(1.5 * section(u) + Eigen::Vector3d(0.0, 0.0, 0.5));
+  });
+  const SolveResult r = solve_sheet(pb);
+  EXPECT_LT(incidence_error(pb.space, r.poles, pb.curves[0]), 1e-9);
+  EXPECT_GT((r.poles - pb.initial_poles).cwiseAbs().maxCoeff(), 0.1);
+  double worst = 0.0, start_step = 0.0;
+  for (int i = 0; i <= 20; ++i) {
+    const double v = i / 20.0;
+    for (int k = 0; k <= 2; ++k)
+      worst = std::max(worst, (end_difference(pb, r.poles, k, v) -
+                               end_difference(pb, pb.initial_poles, k, v))
+                                  .norm());
+    start_step = std::max(start_step, end_difference(pb, pb.initial_poles, 2, v).norm());
+  }
+  EXPECT_LT(worst, 1e-8 * start_step);
+  EXPECT_GT(start_step, 1.0);
+}
+
+TEST(Seam, ACurveTheRestShapeAlreadyMeetsLeavesAClosedSheetAtRest) {
+  // The ties are exact rows and share poles with the curve: the curve is still judged by the
+  // discrepancy principle in the directions the ties leave free. Its data is the rest shape's
+  // own curve plus 1e-6 of noise, well within the 1e-4 fit tolerance: nothing moves. Fitting
+  // the cluster as exact (the ties' kind) bent the sheet to the noise.
+  SheetProblem pb = tube(0.0, true);
+  pb.rest_poles = pb.initial_poles;
+  std::vector<double> breaks;
+  for (int k = 0; k <= kSpans; ++k) breaks.push_back(static_cast<double>(k) / kSpans);
+  pb.curves[0].target = test::fit_piecewise_curve(breaks, 3, 3, [&](double u) {
+    Eigen::Vector3d p = evaluate_surface(pb.space, pb.initial_poles, u, 0.5, 0).row(0);
+    return Eigen::VectorXd(p + Eigen::Vector3d(0.0, 0.0, 1e-6 * std::sin(40.0 * u)));
+  });
+  SolveOptions options;
+  options.fit_tolerance = 1e-4;
+  const SolveResult r = solve_sheet(pb, options);
+  EXPECT_LT((r.poles - pb.initial_poles).cwiseAbs().maxCoeff(), 1e-12);
+  EXPECT_LT(seam_mismatch(pb.space, r.poles, 0), 1e-10);
+  // With no fit tolerance the noise is fitted, and the ties still hold.
+  const SolveResult fitted = solve_sheet(pb);
+  EXPECT_GT((fitted.poles - pb.initial_poles).cwiseAbs().maxCoeff(), 1e-8);
+  EXPECT_LT(seam_mismatch(pb.space, fitted.poles, 0), 1e-8);
+}

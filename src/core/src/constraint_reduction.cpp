@@ -70,6 +70,80 @@ struct Cluster {
   bool held = false;  // met by the start: kept rows hold the start's values
 };
 
+// The SVD of a cluster's rows `b` (data `d`, the free columns' start values `start`, weights
+// per row) and how many of its directions are kept. `to_core` maps the cluster's whole sample
+// data to these rows' data (empty: they are the cluster's rows as given); a tall system is
+// compressed by QR first (same solution set; the SVD then works on an n x n matrix).
+bool analyse(Cluster& cl, const Eigen::MatrixXd& b, const Eigen::MatrixXd& d,
+             const Eigen::MatrixXd& start, const Eigen::VectorXd& row_weight, bool exact,
+             const Eigen::MatrixXd& to_core, const ReductionOptions& opt, double& conflict) {
+  const Eigen::Index m = b.rows(), n = b.cols();
+  cl.exact = exact;
+  cl.weight = row_weight.sum();
+  cl.to_core = to_core;
+  // The start shape's residual decides how many directions to fit: a homogeneous constraint
+  // (a normal, rhs 0) is far from met by a start that violates it, not already met.
+  const Eigen::MatrixXd d_start = d - b * start;
+  Eigen::MatrixXd core = b, core_rhs = d, core_start = d_start;
+  if (m > n) {
+    Eigen::HouseholderQR<Eigen::MatrixXd> qr(b);
+    core = qr.matrixQR().topRows(n).triangularView<Eigen::Upper>();
+    const Eigen::MatrixXd q1t = (qr.householderQ() * Eigen::MatrixXd::Identity(m, n)).transpose();
+    core_rhs = q1t * d;
+    core_start = q1t * d_start;
+    cl.to_core = to_core.size() ? Eigen::MatrixXd(q1t * to_core) : q1t;
+  }
+  if (cl.to_core.size() == 0) cl.to_core = Eigen::MatrixXd::Identity(m, m);
+  // No direction at all (rows of zeros): nothing kept, and a two-stage reduction goes on with
+  // an empty first stage.
+  cl.u = Eigen::MatrixXd::Zero(core.rows(), 0);
+  cl.v = Eigen::MatrixXd::Zero(n, 0);
+  cl.s.resize(0);
+  Eigen::BDCSVD<Eigen::MatrixXd> svd(core, Eigen::ComputeThinU | Eigen::ComputeThinV);
+  if (svd.singularValues().size() == 0 || !(svd.singularValues()(0) > 0.0)) return false;
+  cl.s = svd.singularValues();
+  if (!cl.s.allFinite()) throw InvalidInput("constraint values are not finite");
+  cl.u = svd.matrixU();
+  cl.v = svd.matrixV();
+  cl.beta = cl.u.transpose() * core_rhs;
+  cl.gain = cl.u.transpose() * core_start;
+  while (cl.numeric_rank < cl.s.size() && cl.s(cl.numeric_rank) > opt.rank_tolerance * cl.s(0))
+    ++cl.numeric_rank;
+  cl.start_sq = d_start.squaredNorm();
+  // Rows are scaled by sqrt(w): a sample's distance is |residual| / sqrt(w).
+  for (Eigen::Index i = 0; i < m; ++i)
+    if (row_weight(i) > 0.0)
+      cl.start_far =
+          std::max(cl.start_far, std::sqrt(d_start.row(i).squaredNorm() / row_weight(i)));
+  // Residual that no choice of poles removes: constraints that contradict each other (curves
+  // crossing at different heights).
+  const double best = std::max(0.0, cl.start_sq - cl.gain.topRows(cl.numeric_rank).squaredNorm());
+  if (cl.weight > 0.0) conflict = std::max(conflict, std::sqrt(best / cl.weight));
+  const double fit_sq = opt.fit_tolerance * opt.fit_tolerance * cl.weight;
+  cl.held = opt.truncation == Truncation::discrepancy && opt.start_is_minimum && !cl.exact &&
+            opt.fit_tolerance > 0.0 && cl.start_sq <= fit_sq &&
+            (opt.max_fit_factor <= 0.0 || cl.start_far <= opt.max_fit_factor * opt.fit_tolerance);
+  if (cl.held) {
+    // The discrepancy principle needs no direction of this data: the unconstrained minimum
+    // already meets it. Fitting it anyway would bend the sheet to noise below the tolerance;
+    // holding the well-conditioned directions where the start has them keeps it there.
+    while (cl.rank < cl.numeric_rank && cl.s(cl.rank) >= opt.keep_tolerance * cl.s(0)) ++cl.rank;
+  } else if (opt.truncation == Truncation::discrepancy) {
+    const double allowed = best + fit_sq;
+    // Well-conditioned directions are always kept: they cannot throw poles far (|coefficient|
+    // <= |data| / (keep_tolerance s_max)), and dropping one that the start happens to meet
+    // would let the solve drift off it. Only the weak ones are left to the discrepancy test.
+    double residual = cl.start_sq;
+    while (cl.rank < cl.numeric_rank) {
+      const bool strong = cl.s(cl.rank) >= opt.keep_tolerance * cl.s(0);
+      if (!strong && !cl.exact && opt.fit_tolerance > 0.0 && residual <= allowed) break;
+      residual -= cl.gain.row(cl.rank).squaredNorm();
+      ++cl.rank;
+    }
+  }
+  return true;  // with Truncation::lcurve the L-curve decides the rank over all clusters
+}
+
 }  // namespace
 
 ReducedConstraints reduce_constraints(const std::vector<ConstraintSamples>& blocks,
@@ -136,79 +210,52 @@ ReducedConstraints reduce_constraints(const std::vector<ConstraintSamples>& bloc
 
     const Eigen::Index m = static_cast<Eigen::Index>(members.size());
     const Eigen::Index n = static_cast<Eigen::Index>(cl.cols.size());
-    Eigen::MatrixXd b = Eigen::MatrixXd::Zero(m, n);
+    Eigen::MatrixXd bm = Eigen::MatrixXd::Zero(m, n);
     Eigen::MatrixXd d(m, width);
     Eigen::VectorXd row_weight(m);
+    std::vector<bool> exact(static_cast<size_t>(m));
+    // Exact rows first: a cluster that mixes them with fitted ones is reduced in two stages.
+    std::vector<size_t> order(members.begin(), members.end());
+    std::stable_partition(order.begin(), order.end(), [&](size_t i) { return rows[i].exact; });
     for (Eigen::Index i = 0; i < m; ++i) {
-      const FreeRow& row = rows[members[static_cast<size_t>(i)]];
+      const FreeRow& row = rows[order[static_cast<size_t>(i)]];
       for (size_t k = 0; k < row.cols.size(); ++k)
-        b(i, local[static_cast<size_t>(row.cols[k])]) += row.vals[k];
+        bm(i, local[static_cast<size_t>(row.cols[k])]) += row.vals[k];
       d.row(i) = row.rhs;
       row_weight(i) = row.weight;
-      cl.weight += row.weight;
-      cl.exact = cl.exact || row.exact;
+      exact[static_cast<size_t>(i)] = row.exact;
       cl.sample_rows.push_back(row.id);
     }
     for (int c : cl.cols) local[static_cast<size_t>(c)] = -1;
-
-    // Tall clusters (many samples, few poles) are compressed by QR first: same solution set,
-    // and the SVD then works on an n x n matrix.
-    // The start shape's residual decides how many directions to fit: a homogeneous constraint
-    // (a normal, rhs 0) is far from met by a start that violates it, not already met.
     Eigen::MatrixXd start(n, width);
     for (Eigen::Index k = 0; k < n; ++k) start.row(k) = fixed.row(cl.cols[static_cast<size_t>(k)]);
-    const Eigen::MatrixXd d_start = d - b * start;
-    Eigen::MatrixXd core = b, core_rhs = d, core_start = d_start;
-    if (m > n) {
-      Eigen::HouseholderQR<Eigen::MatrixXd> qr(b);
-      core = qr.matrixQR().topRows(n).triangularView<Eigen::Upper>();
-      cl.to_core = (qr.householderQ() * Eigen::MatrixXd::Identity(m, n)).transpose();
-      core_rhs = cl.to_core * d;
-      core_start = cl.to_core * d_start;
+    const Eigen::Index hard = std::count(exact.begin(), exact.end(), true);
+    // Without a fit tolerance every direction of the fitted rows is fitted anyway: one stage.
+    if (hard == 0 || hard == m || !(opt.fit_tolerance > 0.0)) {
+      if (analyse(cl, bm, d, start, row_weight, hard > 0, Eigen::MatrixXd(), opt, out.conflict))
+        clusters.push_back(std::move(cl));
+      continue;
     }
-    Eigen::BDCSVD<Eigen::MatrixXd> svd(core, Eigen::ComputeThinU | Eigen::ComputeThinV);
-    cl.s = svd.singularValues();
-    if (cl.s.size() == 0 || !(cl.s(0) > 0.0)) continue;
-    if (!cl.s.allFinite()) throw InvalidInput("constraint values are not finite");
-    cl.u = svd.matrixU();
-    cl.v = svd.matrixV();
-    cl.beta = cl.u.transpose() * core_rhs;
-    cl.gain = cl.u.transpose() * core_start;
-    while (cl.numeric_rank < cl.s.size() && cl.s(cl.numeric_rank) > opt.rank_tolerance * cl.s(0))
-      ++cl.numeric_rank;
-    cl.start_sq = d_start.squaredNorm();
-    // Rows are scaled by sqrt(w): a sample's distance is |residual| / sqrt(w).
-    for (Eigen::Index i = 0; i < m; ++i)
-      if (row_weight(i) > 0.0)
-        cl.start_far =
-            std::max(cl.start_far, std::sqrt(d_start.row(i).squaredNorm() / row_weight(i)));
-    // Residual that no choice of poles removes: constraints that contradict each other (curves
-    // crossing at different heights).
-    const double best = std::max(0.0, cl.start_sq - cl.gain.topRows(cl.numeric_rank).squaredNorm());
-    if (cl.weight > 0.0) out.conflict = std::max(out.conflict, std::sqrt(best / cl.weight));
-    const double fit_sq = opt.fit_tolerance * opt.fit_tolerance * cl.weight;
-    cl.held = opt.truncation == Truncation::discrepancy && opt.start_is_minimum && !cl.exact &&
-              opt.fit_tolerance > 0.0 && cl.start_sq <= fit_sq &&
-              (opt.max_fit_factor <= 0.0 || cl.start_far <= opt.max_fit_factor * opt.fit_tolerance);
-    if (cl.held) {
-      // The discrepancy principle needs no direction of this data: the unconstrained minimum
-      // already meets it. Fitting it anyway would bend the sheet to noise below the tolerance;
-      // holding the well-conditioned directions where the start has them keeps it there.
-      while (cl.rank < cl.numeric_rank && cl.s(cl.rank) >= opt.keep_tolerance * cl.s(0)) ++cl.rank;
-    } else if (opt.truncation == Truncation::discrepancy) {
-      const double allowed = best + fit_sq;
-      // Well-conditioned directions are always kept: they cannot throw poles far (|coefficient|
-      // <= |data| / (keep_tolerance s_max)), and dropping one that the start happens to meet
-      // would let the solve drift off it. Only the weak ones are left to the discrepancy test.
-      double residual = cl.start_sq;
-      while (cl.rank < cl.numeric_rank) {
-        const bool strong = cl.s(cl.rank) >= opt.keep_tolerance * cl.s(0);
-        if (!strong && !cl.exact && opt.fit_tolerance > 0.0 && residual <= allowed) break;
-        residual -= cl.gain.row(cl.rank).squaredNorm();
-        ++cl.rank;
-      }
-    }
-    clusters.push_back(std::move(cl));
+    // Exact rows (a closed sheet's seam ties) sharing poles with fitted ones (curves): the exact
+    // rows are met first, and the fitted rows act only in the directions they leave free, where
+    // the discrepancy principle decides as for any fitted cluster. Counting the whole cluster as
+    // exact would fit every direction of the curves' data, noise below the tolerance included.
+    Cluster first = cl, second = cl;
+    analyse(first, bm.topRows(hard), d.topRows(hard), start, row_weight.head(hard), true,
+            Eigen::MatrixXd::Identity(hard, m), opt, out.conflict);
+    const Eigen::MatrixXd ve = first.v.leftCols(first.rank);
+    // x = ve c + P y with c = S^-1 U^T (core of the exact rows' data): the fitted rows' data,
+    // less what c already does, as a linear map of the whole cluster's data.
+    const Eigen::MatrixXd to_c = first.s.head(first.rank).cwiseInverse().asDiagonal() *
+                                 first.u.leftCols(first.rank).transpose() * first.to_core;
+    const Eigen::MatrixXd soft_b = bm.bottomRows(m - hard);
+    Eigen::MatrixXd to_soft = -soft_b * ve * to_c;
+    to_soft.rightCols(m - hard) += Eigen::MatrixXd::Identity(m - hard, m - hard);
+    const Eigen::MatrixXd projected = soft_b - (soft_b * ve) * ve.transpose();
+    analyse(second, projected, to_soft * d, start, row_weight.tail(m - hard), false, to_soft, opt,
+            out.conflict);
+    clusters.push_back(std::move(first));
+    clusters.push_back(std::move(second));
   }
 
   if (opt.truncation == Truncation::lcurve) {
@@ -220,13 +267,15 @@ ReducedConstraints reduce_constraints(const std::vector<ConstraintSamples>& bloc
     };
     std::vector<Direction> all;
     double total_sq = 0.0, allowed = 0.0;
-    bool any_exact = false;
     for (size_t c = 0; c < clusters.size(); ++c) {
-      total_sq += clusters[c].start_sq;
-      const Cluster& cl = clusters[c];
+      Cluster& cl = clusters[c];
+      if (cl.exact) {  // exact rows keep every direction the space holds, as in any solve
+        cl.rank = cl.numeric_rank;
+        continue;
+      }
+      total_sq += cl.start_sq;
       allowed += std::max(0.0, cl.start_sq - cl.gain.topRows(cl.numeric_rank).squaredNorm()) +
                  opt.fit_tolerance * opt.fit_tolerance * cl.weight;
-      any_exact = any_exact || cl.exact;
       for (Eigen::Index i = 0; i < clusters[c].numeric_rank; ++i)
         all.push_back({clusters[c].s(i), clusters[c].gain.row(i).squaredNorm(), c});
     }
@@ -241,7 +290,7 @@ ReducedConstraints reduce_constraints(const std::vector<ConstraintSamples>& bloc
     // Past the point where every cluster is within fit_tolerance the remaining directions fit
     // only noise (the discrepancy principle): the corner is not taken beyond it.
     int kept = out.lcurve.corner;
-    if (opt.fit_tolerance > 0.0 && !any_exact) {
+    if (opt.fit_tolerance > 0.0) {
       double residual = total_sq;
       int needed = 0;
       while (needed < kept && residual > allowed)
@@ -275,8 +324,7 @@ ReducedConstraints reduce_constraints(const std::vector<ConstraintSamples>& bloc
     map.sample_rows = cl.sample_rows;
     map.first_row = rank_total;
     const Eigen::MatrixXd ut = cl.u.leftCols(rank).transpose();
-    map.transform = cl.s.head(rank).cwiseInverse().asDiagonal() *
-                    (cl.to_core.size() ? Eigen::MatrixXd(ut * cl.to_core) : ut);
+    map.transform = cl.s.head(rank).cwiseInverse().asDiagonal() * ut * cl.to_core;
     if (cl.held) {
       map.offset = -(cl.gain.topRows(rank).array().colwise() / cl.s.head(rank).array()).matrix();
       ++out.held;

@@ -56,8 +56,8 @@ std::tuple<int, int, int> leaf_at(const HierarchicalSpace& h, double u, double v
   return {h.levels() - 1, 0, 0};  // not reached: the last level has nothing refined
 }
 
-bool is_boundary_set(const SplineSpace& space, std::vector<int> fixed) {
-  std::vector<int> boundary = boundary_pole_indices(space);
+bool is_boundary_set(const SheetProblem& pb, std::vector<int> fixed) {
+  std::vector<int> boundary = boundary_pole_indices(pb.space, pb.closed_u, pb.closed_v);
   std::sort(fixed.begin(), fixed.end());
   fixed.erase(std::unique(fixed.begin(), fixed.end()), fixed.end());
   std::sort(boundary.begin(), boundary.end());
@@ -70,8 +70,9 @@ SheetProblem finest_problem(const SheetProblem& base, const HierarchicalSpace& h
   fine.space = h.finest();
   fine.initial_poles = refine_poles(base.initial_poles, h);
   if (base.rest_poles.rows() > 0) fine.rest_poles = refine_poles(base.rest_poles, h);
-  fine.fixed_poles =
-      base.fixed_poles.empty() ? std::vector<int>{} : boundary_pole_indices(fine.space);
+  fine.fixed_poles = base.fixed_poles.empty()
+                         ? std::vector<int>{}
+                         : boundary_pole_indices(fine.space, base.closed_u, base.closed_v);
   return fine;
 }
 
@@ -88,7 +89,7 @@ Eigen::MatrixX3d solve_on_hierarchy(const SheetProblem& base, const Hierarchical
     throw InvalidInput("the problem's space is not the hierarchy's base");
   if (base.initial_poles.rows() != base.space.size())
     throw InvalidInput("initial poles: one per pole of the base space");
-  if (!base.fixed_poles.empty() && !is_boundary_set(base.space, base.fixed_poles))
+  if (!base.fixed_poles.empty() && !is_boundary_set(base, base.fixed_poles))
     throw InvalidInput(
         "a locally refined sheet can keep its whole boundary, not other fixed poles "
         "(frozen regions need uniform refinement)");

@@ -82,29 +82,45 @@ void add_row(const std::map<int, double>& row, const std::vector<bool>& fixed,
 
 // Polynomial spaces: pole by pole of the other direction (a spline of the other direction is
 // zero exactly when its poles are), the k-th derivative at the first end minus at the last.
+struct PoleTies {
+  const SplineSpace& space;
+  int direction;
+  Seam seam;
+  int first_span = 0, last_span = 0;
+  Eigen::MatrixXd a, b;  // basis derivatives at the first and the last end
+
+  PoleTies(const SplineSpace& sp, int dir, const Seam& s) : space(sp), direction(dir), seam(s) {
+    const std::vector<double>& knots = dir == 0 ? sp.knots_u : sp.knots_v;
+    const int p = s.degree;
+    first_span = find_span(knots, p, s.first);
+    last_span = find_span(knots, p, s.last);
+    a.resize(p + 1, p + 1);
+    b.resize(p + 1, p + 1);
+    basis_derivatives(knots, p, first_span, s.first, p, a);
+    basis_derivatives(knots, p, last_span, s.last, p, b);
+  }
+  int across() const { return direction == 0 ? space.nv() : space.nu(); }
+  // pole -> coefficient of the scaled k-th derivative difference along the j-th pole line.
+  std::map<int, double> row(int j, int k) const {
+    const int p = seam.degree, n = direction == 0 ? space.nu() : space.nv();
+    const double scale = std::pow(seam.scale, k);
+    std::map<int, double> out;
+    for (int i = 0; i <= p; ++i) {
+      const int ia = first_span - p + i, ib = last_span - p + i;
+      if (ia >= 0 && ia < n)
+        out[direction == 0 ? space.index(ia, j) : space.index(j, ia)] += scale * a(k, i);
+      if (ib >= 0 && ib < n)
+        out[direction == 0 ? space.index(ib, j) : space.index(j, ib)] -= scale * b(k, i);
+    }
+    return out;
+  }
+};
+
 void polynomial_ties(const SplineSpace& space, int direction, const Seam& s,
                      const std::vector<bool>& fixed, ConstraintSamples& out) {
-  const std::vector<double>& knots = direction == 0 ? space.knots_u : space.knots_v;
-  const int p = s.degree, n = direction == 0 ? space.nu() : space.nv();
-  const int across = direction == 0 ? space.nv() : space.nu();
-  const int first_span = find_span(knots, p, s.first), last_span = find_span(knots, p, s.last);
-  Eigen::MatrixXd a(p + 1, p + 1), b(p + 1, p + 1);
-  basis_derivatives(knots, p, first_span, s.first, p, a);
-  basis_derivatives(knots, p, last_span, s.last, p, b);
-  for (int j = 0; j < across; ++j) {
-    for (int k = 0; k <= s.order; ++k) {
-      const double scale = std::pow(s.scale, k);
-      std::map<int, double> row;
-      for (int i = 0; i <= p; ++i) {
-        const int ia = first_span - p + i, ib = last_span - p + i;
-        if (ia >= 0 && ia < n)
-          row[direction == 0 ? space.index(ia, j) : space.index(j, ia)] += scale * a(k, i);
-        if (ib >= 0 && ib < n)
-          row[direction == 0 ? space.index(ib, j) : space.index(j, ib)] -= scale * b(k, i);
-      }
-      add_row(row, fixed, out);
-    }
-  }
+  const PoleTies ties(space, direction, s);
+  for (int j = 0; j < ties.across(); ++j)
+    for (int k = 0; k <= s.order; ++k) add_row(ties.row(j, k), fixed, out);
 }
 
 }  // namespace
@@ -140,26 +156,64 @@ ConstraintSamples sample_seam(const SplineSpace& space, int direction,
   return out;
 }
 
-double seam_mismatch(const SplineSpace& space, const Eigen::MatrixX3d& poles, int direction,
-                     int samples) {
+namespace {
+
+// Per order k = 0 .. min(order tied, 2): the largest scaled difference of the k-th derivative
+// across the seam over `samples` points along it.
+std::vector<double> mismatch_by_order(const SplineSpace& space, const Eigen::MatrixX3d& poles,
+                                      int direction, int samples) {
   const Seam s = seam_of(space, direction);
   BSplineSurface{space, poles}.validate();
   if (samples < 2 || samples > 1000000)
     throw InvalidInput("seam_mismatch takes 2 to 1,000,000 samples");
   const double lo = s.across.front(), hi = s.across.back();
-  double worst = 0.0;
+  std::vector<double> worst(static_cast<size_t>(std::min(s.order, 2) + 1), 0.0);
   for (int i = 0; i < samples; ++i) {
     const double c = lo + (hi - lo) * i / (samples - 1);
     const Eigen::MatrixXd a = direction == 0 ? evaluate_surface(space, poles, s.first, c, 2)
                                              : evaluate_surface(space, poles, c, s.first, 2);
     const Eigen::MatrixXd b = direction == 0 ? evaluate_surface(space, poles, s.last, c, 2)
                                              : evaluate_surface(space, poles, c, s.last, 2);
-    for (int k = 0; k <= std::min(s.order, 2); ++k) {
-      const int r = derivative_row(direction, k);
-      worst = std::max(worst, std::pow(s.scale, k) * (a.row(r) - b.row(r)).norm());
+    for (size_t k = 0; k < worst.size(); ++k) {
+      const int r = derivative_row(direction, static_cast<int>(k));
+      worst[k] = std::max(worst[k], std::pow(s.scale, k) * (a.row(r) - b.row(r)).norm());
     }
   }
   return worst;
+}
+
+}  // namespace
+
+double seam_mismatch(const SplineSpace& space, const Eigen::MatrixX3d& poles, int direction,
+                     int samples) {
+  const std::vector<double> worst = mismatch_by_order(space, poles, direction, samples);
+  return *std::max_element(worst.begin(), worst.end());
+}
+
+int seam_continuity(const SplineSpace& space, const Eigen::MatrixX3d& poles, int direction,
+                    double tolerance, int samples) {
+  if (!(tolerance >= 0.0 && std::isfinite(tolerance)))
+    throw InvalidInput("seam_continuity: the tolerance must be a finite number >= 0");
+  const std::vector<double> worst = mismatch_by_order(space, poles, direction, samples);
+  const double extent =
+      std::max((poles.colwise().maxCoeff() - poles.colwise().minCoeff()).norm(), 1e-300);
+  int order = -1;
+  while (order + 1 < static_cast<int>(worst.size()) &&
+         worst[static_cast<size_t>(order + 1)] <= tolerance * extent)
+    ++order;
+  // Beyond second derivatives a polynomial space answers pole by pole (as it is tied).
+  const Seam s = seam_of(space, direction);
+  if (space.rational() || order < 2 || s.order <= 2) return order;
+  const PoleTies ties(space, direction, s);
+  for (int k = 3; k <= s.order; ++k) {
+    for (int j = 0; j < ties.across(); ++j) {
+      Eigen::RowVector3d d = Eigen::RowVector3d::Zero();
+      for (const auto& [pole, c] : ties.row(j, k)) d += c * poles.row(pole);
+      if (d.norm() > tolerance * extent) return order;
+    }
+    order = k;
+  }
+  return order;
 }
 
 }  // namespace varsurf

@@ -197,6 +197,12 @@ std::vector<ConstraintSamples> sample_constraints(const SheetProblem& pb, bool c
     for (int direction : {0, 1}) {
       if (!(direction == 0 ? pb.closed_u : pb.closed_v)) continue;
       ConstraintSamples seam = sample_seam(sp, direction, fixed);
+      // The rows ask the displacement from the start to be continuous: the start's own mismatch
+      // (a parametrization only C1 across the seam) is their right-hand side.
+      for (Eigen::Index r = 0; r < seam.rows(); ++r)
+        for (size_t c = 0; c < seam.index[static_cast<size_t>(r)].size(); ++c)
+          seam.rhs.row(r) += seam.coeff[static_cast<size_t>(r)](static_cast<Eigen::Index>(c)) *
+                             pb.initial_poles.row(seam.index[static_cast<size_t>(r)][c]);
       if (seam.rows() > 0) separable.push_back(std::move(seam));
     }
   }

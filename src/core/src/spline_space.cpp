@@ -86,12 +86,14 @@ Eigen::Vector3d BSplineSurface::evaluate(double u, double v) const {
   return evaluate_surface(space, poles, u, v, 0).row(0).transpose();
 }
 
-std::vector<int> boundary_pole_indices(const SplineSpace& space) {
+std::vector<int> boundary_pole_indices(const SplineSpace& space, bool closed_u, bool closed_v) {
   std::vector<int> idx;
   const int nu = space.nu(), nv = space.nv();
   for (int i = 0; i < nu; ++i) {
     for (int j = 0; j < nv; ++j) {
-      if (i == 0 || j == 0 || i == nu - 1 || j == nv - 1) idx.push_back(space.index(i, j));
+      const bool u_side = !closed_u && (i == 0 || i == nu - 1);
+      const bool v_side = !closed_v && (j == 0 || j == nv - 1);
+      if (u_side || v_side) idx.push_back(space.index(i, j));
     }
   }
   return idx;

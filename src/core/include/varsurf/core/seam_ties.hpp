@@ -24,6 +24,13 @@ namespace varsurf {
 ConstraintSamples sample_seam(const SplineSpace& space, int direction,
                               const std::vector<bool>& fixed = {});
 
+// The highest derivative order (0 .. what sample_seam ties) up to which `poles` are already
+// continuous across the seam along `direction` (every lower order too), each derivative scaled
+// as in sample_seam and compared with `tolerance` times the poles' extent at `samples` points;
+// -1 when the two ends do not meet. What a closed base face asks its sheet's seam to keep.
+int seam_continuity(const SplineSpace& space, const Eigen::MatrixX3d& poles, int direction,
+                    double tolerance = 1e-9, int samples = 100);
+
 // Largest |d^k w / d^k s (first) - d^k w / d^k s (last)| over k = 0 .. min(2, order tied) and
 // `samples` points along the seam, each derivative scaled as in sample_seam: how far the seam is
 // from closed (0 for a closed sheet, up to rounding).

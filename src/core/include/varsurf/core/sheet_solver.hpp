@@ -56,8 +56,11 @@ struct SheetProblem {
   std::vector<Director> directors;               // couples x, y, z
   std::vector<Repeller> repellers;               // not quadratic: iterated, couples x, y, z
   std::vector<ShapeAttractor> shape_attractors;  // not quadratic: iterated, couples x, y, z
-  // Closed along u (v): the space's two u (v) ends are one seam, tied C2 (sample_seam), as on a
-  // cylinder, a revolved face or a tube through closed sections.
+  // Closed along u (v): the space's two u (v) ends are one seam, as on a cylinder, a revolved
+  // face or a tube through closed sections. The displacement from initial_poles is tied across
+  // it (sample_seam), so the seam is as smooth as the start shape's plus a C^(p-1) (rational:
+  // C2) change: a cylinder's rational circles, C1 by their parametrization, keep a seam whose
+  // curvature does not jump.
   bool closed_u = false;
   bool closed_v = false;
   double pressure = 0.0;         // inflate (> 0, along w_u x w_v) or deflate (< 0): iterated

@@ -50,8 +50,10 @@ struct BSplineSurface {
   Eigen::Vector3d evaluate(double u, double v) const;
 };
 
-// Flat indices of the poles on the four boundary rows of the space.
-std::vector<int> boundary_pole_indices(const SplineSpace& space);
+// Flat indices of the poles on the four boundary rows of the space; the rows at the ends of a
+// closed direction are a seam, not a boundary, and are left out.
+std::vector<int> boundary_pole_indices(const SplineSpace& space, bool closed_u = false,
+                                       bool closed_v = false);
 
 // Surface point and derivatives (rows as in BasisSample) for the given poles (size() x 3).
 Eigen::MatrixXd evaluate_surface(const SplineSpace& space, const Eigen::MatrixX3d& poles, double u,
