@@ -19,6 +19,7 @@
 #include "varsurf/occ/mass_properties.hpp"
 #include "varsurf/occ/normal_field.hpp"
 #include "varsurf/occ/point_projection.hpp"
+#include "varsurf/occ/seam_split.hpp"
 #include "varsurf/occ/shape_check.hpp"
 #include "varsurf/occ/shell_builder.hpp"
 #include "varsurf/occ/single_shape.hpp"
@@ -192,6 +193,11 @@ void bind_occ_bridge(py::module_& m) {
 
   m.def("project_point", &occ::project_point, "surface"_a, "point"_a,
         "Closest point of the sheet to a 3D point, as (u, v) and the distance.");
+
+  m.def("split_at_seams", &occ::split_at_seams, "surface"_a, "curve"_a, "samples"_a = 0,
+        py::call_guard<py::gil_scoped_release>(),
+        "The curve's pieces between the points where its closest points on the sheet cross the "
+        "seam of a closed direction (the whole curve when it crosses none).");
 
   py::class_<occ::ShapeCheck>(m, "ShapeCheck", "Result of check_brep (BRepCheck_Analyzer).")
       .def(py::init<>())

@@ -9,6 +9,7 @@ public API (importable headless, without any GUI module):
     make_constraint(sheet, kind, location=None, uv=None, vector=None, ...) -> Constraint object
     make_solid(sheets, tolerance=None)                                  -> Solid object
     make_fill_hole(part, "FaceN" or ["EdgeN", ...], curves, "G1")       -> FillHole object
+    make_tube([section, ...], curves)                                   -> Sheet object (closed)
     make_space_curve((obj, "EdgeN"), handle_parameters, handles)        -> SpaceCurve object
     move_handle(space_curve, index, position)
     make_hinge(solid, sheet_a, sheet_b, (obj, "EdgeN"), angle=180)      -> Hinge object
@@ -96,7 +97,8 @@ if not any(isinstance(f, _MovedFinder) for f in sys.meta_path):
 
 #: The document-level API (varsurf.app.api), which needs FreeCAD.
 APP_API = (
-    "make_sheet", "make_constraint", "make_solid", "make_fill_hole", "install_rest_shape", "melt", "export_step",
+    "make_sheet", "make_constraint", "make_solid", "make_fill_hole", "make_tube", "install_rest_shape", "melt",
+    "export_step",
     "make_space_curve", "make_hinge", "move_handle", "selection_to_sheet_args", "selection_problem",
     "create_sheet_from_selection", "sheet_command_lines", "is_sheet", "run_sheet_command",
     "run_space_curve_command", "run_hinge_command",
@@ -140,6 +142,7 @@ __all__ = [
     "run_sheet_command",
     "make_solid",
     "make_fill_hole",
+    "make_tube",
     "make_space_curve",
     "move_handle",
     "make_hinge",

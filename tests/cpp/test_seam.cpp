@@ -193,8 +193,9 @@ TEST(Seam, ACurveTheRestShapeAlreadyMeetsLeavesAClosedSheetAtRest) {
   const SolveResult r = solve_sheet(pb, options);
   EXPECT_LT((r.poles - pb.initial_poles).cwiseAbs().maxCoeff(), 1e-12);
   EXPECT_LT(seam_mismatch(pb.space, r.poles, 0), 1e-10);
-  // With no fit tolerance the noise is fitted, and the ties still hold.
+  // With no fit tolerance the noise is fitted in every direction, and the ties still hold (to
+  // 1e-7 of the tube's size beside rows fitted to rounding).
   const SolveResult fitted = solve_sheet(pb);
   EXPECT_GT((fitted.poles - pb.initial_poles).cwiseAbs().maxCoeff(), 1e-8);
-  EXPECT_LT(seam_mismatch(pb.space, fitted.poles, 0), 1e-8);
+  EXPECT_LT(seam_mismatch(pb.space, fitted.poles, 0), 3e-7);
 }

@@ -184,14 +184,16 @@ def test_curve_off_a_kept_boundary_is_refused_by_name(native):
     assert max(out.max_deviations) <= settings.DEFAULT_TOLERANCE
 
 
-def test_circle_across_a_cylinders_seam_is_refused_with_the_cause(native):
-    """A full circle on the cylinder starting a quarter turn from its seam: on the face, but its
-    pre-image would have to run on both sides of the seam; the message says so."""
+def test_circle_across_a_cylinders_seam_is_met(native):
+    """A full circle on the cylinder starting a quarter turn from its seam: on the face, and its
+    pre-image would have to run on both sides of the seam. The sheet is closed around the
+    cylinder: the circle is cut where it crosses the seam, and the sheet is the cylinder."""
     lateral = Part.makeCylinder(20, 50).Faces[0]
     circle = Part.makeCircle(20, V(0, 0, 25), V(0, 0, 1), 90, 450)
-    with pytest.raises(errors.SheetError,
-                       match=r"Ring goes around the closed base face across its seam.*split the curve"):
-        solve_sheet_on_face(lateral, [circle], names=["Ring"])
+    out = solve(lateral, [circle])
+    assert max(out.max_deviations) <= 1e-7
+    assert len(out.problem.curves) == 2  # the two pieces of the circle
+    assert_is_face(out.shape, lateral, [circle], area=False)
 
 
 def test_all_edges_of_a_tilted_cylinder(native):

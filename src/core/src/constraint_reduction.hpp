@@ -68,7 +68,11 @@ struct ReducedConstraints {
 // side, so data noise below the tolerance moves nothing while the other constraints cannot drag
 // the sheet off it; later moved data shifts those values by the data's motion (offset). The
 // L-curve truncation keeps the globally largest singular directions up to the L-curve's corner,
-// and no more than the discrepancy principle needs to bring all clusters within fit_tolerance.
+// and no more than the discrepancy principle needs to bring all clusters within fit_tolerance;
+// exact clusters keep all their directions. With fit_tolerance > 0, a cluster whose exact rows
+// (a closed sheet's seam ties) share unknowns with fitted ones (curves) is reduced in two
+// stages: the exact rows first, then the fitted rows, projected onto the directions the exact
+// ones leave free, as a fitted cluster of their own.
 ReducedConstraints reduce_constraints(const std::vector<ConstraintSamples>& blocks,
                                       const std::vector<int>& free_index,
                                       const Eigen::MatrixXd& fixed, int free_count,

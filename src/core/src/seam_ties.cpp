@@ -74,9 +74,15 @@ void add_row(const std::map<int, double>& row, const std::vector<bool>& fixed,
     if (!fixed.empty() && !fixed[static_cast<size_t>(pole)]) movable = true;
   }
   if (cols.empty() || !movable) return;
+  // Unit rows: a degree-p tie of order k carries factors up to p! / (p - k)!, and beside a
+  // degree-14 loft's order-13 rows the position rows fell under the reduction's rank tolerance
+  // and were dropped (the seam opened by 2.6 mm).
+  Eigen::VectorXd row_values =
+      Eigen::Map<Eigen::VectorXd>(values.data(), static_cast<Eigen::Index>(values.size()));
+  const double norm = row_values.norm();
+  if (!(norm > 0.0)) return;
   out.index.push_back(std::move(cols));
-  out.coeff.push_back(
-      Eigen::Map<Eigen::VectorXd>(values.data(), static_cast<Eigen::Index>(values.size())));
+  out.coeff.push_back(row_values / norm);
   out.weight.push_back(1.0);
 }
 

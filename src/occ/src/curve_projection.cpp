@@ -646,7 +646,9 @@ PreImage project_curve(const BSplineSurface& base, const BSplineCurve& target,
   for (const auto& [t, s] : samples.points()) {
     out.fit_error = std::max(out.fit_error, (curve.evaluate(t) - s.uv).norm());
     out.max_distance = std::max(out.max_distance, s.distance);
-    const bool on_boundary = domain.side(s.uv, 0) != 0 || domain.side(s.uv, 1) != 0;
+    // A closed direction's seam is inside the sheet, not on its boundary.
+    const bool on_boundary = (domain.side(s.uv, 0) != 0 && !domain.closed(0)) ||
+                             (domain.side(s.uv, 1) != 0 && !domain.closed(1));
     if (on_boundary && s.distance >= out.boundary_distance) {
       out.boundary_distance = s.distance;
       out.boundary_t = t;

@@ -5,15 +5,20 @@
 #include <Geom2d_BSplineCurve.hxx>
 #include <Geom2d_Circle.hxx>
 #include <Geom2d_TrimmedCurve.hxx>
+#include <GeomConvert.hxx>
+#include <Geom_BSplineCurve.hxx>
 #include <Geom_ConicalSurface.hxx>
 #include <Geom_CylindricalSurface.hxx>
 #include <Geom_RectangularTrimmedSurface.hxx>
 #include <Geom_SphericalSurface.hxx>
+#include <Geom_SurfaceOfRevolution.hxx>
 #include <Geom_ToroidalSurface.hxx>
+#include <Geom_TrimmedCurve.hxx>
 #include <Precision.hxx>
 #include <TColStd_Array1OfInteger.hxx>
 #include <TColStd_Array1OfReal.hxx>
 #include <TColStd_Array2OfReal.hxx>
+#include <TColgp_Array1OfPnt.hxx>
 #include <TColgp_Array1OfPnt2d.hxx>
 #include <TColgp_Array2OfPnt.hxx>
 #include <gp_Ax22d.hxx>
@@ -63,12 +68,13 @@ Handle(Geom2d_BSplineCurve)
   return new Geom2d_BSplineCurve(poles, knots, mults, 1);
 }
 
-// O + R(v) (cos u X + sin u Y) + Z(v) Zdir, the form every elementary surface of revolution has
-// in its own frame (ElSLib), with (cos u, sin u) = `turn` and (R, Z) = `profile`. Both are
-// rational, and the point is bilinear in the two curves' homogeneous coordinates, so the tensor
-// product of their poles (R_j cos_i X + R_j sin_i Y + Z_j Zdir) with weights w_i * w_j is exact.
-Handle(Geom_BSplineSurface) revolve(const gp_Ax3& frame, const Handle(Geom2d_BSplineCurve) & turn,
-                                    const Handle(Geom2d_BSplineCurve) & profile) {
+// A curve turned about the frame's z axis, (cos u, sin u) = `turn`: the profile's poles in the
+// frame (x, y, z) turned by the arc's (cos, sin) poles, with weights w_i * w_j. Both curves are
+// rational, and the turned point is bilinear in their homogeneous coordinates, so the tensor
+// product is exact.
+Handle(Geom_BSplineSurface)
+    revolve_curve(const gp_Ax3& frame, const Handle(Geom2d_BSplineCurve) & turn,
+                  const Handle(Geom_BSplineCurve) & profile) {
   if (turn.IsNull() || profile.IsNull()) return nullptr;
   const gp_XYZ o = frame.Location().XYZ(), x = frame.XDirection().XYZ(),
                y = frame.YDirection().XYZ(), z = frame.Direction().XYZ();
@@ -78,8 +84,10 @@ Handle(Geom_BSplineSurface) revolve(const gp_Ax3& frame, const Handle(Geom2d_BSp
   for (int i = 1; i <= nu; ++i) {
     const gp_Pnt2d c = turn->Pole(i);
     for (int j = 1; j <= nv; ++j) {
-      const gp_Pnt2d p = profile->Pole(j);
-      poles(i, j) = gp_Pnt(o + p.X() * (c.X() * x + c.Y() * y) + p.Y() * z);
+      const gp_XYZ d = profile->Pole(j).XYZ() - o;
+      const double px = d.Dot(x), py = d.Dot(y), pz = d.Dot(z);
+      poles(i, j) =
+          gp_Pnt(o + (c.X() * px - c.Y() * py) * x + (c.Y() * px + c.X() * py) * y + pz * z);
       weights(i, j) = turn->Weight(i) * profile->Weight(j);
     }
   }
@@ -90,6 +98,46 @@ Handle(Geom_BSplineSurface) revolve(const gp_Ax3& frame, const Handle(Geom2d_BSp
   profile->Knots(kv);
   profile->Multiplicities(mv);
   return new Geom_BSplineSurface(poles, weights, ku, kv, mu, mv, turn->Degree(), profile->Degree());
+}
+
+// O + R(v) (cos u X + sin u Y) + Z(v) Zdir, the form every elementary surface of revolution has
+// in its own frame (ElSLib): the (R, Z) profile is the curve in the frame's xz plane, turned.
+Handle(Geom_BSplineSurface) revolve(const gp_Ax3& frame, const Handle(Geom2d_BSplineCurve) & turn,
+                                    const Handle(Geom2d_BSplineCurve) & profile) {
+  if (profile.IsNull()) return nullptr;
+  const gp_XYZ o = frame.Location().XYZ(), x = frame.XDirection().XYZ(),
+               z = frame.Direction().XYZ();
+  TColgp_Array1OfPnt poles(1, profile->NbPoles());
+  TColStd_Array1OfReal weights(1, profile->NbPoles());
+  for (int j = 1; j <= profile->NbPoles(); ++j) {
+    poles(j) = gp_Pnt(o + profile->Pole(j).X() * x + profile->Pole(j).Y() * z);
+    weights(j) = profile->Weight(j);
+  }
+  TColStd_Array1OfReal knots(1, profile->NbKnots());
+  TColStd_Array1OfInteger mults(1, profile->NbKnots());
+  profile->Knots(knots);
+  profile->Multiplicities(mults);
+  return revolve_curve(frame, turn,
+                       new Geom_BSplineCurve(poles, weights, knots, mults, profile->Degree()));
+}
+
+// The basis curve of a surface of revolution over [v1, v2] as a B-spline with the curve's own
+// parameter (B-splines, Béziers and lines keep it), else null: a conic's conversion would
+// change it, and the face's pcurves would no longer fit.
+Handle(Geom_BSplineCurve)
+    profile_of(const Handle(Geom_SurfaceOfRevolution) & s, double v1, double v2) {
+  const Handle(Geom_Curve) basis = s->BasisCurve();
+  const Handle(Geom_BSplineCurve) b =
+      GeomConvert::CurveToBSplineCurve(new Geom_TrimmedCurve(basis, v1, v2));
+  if (b.IsNull() || b->IsPeriodic()) return nullptr;
+  const double tol = Precision::PConfusion();
+  if (std::abs(b->FirstParameter() - v1) > tol || std::abs(b->LastParameter() - v2) > tol)
+    return nullptr;
+  for (int k = 0; k <= 7; ++k) {  // not symmetric: a conic's conversion keeps its midpoint
+    const double t = v1 + (v2 - v1) * k / 7;
+    if (b->Value(t).Distance(basis->Value(t)) > Precision::Confusion()) return nullptr;
+  }
+  return b;
 }
 
 }  // namespace
@@ -125,6 +173,13 @@ Handle(Geom_BSplineSurface) smooth_revolved_surface(const Handle(Geom_Surface) &
     v2 = std::min(v2, v1 + period);
     return revolve(torus->Position(), arc(origin, 1.0, u1, u2),
                    arc(gp_Pnt2d(torus->MajorRadius(), 0.0), torus->MinorRadius(), v1, v2));
+  }
+  if (auto rev = Handle(Geom_SurfaceOfRevolution)::DownCast(s)) {
+    // A revolved sketch: GeomConvert turns it with quadratic arcs, C0 at their double knots,
+    // which OCCT's Boolean check refuses on the sheet built from it.
+    const gp_Ax1 axis = rev->Axis();
+    return revolve_curve(gp_Ax3(axis.Location(), axis.Direction()), arc(origin, 1.0, u1, u2),
+                         profile_of(rev, v1, v2));
   }
   return nullptr;
 }

@@ -34,6 +34,7 @@ from varsurf.app.selection import (
     space_curve_selection_to_base,
 )
 from varsurf.app.transaction import run_in_transaction
+from varsurf.app.tube import make_tube
 
 __all__ = [
     "create_sheet_from_selection",
@@ -49,6 +50,7 @@ __all__ = [
     "install_rest_shape",
     "make_constraint",
     "make_fill_hole",
+    "make_tube",
     "make_sheet",
     "make_solid",
     "melt",

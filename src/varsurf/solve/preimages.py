@@ -40,10 +40,41 @@ def projection_failure(name, direction, error):
     return (f"{name} runs beyond the base face (it must lie over the face to be projected onto it): {error}")
 
 
-def curve_constraints(nat, base, edges, names, projections, settings):
-    """(native CurveConstraints, target curves) of the named edges on the base, in their order."""
+def _project(nat, base, curve, name, direction):
+    """The pre-image of one curve, or SheetError naming it."""
+    try:
+        return nat.project_curve(base, curve, direction=direction)
+    except nat.InvalidInput as error:
+        raise SheetError(projection_failure(name, direction, str(error))) from error
+    except nat.GeometryError as error:
+        raise SheetError(f"{name} cannot be projected onto the base face: {error}") from error
+
+
+def _pieces(nat, base, curve, name, direction, closed):
+    """[(pre-image, target piece)] of one curve: itself, or on a closed base (a sheet around a
+    cylinder) its pieces between the points where it crosses the seam, each with a pre-image
+    ending on the seam."""
+    try:
+        return [(nat.project_curve(base, curve, direction=direction), curve)]
+    except nat.InvalidInput as error:
+        if not (closed and direction is None and "crosses the seam" in str(error)):
+            raise SheetError(projection_failure(name, direction, str(error))) from error
+    except nat.GeometryError as error:
+        raise SheetError(f"{name} cannot be projected onto the base face: {error}") from error
+    try:
+        pieces = list(nat.split_at_seams(base, curve))
+    except (nat.InvalidInput, nat.GeometryError) as error:
+        raise SheetError(f"{name} cannot be cut where it crosses the base face's seam: {error}") from error
+    return [(_project(nat, base, piece, name, direction), piece) for piece in pieces]
+
+
+def curve_constraints(nat, base, edges, names, projections, settings, closed=False):
+    """(native CurveConstraints, target curves, more CurveConstraints) of the named edges on the
+    base: one constraint and one target per edge, in their order, and after them the further
+    pieces of the curves that cross the seam of a closed base (``closed``), which the sheet must
+    contain too. The targets are the whole curves (what the result is measured against)."""
     exact = set(settings.exact_curves)
-    constraints, targets = [], []
+    constraints, targets, more = [], [], []
     for edge, name, direction in zip(edges, names, projections):
         if getattr(edge, "ShapeType", None) != "Edge":
             raise SheetError(f"{name} is not an edge")
@@ -51,25 +82,26 @@ def curve_constraints(nat, base, edges, names, projections, settings):
             curve = canonical_direction(nat, nat.curve_from_edge_brep(edge.exportBrepToString()))
         except (nat.InvalidInput, nat.GeometryError) as error:
             raise SheetError(f"{name} cannot be converted to a B-spline curve: {error}") from error
-        try:
-            pre = nat.project_curve(base, curve, direction=direction)
-        except nat.InvalidInput as error:
-            raise SheetError(projection_failure(name, direction, str(error))) from error
-        except nat.GeometryError as error:
-            raise SheetError(f"{name} cannot be projected onto the base face: {error}") from error
-        # Where the curve's foot point is on the face's boundary, a kept boundary cannot move to it
-        # (the solver sees those samples on fixed poles only): say so instead of refining in vain.
-        if settings.fix_boundary and pre.boundary_distance > settings.tolerance:
-            x, y, z = (float(c) for c in curve.evaluate(pre.boundary_t))
-            raise SheetError(
-                f"{name} is {pre.boundary_distance:.3g} mm from the base face where it reaches the face's "
-                f"kept boundary (at ({x:.4g}, {y:.4g}, {z:.4g})): the kept boundary cannot move "
-                "there; let the curve meet the boundary, or turn FixBoundary off"
-            )
-        constraints.append(build(nat.CurveConstraint, preimage=pre.curve, target=curve, weight=1.0,
-                                 exact=name in exact))
+        pieces = _pieces(nat, base, curve, name, direction, closed)
+        for pre, piece in pieces:
+            # Where the curve's foot point is on the face's boundary, a kept boundary cannot move to
+            # it (the solver sees those samples on fixed poles only): say so instead of refining in
+            # vain.
+            if settings.fix_boundary and pre.boundary_distance > settings.tolerance:
+                x, y, z = (float(c) for c in piece.evaluate(pre.boundary_t))
+                raise SheetError(
+                    f"{name} is {pre.boundary_distance:.3g} mm from the base face where it reaches the face's "
+                    f"kept boundary (at ({x:.4g}, {y:.4g}, {z:.4g})): the kept boundary cannot move "
+                    "there; let the curve meet the boundary, or turn FixBoundary off"
+                )
+        # The pieces share the curve's weight by their parameter spans (a curve's samples share it).
+        span = curve.last() - curve.first()
+        held = [build(nat.CurveConstraint, preimage=pre.curve, target=piece,
+                      weight=(piece.last() - piece.first()) / span, exact=name in exact) for pre, piece in pieces]
+        constraints.append(held[0])
+        more.extend(held[1:])
         targets.append(curve)
-    return constraints, targets
+    return constraints, targets, more
 
 
 def kept_boundary(nat, trim):

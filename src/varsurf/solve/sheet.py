@@ -18,7 +18,7 @@ from types import SimpleNamespace
 from typing import List, Optional, Sequence
 
 from varsurf.solve import constraints as constraint_specs
-from varsurf.solve import boundary, continuity, energy, local_refinement, plane_fit, preimages, shapes
+from varsurf.solve import boundary, continuity, energy, local_refinement, plane_fit, preimages, seams, shapes
 from varsurf.solve.errors import CANCELLED, SheetError
 from varsurf.solve.native import build, int_of, native
 from varsurf.solve.outcome import SheetOutcome
@@ -66,6 +66,7 @@ class _Sheet:
     rest: object = None  # None, "base", or the native surface of an installed rest shape
     corners: list = None  # continuity.Corner: where two G1 joins ask for two tangent planes
     kept: object = None  # native Region the trim to a loop keeps (the energy acts there), or None
+    seams: seams.Seams = seams.Seams()  # the directions the base closes in: one seam, not two sides
 
 
 def _base(nat, face, settings):
@@ -161,10 +162,11 @@ def _problem(nat, sheet, spans):
     refined = nat.refine_surface(sheet.base, spans, spans, settings.degree)
     space = refined.space
     terms = constraint_specs.native_terms(sheet.placed, space, nat)
-    fixed = list(nat.boundary_pole_indices(space)) if settings.fix_boundary else []
+    closed = sheet.seams
+    fixed = list(nat.boundary_pole_indices(space, closed.closed_u, closed.closed_v)) if settings.fix_boundary else []
     fixed = sorted(set(fixed) | set(terms.frozen_poles))
     problem = build(nat.SheetProblem, space=space, initial_poles=refined.poles, energy=sheet.energy, points=[],
-                    curves=sheet.curves, fixed_poles=fixed)
+                    curves=sheet.curves, fixed_poles=fixed, closed_u=closed.closed_u, closed_v=closed.closed_v)
     terms.apply(problem)
     if sheet.kept is not None:
         problem.kept_region = sheet.kept
@@ -388,9 +390,12 @@ def _stages(face, edges, settings, names, projections, constraints, rest, keep_g
     started = time.perf_counter()
     sheet = _Sheet(settings=settings, names=names)
     sheet.base, sheet.trim = _base(nat, face, settings)
-    sheet.curves, sheet.targets = preimages.curve_constraints(nat, sheet.base, edges, names, projections, settings)
+    sheet.seams = seams.of_base(nat, sheet.base)
+    sheet.curves, sheet.targets, pieces = preimages.curve_constraints(nat, sheet.base, edges, names, projections,
+                                                                      settings, closed=sheet.seams.any)
     if loop:
         sheet.kept = _kept_region(nat, sheet, loop)
+    sheet.curves = sheet.curves + pieces  # after the named curves, as a kept boundary's edges
     sheet.placed = _constraints(nat, sheet, constraints)
     sheet.corners = continuity.incompatible_corners(
         [(p.spec.name, p.spec.edge, p.spec.reference) for p in sheet.placed

@@ -3,8 +3,11 @@
 // and its derivatives across the seam are tied equal on both sides, up to order degree - 1 for a
 // polynomial space (a periodic spline: the seam is like any simple knot line, and the sheet does
 // not depend on where it is) and min(2, degree - 1) for a rational one, so the seam is an interior
-// curve of the closed surface: the energy and the constraints treat it like any other. The result
-// exports as a closed (seam-split) B-spline face.
+// curve of the closed surface: the energy and the constraints treat it like any other. The solve
+// ties the displacement from its start shape (the rows' right-hand side is the start's own
+// mismatch): a base whose parametrization is only C1 across its seam, as a cylinder's rational
+// circles, keeps its own seam plus a smooth change. The result exports as a closed (seam-split)
+// B-spline face.
 #pragma once
 
 #include <Eigen/Core>
@@ -18,9 +21,9 @@ namespace varsurf {
 // The ties of the seam along `direction` (0: the space is closed along u, its u ends meet; 1:
 // along v), at the Greville abscissae of the other direction (where a spline of the other
 // direction is determined by its values; polynomial spaces: per pole of the other direction):
-// separable, exact rows, derivative rows scaled by the
-// mean span length to the power of their order. Rows whose poles are all `fixed` (flags per
-// pole, or empty) are left out: nothing can move to meet them.
+// separable, exact rows, each scaled to unit length (their derivative factors grow like
+// p! / (p - k)!). Rows whose poles are all `fixed` (flags per pole, or empty) are left out:
+// nothing can move to meet them.
 ConstraintSamples sample_seam(const SplineSpace& space, int direction,
                               const std::vector<bool>& fixed = {});
 

@@ -39,8 +39,9 @@ struct PreImage {
   BSplineCurve curve;         // 2D, parameter range exactly that of the target
   double max_distance = 0.0;  // max |D(t_k) - S(uv_k)|: how far the target is from the sheet
   double fit_error = 0.0;     // max |c(t_k) - uv_k| over the projected samples
-  // Max |D(t_k) - S(uv_k)| over the samples whose foot point is on the sheet's boundary, and its
-  // t_k (-1 and the first parameter if none is): how far a kept boundary would have to move.
+  // Max |D(t_k) - S(uv_k)| over the samples whose foot point is on the sheet's boundary (a closed
+  // direction's seam is not), and its t_k (-1 and the first parameter if none is): how far a
+  // kept boundary would have to move.
   double boundary_distance = -1.0;
   double boundary_t = 0.0;
 };

@@ -14,8 +14,10 @@ namespace varsurf::occ {
 // `surface` (possibly a rectangular trim of one) over [u1, u2] x [v1, v2], built as the tensor
 // product of its angular arc and its (radius, height) profile, both exact rational arcs of
 // OCCT's Convert_QuasiAngular type (degree 6, no interior knot) or lines; the
-// parameters are the surface's own on the box's sides. Null for any other surface, or a box
-// longer than a period: the caller converts those another way.
+// parameters are the surface's own on the box's sides. A surface of revolution (a revolved
+// sketch) is its profile curve turned the same way, when that converts to a B-spline with its own
+// parameter (B-splines, Béziers, lines). Null for any other surface, or a box longer than a
+// period: the caller converts those another way.
 Handle(Geom_BSplineSurface) smooth_revolved_surface(const Handle(Geom_Surface) & surface, double u1,
                                                     double u2, double v1, double v2);
 
