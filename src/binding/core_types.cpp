@@ -260,11 +260,11 @@ void bind_core_types(py::module_& m) {
       .def_readwrite("ribbons", &SheetProblem::ribbons)
       .def_readwrite("curvatures", &SheetProblem::curvatures, "G2 conditions (iterated).")
       .def_readwrite("closed_u", &SheetProblem::closed_u,
-                     "The space's u ends are one seam (the displacement from the start tied smooth across it): "
-                     "a sheet closed along u.")
+                     "The space's u ends are one seam (the displacement from the start tied "
+                     "smooth across it): a sheet closed along u.")
       .def_readwrite("closed_v", &SheetProblem::closed_v,
-                     "The space's v ends are one seam (the displacement from the start tied smooth across it): "
-                     "a sheet closed along v.")
+                     "The space's v ends are one seam (the displacement from the start tied "
+                     "smooth across it): a sheet closed along v.")
       .def_readwrite("attractors", &SheetProblem::attractors)
       .def_readwrite("directors", &SheetProblem::directors)
       .def_readwrite("repellers", &SheetProblem::repellers)

@@ -24,7 +24,10 @@ void bind_model(py::module_& m) {
       .def_readwrite("variational", &SpaceCurve::variational)
       .def_readwrite("stretch", &SpaceCurve::stretch)
       .def_readwrite("bend", &SpaceCurve::bend)
-      .def_readwrite("handles", &SpaceCurve::handles);
+      .def_readwrite("handles", &SpaceCurve::handles)
+      .def_readwrite("closed", &SpaceCurve::closed,
+                     "Variational: a ring whose two ends are one point (its displacement tied "
+                     "smooth across it).");
   py::class_<Join>(m, "Join", "Sheet `sheet` contains curve `curve` along its 2D `preimage`.")
       .def(py::init<>())
       .def_readwrite("sheet", &Join::sheet)

@@ -121,6 +121,49 @@ TEST(ModelSolver, CurveAloneThroughHandlesIsTheNaturalSpline) {
   }
 }
 
+TEST(ModelSolver, AClosedCurveThroughHandlesBendsAsThePeriodicSpline) {
+  // A ring (start: a circle) lifted by 1 at t = 1/4 and lowered by 1 at t = 3/4, bending only:
+  // the lift is the periodic cubic spline through them (period 1, knots h = 1/2 apart, second
+  // derivatives M = -48 and 48 there), the same across the closing point t = 0 = 1 as anywhere.
+  ModelProblem pb;
+  SpaceCurve c;
+  c.start = cubic_curve(4, [](double t) {
+    return Eigen::Vector3d(std::cos(2 * M_PI * t), std::sin(2 * M_PI * t), 0.0);
+  });
+  c.variational = true;
+  c.closed = true;
+  const Eigen::Vector3d a = c.start.evaluate(0.25), b = c.start.evaluate(0.75);
+  c.handles = {{0.25, a + Eigen::Vector3d(0, 0, 1)}, {0.75, b - Eigen::Vector3d(0, 0, 1)}};
+  pb.curves.push_back(c);
+  const ModelResult r = solve_model(pb);
+  BSplineCurve out = c.start;
+  out.poles = r.curve_poles[0];
+  const double h = 0.5, m0 = -48.0, m1 = 48.0;
+  auto lift = [&](double t) {  // from 1/4 to 3/4; the other half by d(t + 1/2) = -d(t)
+    const double u = std::fmod(t + 0.75, 1.0), sign = u < 0.5 ? 1.0 : -1.0;
+    const double s = u < 0.5 ? u : u - 0.5;
+    return sign * (m0 * std::pow(h - s, 3) / (6 * h) + m1 * s * s * s / (6 * h) +
+                   (1.0 - m0 * h * h / 6) * (h - s) / h + (-1.0 - m1 * h * h / 6) * s / h);
+  };
+  for (int i = 0; i <= 40; ++i) {
+    const double t = i / 40.0;
+    const Eigen::Vector3d d = out.evaluate(t) - c.start.evaluate(t);
+    EXPECT_NEAR(d(2), lift(t), 1e-9) << t;
+    EXPECT_NEAR(d.head<2>().norm(), 0.0, 1e-9) << t;
+  }
+  // Open, the ends are free (natural: no bending there) and the ring comes apart.
+  pb.curves[0].closed = false;
+  BSplineCurve open = c.start;
+  open.poles = solve_model(pb).curve_poles[0];
+  EXPECT_GT((open.evaluate(0.0) - open.evaluate(1.0)).norm(), 0.5);
+  EXPECT_LT((out.evaluate(0.0) - out.evaluate(1.0)).norm(),
+            1e-9 + (c.start.evaluate(0.0) - c.start.evaluate(1.0)).norm());
+  pb.curves[0].closed = true;
+  pb.curves[0].variational = false;
+  pb.curves[0].handles.clear();
+  EXPECT_THROW(solve_model(pb), InvalidInput);
+}
+
 TEST(ModelSolver, MovingAHandleOfAVariationalCurveMovesBothSheets) {
   ModelProblem pb = two_sheets(0.0);
   SpaceCurve seam = fixed_seam();

@@ -131,7 +131,7 @@ Eigen::Vector3d end_difference(const SheetProblem& pb, const Eigen::MatrixX3d& p
 
 TEST(Seam, ContinuityCountsTheOrdersInWhichTheEndsAgree) {
   const SheetProblem closed = tube(0.0, true);
-  EXPECT_EQ(seam_continuity(closed.space, closed.initial_poles, 0), 2);  // cubic: C2, as tied
+  EXPECT_EQ(seam_continuity(closed.space, closed.initial_poles, 0), 2);   // cubic: C2, as tied
   EXPECT_EQ(seam_continuity(closed.space, closed.initial_poles, 1), -1);  // v: two sections
   for (int column = 0; column <= 2; ++column) {
     const SheetProblem moved = tube_with_moved_column(column, 0.05);
@@ -154,8 +154,8 @@ TEST(Seam, TiesTheDisplacementSoAStartSmoothOnlyToC1KeepsItsOwnSecondDerivativeS
   SheetProblem pb = tube_with_moved_column(2, 0.05);
   std::vector<double> breaks;
   for (int k = 2; k <= 6; ++k) breaks.push_back(static_cast<double>(k) / kSpans);
-  pb.curves[0].preimage = test::line_curve(Eigen::Vector2d(0.25, 0.5), Eigen::Vector2d(0.75, 0.5), 0.25,
-                                            0.75);
+  pb.curves[0].preimage =
+      test::line_curve(Eigen::Vector2d(0.25, 0.5), Eigen::Vector2d(0.75, 0.5), 0.25, 0.75);
   pb.curves[0].target = test::fit_piecewise_curve(breaks, 3, 3, [&](double u) {
     return Eigen::VectorXd(1.5 * section(u) + Eigen::Vector3d(0.0, 0.0, 0.5));
   });
@@ -166,9 +166,9 @@ TEST(Seam, TiesTheDisplacementSoAStartSmoothOnlyToC1KeepsItsOwnSecondDerivativeS
   for (int i = 0; i <= 20; ++i) {
     const double v = i / 20.0;
     for (int k = 0; k <= 2; ++k)
-      worst = std::max(worst, (end_difference(pb, r.poles, k, v) -
-                               end_difference(pb, pb.initial_poles, k, v))
-                                  .norm());
+      worst = std::max(
+          worst,
+          (end_difference(pb, r.poles, k, v) - end_difference(pb, pb.initial_poles, k, v)).norm());
     start_step = std::max(start_step, end_difference(pb, pb.initial_poles, 2, v).norm());
   }
   EXPECT_LT(worst, 1e-8 * start_step);

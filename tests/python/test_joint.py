@@ -254,9 +254,30 @@ def test_bad_hinges_and_curves_are_reported(doc, native, console_errors):
     bad.Angle = 150.0
     doc.recompute()
     assert not solid.isValid() and "with hinges NoAngle" in solid.getStatusString(), solid.getStatusString()
-    ring = doc.addObject("Part::Feature", "Ring")
-    ring.Shape = Part.makeCircle(10.0)
-    closed = varsurf.make_space_curve((ring, "Edge1"))
-    doc.recompute()
-    assert not closed.isValid() and "closed" in closed.Status
     assert "VarSurf" in console_errors()
+
+
+@pytest.mark.parametrize("start", [0.0, 130.0])
+def test_a_closed_space_curve_bends_through_its_closing_point_like_anywhere(doc, start):
+    """A ring (a Part circle, its closing point at `start` degrees) pulled up by 3 mm where it
+    crosses +x and held where it crosses -x: the curve stays closed, smooth where its ends meet
+    (its tangents there parallel), and bends the same whichever point closes it."""
+    ring = doc.addObject("Part::Feature", "Ring")
+    ring.Shape = Part.makeCircle(10.0, V(0, 0, 0), V(0, 0, 1), start, start + 360.0)
+    # the handle where the ring crosses +x: 0 degrees is (360 - start) / 360 of the way round
+    at = ((360.0 - start) % 360.0) / 360.0
+    curve = varsurf.make_space_curve((ring, "Edge1"), handle_parameters=[at, (at + 0.5) % 1.0],
+                                     handles=[V(10, 0, 3), V(-10, 0, 0)])
+    doc.recompute()
+    assert curve.isValid(), curve.Status
+    edge = curve.Shape.Edges[0]
+    assert edge.isClosed() or (edge.valueAt(edge.FirstParameter) - edge.valueAt(edge.LastParameter)).Length < 1e-7
+    t0, t1 = edge.tangentAt(edge.FirstParameter), edge.tangentAt(edge.LastParameter)
+    assert t0.getAngle(t1) <= 1e-6, math.degrees(t0.getAngle(t1))
+    assert edge.distToShape(Part.Vertex(V(10, 0, 3)))[0] <= 1e-6
+    # Halfway between the handles the ring is halfway up on both sides, by symmetry: wherever it
+    # closes (a ring closed at 130 degrees with a held end would not be symmetric).
+    heights = [max(p.z for p in edge.discretize(720) if abs(math.atan2(p.y, p.x) - a) < 0.01)
+               for a in (0.0, math.pi / 2, math.pi, -math.pi / 2)]
+    assert heights[0] == pytest.approx(3.0, abs=1e-3) and heights[2] == pytest.approx(0.0, abs=1e-3)
+    assert heights[1] == pytest.approx(1.5, abs=0.02) and heights[3] == pytest.approx(1.5, abs=0.02)

@@ -142,8 +142,10 @@ def test_solve_time_and_unknowns_are_those_of_the_hierarchical_solve(two_sheets)
         doc.recompute()
         wall = time.perf_counter() - start
         assert local.isValid() and local.RefinementDepth >= (1 if fix else 0), local.Status
-        # The solve is most of a local recompute (projection and measurement take the rest).
-        assert 0.2 * wall <= local.SolveTime <= wall, (local.SolveTime, wall)
+        # The solve is most of a local recompute (projection and measurement take the rest);
+        # below 50 ms of wall time the scheduler's noise on a loaded machine is larger than that.
+        assert 0.0 < local.SolveTime <= wall, (local.SolveTime, wall)
+        assert wall < 0.05 or 0.2 * wall <= local.SolveTime, (local.SolveTime, wall)
         unknowns, poles, free = _unknowns_and_poles(local)
         assert poles == local.DegreesOfFreedom
         assert unknowns == 3 * free == sheet_feature.outcome_of(local).unknowns

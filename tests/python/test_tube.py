@@ -10,17 +10,11 @@ import FreeCAD
 import Part
 import pytest
 
+import bottle_neck
 import varsurf
 from step_check import assert_reads_back
 
 V = FreeCAD.Vector
-
-
-def _circle(doc, name, radius, z):
-    circle = doc.addObject("Part::Circle", name)
-    circle.Radius = radius
-    circle.Placement.Base = V(0, 0, z)
-    return circle
 
 
 def _seam(face, samples=30):
@@ -43,7 +37,6 @@ def _through(face, edge, samples=40):
 
 def test_a_bottle_neck_between_two_rings_shaped_by_a_wavy_ring(doc, native, tmp_path):
     """examples/bottle_neck.py: two Part circles and a wavy B-spline ring between them."""
-    import bottle_neck
     import freecad_env
 
     tube = bottle_neck.build(doc)
@@ -73,11 +66,11 @@ def test_a_bottle_neck_between_two_rings_shaped_by_a_wavy_ring(doc, native, tmp_
 
 
 def test_three_sections_with_an_ellipse_in_the_middle(doc):
-    bottom = _circle(doc, "Bottom", 12.0, 0.0)
+    bottom = bottle_neck.ring(doc, "Bottom", 12.0, 0.0)
     middle = doc.addObject("Part::Ellipse", "Middle")
     middle.MajorRadius, middle.MinorRadius = 16.0, 10.0
     middle.Placement.Base = V(0, 0, 25)
-    top = _circle(doc, "Top", 9.0, 50.0)
+    top = bottle_neck.ring(doc, "Top", 9.0, 50.0)
     # Given out of order: the tube orders its sections along itself (the first one given before
     # the last one given).
     tube = varsurf.make_tube([middle, top, bottom], doc=doc, tolerance=0.01)
@@ -93,8 +86,8 @@ def test_three_sections_with_an_ellipse_in_the_middle(doc):
 
 def test_sections_that_cannot_be_ordered_are_refused_naming_them(doc):
     """Two rings in one plane around one centre: no order along a tube. Nothing is created."""
-    a = _circle(doc, "Outer", 20.0, 0.0)
-    b = _circle(doc, "Inner", 10.0, 0.0)
+    a = bottle_neck.ring(doc, "Outer", 20.0, 0.0)
+    b = bottle_neck.ring(doc, "Inner", 10.0, 0.0)
     doc.recompute()
     before = {o.Name for o in doc.Objects}
     with pytest.raises(ValueError, match="Outer and Inner are at the same place along the tube"):

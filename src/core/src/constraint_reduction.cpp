@@ -241,19 +241,29 @@ ReducedConstraints reduce_constraints(const std::vector<ConstraintSamples>& bloc
     // the discrepancy principle decides as for any fitted cluster. Counting the whole cluster as
     // exact would fit every direction of the curves' data, noise below the tolerance included.
     Cluster first = cl, second = cl;
+    const Eigen::Index soft = m - hard;
     analyse(first, bm.topRows(hard), d.topRows(hard), start, row_weight.head(hard), true,
-            Eigen::MatrixXd::Identity(hard, m), opt, out.conflict);
+            Eigen::MatrixXd(), opt, out.conflict);
     const Eigen::MatrixXd ve = first.v.leftCols(first.rank);
-    // x = ve c + P y with c = S^-1 U^T (core of the exact rows' data): the fitted rows' data,
-    // less what c already does, as a linear map of the whole cluster's data.
+    // x = ve c + P y with c = T d_exact, T = S^-1 U^T (core of the exact rows' data).
     const Eigen::MatrixXd to_c = first.s.head(first.rank).cwiseInverse().asDiagonal() *
                                  first.u.leftCols(first.rank).transpose() * first.to_core;
-    const Eigen::MatrixXd soft_b = bm.bottomRows(m - hard);
-    Eigen::MatrixXd to_soft = -soft_b * ve * to_c;
-    to_soft.rightCols(m - hard) += Eigen::MatrixXd::Identity(m - hard, m - hard);
-    const Eigen::MatrixXd projected = soft_b - (soft_b * ve) * ve.transpose();
-    analyse(second, projected, to_soft * d, start, row_weight.tail(m - hard), false, to_soft, opt,
-            out.conflict);
+    const Eigen::MatrixXd soft_b = bm.bottomRows(soft);
+    const Eigen::MatrixXd soft_ve = soft_b * ve;
+    // The fitted rows act where the exact ones leave the poles free; their data, less what c
+    // already does there: d_soft - B_soft ve c.
+    const Eigen::MatrixXd projected = soft_b - soft_ve * ve.transpose();
+    analyse(second, projected, d.bottomRows(soft) - soft_ve * (to_c * d.topRows(hard)), start,
+            row_weight.tail(soft), false, Eigen::MatrixXd(), opt, out.conflict);
+    // Both stages' maps from the whole cluster's data (exact rows first), for a drag's moved
+    // data: never an m x m matrix (thousands of curve samples).
+    Eigen::MatrixXd first_map = Eigen::MatrixXd::Zero(first.to_core.rows(), m);
+    first_map.leftCols(hard) = first.to_core;
+    first.to_core = std::move(first_map);
+    Eigen::MatrixXd second_map(second.to_core.rows(), m);
+    second_map.leftCols(hard) = -(second.to_core * soft_ve) * to_c;
+    second_map.rightCols(soft) = second.to_core;
+    second.to_core = std::move(second_map);
     clusters.push_back(std::move(first));
     clusters.push_back(std::move(second));
   }

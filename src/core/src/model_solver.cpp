@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <string>
 
 #include "constrained_solve.hpp"
@@ -51,6 +52,10 @@ void validate(const ModelProblem& pb) {
     if (c.start.dim() != 3) throw InvalidInput(what + " must be 3D");
     if (!c.variational && !c.handles.empty())
       throw InvalidInput(what + " is fixed: handles need a variational curve");
+    if (c.closed && !c.variational)
+      throw InvalidInput(what + " is fixed: only a variational curve is closed by ties");
+    if (c.closed && c.start.degree < 1)
+      throw InvalidInput(what + ": a closed curve needs degree 1 or more");
     for (size_t h = 0; h < c.handles.size(); ++h) {
       const CurveHandle& hd = c.handles[h];
       if (!std::isfinite(hd.t) || hd.t < c.start.first() || hd.t > c.start.last() ||
@@ -163,6 +168,50 @@ ConstraintSamples handle_samples(const SpaceCurve& c, int offset) {
       out.coeff.push_back(sw * n);
       out.weight.push_back(h.weight / 3.0);
       rhs.push_back(sw * h.target(e));
+    }
+  }
+  out.rhs = Eigen::Map<Eigen::VectorXd>(rhs.data(), static_cast<Eigen::Index>(rhs.size()));
+  return out;
+}
+
+// A closed curve's ties (coupled ordering): its k-th derivative (k < degree) at the last end
+// minus at the first, for each coordinate, equal to the start's own, so the displacement is
+// C^(degree-1) across the closing point. Unit rows (their factors grow like p! / (p - k)!).
+ConstraintSamples closure_samples(const SpaceCurve& c, int offset) {
+  const BSplineCurve& s = c.start;
+  const int p = s.degree, n = s.pole_count();
+  const int first_span = find_span(s.knots, p, s.first()),
+            last_span = find_span(s.knots, p, s.last());
+  Eigen::MatrixXd a(p + 1, p + 1), b(p + 1, p + 1);
+  basis_derivatives(s.knots, p, first_span, s.first(), p, a);
+  basis_derivatives(s.knots, p, last_span, s.last(), p, b);
+  ConstraintSamples out;
+  out.exact = true;
+  std::vector<double> rhs;
+  for (int k = 0; k < p; ++k) {
+    std::map<int, double> row;  // pole -> coefficient
+    for (int i = 0; i <= p; ++i) {
+      if (first_span - p + i >= 0 && first_span - p + i < n) row[first_span - p + i] -= a(k, i);
+      if (last_span - p + i >= 0 && last_span - p + i < n) row[last_span - p + i] += b(k, i);
+    }
+    double norm = 0.0;
+    for (const auto& [pole, value] : row) norm += value * value;
+    norm = std::sqrt(norm);
+    if (!(norm > 0.0)) continue;
+    for (int e = 0; e < 3; ++e) {
+      std::vector<int> cols;
+      Eigen::VectorXd values(static_cast<Eigen::Index>(row.size()));
+      double start = 0.0;
+      Eigen::Index m = 0;
+      for (const auto& [pole, value] : row) {
+        cols.push_back(offset + 3 * pole + e);
+        values(m++) = value / norm;
+        start += value / norm * s.poles(pole, e);
+      }
+      out.index.push_back(std::move(cols));
+      out.coeff.push_back(values);
+      out.weight.push_back(1.0);
+      rhs.push_back(start);
     }
   }
   out.rhs = Eigen::Map<Eigen::VectorXd>(rhs.data(), static_cast<Eigen::Index>(rhs.size()));
@@ -297,6 +346,7 @@ Joint assemble_joint(const ModelProblem& pb, const SolveOptions& opt) {
       }
     }
     if (!inner.handles.empty()) q.blocks.push_back(handle_samples(inner, off));
+    if (curve.closed) q.blocks.push_back(closure_samples(curve, off));
   }
   for (size_t k = 0; k < pb.joins.size(); ++k) {
     const Join& jn = pb.joins[k];

@@ -45,7 +45,8 @@ def base_edge(obj):
 
 def variational_curve(obj):
     """(VariationalCurve for joint solves, rest Part curve) of a SpaceCurve's inputs."""
-    rest = space_curve.rest_curve(base_edge(obj), int(obj.Spans))
+    edge = base_edge(obj)
+    rest = space_curve.rest_curve(edge, int(obj.Spans))
     nat = native()
     handles = space_curve.handles_at(rest, list(obj.HandleParameters), list(obj.Handles))
     for label, value in (("Stretch", obj.Stretch), ("Bend", obj.Bend)):
@@ -53,7 +54,7 @@ def variational_curve(obj):
             raise errors.SheetError(f"{label} must be finite and >= 0 (got {value})")
     return space_curve.VariationalCurve(
         start=space_curve.to_native(nat, rest), handles=handles,
-        stretch=float(obj.Stretch), bend=float(obj.Bend)), rest
+        stretch=float(obj.Stretch), bend=float(obj.Bend), closed=edge.isClosed()), rest
 
 
 def is_space_curve(obj) -> bool:

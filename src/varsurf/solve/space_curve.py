@@ -37,6 +37,7 @@ class VariationalCurve:
     handles: List[Tuple[float, Tuple[float, float, float]]] = field(default_factory=list)  # (t, xyz)
     stretch: float = DEFAULT_STRETCH
     bend: float = DEFAULT_BEND
+    closed: bool = False  # a ring: its two ends one point, the displacement smooth across it
 
     def native(self, nat):
         curve = nat.SpaceCurve()
@@ -44,6 +45,7 @@ class VariationalCurve:
         curve.variational = True
         curve.stretch = float(self.stretch)
         curve.bend = float(self.bend)
+        curve.closed = bool(self.closed)
         handles = []
         for t, target in self.handles:
             h = nat.CurveHandle()
@@ -57,15 +59,13 @@ class VariationalCurve:
 def rest_curve(edge, spans: int = DEFAULT_SPANS):
     """The edge as a non-rational B-spline of degree >= 3 with >= ``spans`` spans (Part curve).
 
-    SheetError for a closed edge (its two ends would have to stay together: split it) or one that
-    cannot be converted.
+    A closed edge (a circle, a closed B-spline) gives a curve whose two ends meet: solve it as a
+    closed VariationalCurve. SheetError for an edge that cannot be converted.
     """
     if getattr(edge, "ShapeType", None) != "Edge":
         raise SheetError("a space curve's base must be an edge")
     if not 1 <= int(spans) <= 512:
         raise SheetError(f"Spans must be in 1..512 (got {spans})")
-    if edge.isClosed():
-        raise SheetError("the base edge is closed: a variational curve needs two free ends (split it)")
     first, last = edge.FirstParameter, edge.LastParameter
     try:
         curve = edge.Curve.toBSpline(first, last)

@@ -38,6 +38,9 @@ struct SpaceCurve {
   double stretch = 0.0;              // energy of the displacement from `start`:
   double bend = 1.0;                 // integral of stretch |D'|^2 + bend |D''|^2 dt
   std::vector<CurveHandle> handles;  // variational only
+  // Variational only: the curve is closed (a ring); its two ends are one point, across which its
+  // displacement from `start` is tied C^(degree-1), so the closing point is like any other.
+  bool closed = false;
 };
 
 struct Join {
