@@ -18,6 +18,7 @@
 #include "varsurf/core/errors.hpp"
 #include "varsurf/core/knot_vector.hpp"
 #include "varsurf/core/ribbon_constraint.hpp"
+#include "varsurf/core/seam_ties.hpp"
 
 namespace varsurf {
 
@@ -174,30 +175,15 @@ ConstraintSamples handle_samples(const SpaceCurve& c, int offset) {
   return out;
 }
 
-// A closed curve's ties (coupled ordering): its k-th derivative (k < degree) at the last end
-// minus at the first, for each coordinate, equal to the start's own, so the displacement is
-// C^(degree-1) across the closing point. Unit rows (their factors grow like p! / (p - k)!).
+// A closed curve's ties (coupled ordering): its k-th derivative (k < degree) at the first end
+// minus at the last, for each coordinate, equal to the start's own, so the displacement is
+// C^(degree-1) across the closing point.
 ConstraintSamples closure_samples(const SpaceCurve& c, int offset) {
   const BSplineCurve& s = c.start;
-  const int p = s.degree, n = s.pole_count();
-  const int first_span = find_span(s.knots, p, s.first()),
-            last_span = find_span(s.knots, p, s.last());
-  Eigen::MatrixXd a(p + 1, p + 1), b(p + 1, p + 1);
-  basis_derivatives(s.knots, p, first_span, s.first(), p, a);
-  basis_derivatives(s.knots, p, last_span, s.last(), p, b);
   ConstraintSamples out;
   out.exact = true;
   std::vector<double> rhs;
-  for (int k = 0; k < p; ++k) {
-    std::map<int, double> row;  // pole -> coefficient
-    for (int i = 0; i <= p; ++i) {
-      if (first_span - p + i >= 0 && first_span - p + i < n) row[first_span - p + i] -= a(k, i);
-      if (last_span - p + i >= 0 && last_span - p + i < n) row[last_span - p + i] += b(k, i);
-    }
-    double norm = 0.0;
-    for (const auto& [pole, value] : row) norm += value * value;
-    norm = std::sqrt(norm);
-    if (!(norm > 0.0)) continue;
+  for (const std::map<int, double>& row : closure_rows(s.knots, s.degree, s.degree - 1)) {
     for (int e = 0; e < 3; ++e) {
       std::vector<int> cols;
       Eigen::VectorXd values(static_cast<Eigen::Index>(row.size()));
@@ -205,8 +191,8 @@ ConstraintSamples closure_samples(const SpaceCurve& c, int offset) {
       Eigen::Index m = 0;
       for (const auto& [pole, value] : row) {
         cols.push_back(offset + 3 * pole + e);
-        values(m++) = value / norm;
-        start += value / norm * s.poles(pole, e);
+        values(m++) = value;
+        start += value * s.poles(pole, e);
       }
       out.index.push_back(std::move(cols));
       out.coeff.push_back(values);

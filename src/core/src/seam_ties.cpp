@@ -87,37 +87,22 @@ void add_row(const std::map<int, double>& row, const std::vector<bool>& fixed,
 }
 
 // Polynomial spaces: pole by pole of the other direction (a spline of the other direction is
-// zero exactly when its poles are), the k-th derivative at the first end minus at the last.
+// zero exactly when its poles are), the closure rows of the closed direction along each pole line.
 struct PoleTies {
   const SplineSpace& space;
   int direction;
-  Seam seam;
-  int first_span = 0, last_span = 0;
-  Eigen::MatrixXd a, b;  // basis derivatives at the first and the last end
+  std::vector<std::map<int, double>> rows;  // per order, along one pole line
 
-  PoleTies(const SplineSpace& sp, int dir, const Seam& s) : space(sp), direction(dir), seam(s) {
-    const std::vector<double>& knots = dir == 0 ? sp.knots_u : sp.knots_v;
-    const int p = s.degree;
-    first_span = find_span(knots, p, s.first);
-    last_span = find_span(knots, p, s.last);
-    a.resize(p + 1, p + 1);
-    b.resize(p + 1, p + 1);
-    basis_derivatives(knots, p, first_span, s.first, p, a);
-    basis_derivatives(knots, p, last_span, s.last, p, b);
-  }
+  PoleTies(const SplineSpace& sp, int dir, const Seam& s)
+      : space(sp),
+        direction(dir),
+        rows(closure_rows(dir == 0 ? sp.knots_u : sp.knots_v, s.degree, s.order)) {}
   int across() const { return direction == 0 ? space.nv() : space.nu(); }
-  // pole -> coefficient of the scaled k-th derivative difference along the j-th pole line.
+  // pole -> coefficient of the k-th order row along the j-th pole line.
   std::map<int, double> row(int j, int k) const {
-    const int p = seam.degree, n = direction == 0 ? space.nu() : space.nv();
-    const double scale = std::pow(seam.scale, k);
     std::map<int, double> out;
-    for (int i = 0; i <= p; ++i) {
-      const int ia = first_span - p + i, ib = last_span - p + i;
-      if (ia >= 0 && ia < n)
-        out[direction == 0 ? space.index(ia, j) : space.index(j, ia)] += scale * a(k, i);
-      if (ib >= 0 && ib < n)
-        out[direction == 0 ? space.index(ib, j) : space.index(j, ib)] -= scale * b(k, i);
-    }
+    for (const auto& [i, value] : rows[static_cast<size_t>(k)])
+      out[direction == 0 ? space.index(i, j) : space.index(j, i)] = value;
     return out;
   }
 };
@@ -130,6 +115,34 @@ void polynomial_ties(const SplineSpace& space, int direction, const Seam& s,
 }
 
 }  // namespace
+
+std::vector<std::map<int, double>> closure_rows(const std::vector<double>& knots, int degree,
+                                                int max_order) {
+  if (degree < 1 || max_order < 0 || max_order > degree)
+    throw InvalidInput("closure rows: need degree >= 1 and 0 <= order <= degree");
+  const int n = static_cast<int>(knots.size()) - degree - 1;
+  const double first = knots.front(), last = knots.back();
+  const int first_span = find_span(knots, degree, first),
+            last_span = find_span(knots, degree, last);
+  Eigen::MatrixXd a(degree + 1, degree + 1), b(degree + 1, degree + 1);
+  basis_derivatives(knots, degree, first_span, first, degree, a);
+  basis_derivatives(knots, degree, last_span, last, degree, b);
+  std::vector<std::map<int, double>> out;
+  for (int k = 0; k <= max_order; ++k) {
+    std::map<int, double> row;
+    for (int i = 0; i <= degree; ++i) {
+      const int ia = first_span - degree + i, ib = last_span - degree + i;
+      if (ia >= 0 && ia < n) row[ia] += a(k, i);
+      if (ib >= 0 && ib < n) row[ib] -= b(k, i);
+    }
+    double norm = 0.0;
+    for (const auto& entry : row) norm += entry.second * entry.second;
+    norm = std::sqrt(norm);
+    for (auto& entry : row) entry.second = norm > 0.0 ? entry.second / norm : 0.0;
+    out.push_back(std::move(row));
+  }
+  return out;
+}
 
 ConstraintSamples sample_seam(const SplineSpace& space, int direction,
                               const std::vector<bool>& fixed) {

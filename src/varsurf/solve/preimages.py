@@ -55,12 +55,12 @@ def _pieces(nat, base, curve, name, direction, closed):
     cylinder) its pieces between the points where it crosses the seam, each with a pre-image
     ending on the seam."""
     try:
-        return [(nat.project_curve(base, curve, direction=direction), curve)]
-    except nat.InvalidInput as error:
-        if not (closed and direction is None and "crosses the seam" in str(error)):
-            raise SheetError(projection_failure(name, direction, str(error))) from error
-    except nat.GeometryError as error:
-        raise SheetError(f"{name} cannot be projected onto the base face: {error}") from error
+        return [(_project(nat, base, curve, name, direction), curve)]
+    except SheetError as error:
+        cause = error.__cause__
+        if not (closed and direction is None and isinstance(cause, nat.InvalidInput)
+                and "crosses the seam" in str(cause)):
+            raise
     try:
         pieces = list(nat.split_at_seams(base, curve))
     except (nat.InvalidInput, nat.GeometryError) as error:

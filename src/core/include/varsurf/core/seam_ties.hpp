@@ -11,6 +11,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <map>
 #include <vector>
 
 #include "varsurf/core/constraints.hpp"
@@ -24,6 +25,14 @@ namespace varsurf {
 // separable, exact rows, each scaled to unit length (their derivative factors grow like
 // p! / (p - k)!). Rows whose poles are all `fixed` (flags per pole, or empty) are left out:
 // nothing can move to meet them.
+// A clamped spline of `degree` on `knots` closed on itself: per order k = 0 .. max_order, the
+// coefficients (coefficient index -> value) of its k-th derivative at the first end minus that at
+// the last, scaled to a unit row (the factors grow like p! / (p - k)!: beside a degree-14 loft's
+// order-13 rows the position rows fell under the reduction's rank tolerance). Shared by a closed
+// sheet's pole lines and a closed space curve.
+std::vector<std::map<int, double>> closure_rows(const std::vector<double>& knots, int degree,
+                                                int max_order);
+
 ConstraintSamples sample_seam(const SplineSpace& space, int direction,
                               const std::vector<bool>& fixed = {});
 
