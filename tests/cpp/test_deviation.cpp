@@ -227,6 +227,14 @@ TEST(MaxDeviation, EqualsTheKnownOffsetFromPeriodicFaces) {
   const BSplineSurface cyl = occ::surface_from_face(cylinder);
   EXPECT_NEAR(occ::max_deviation(cyl, circle(gp_Pnt(0, 0, 12), 20.0 + d), 200), d, 1e-9);
   EXPECT_NEAR(occ::max_deviation(cyl, circle(gp_Pnt(0, 0, 7), 20.0 - d), 200), d, 1e-9);
+  // A line along the seam, outside it: each foot is at u = 0 or u = 2 pi as rounding falls, which
+  // is one place (bisecting that "jump" to its limit made such measures take minutes).
+  BSplineCurve along;
+  along.degree = 1;
+  along.knots = {0.0, 0.0, 1.0, 1.0};
+  along.poles.resize(2, 3);
+  along.poles << 20.0 + d, 0.0, 1.0, 20.0 + d, 0.0, 29.0;
+  EXPECT_NEAR(occ::max_deviation(cyl, along, 200), d, 1e-9);
   // A sphere of radius 15: a parallel circle of the sphere of radius 15 + d.
   const TopoDS_Face sphere =
       face(new Geom_SphericalSurface(gp_Ax3(), 15.0), 0.0, 2 * M_PI, -M_PI / 2, M_PI / 2);

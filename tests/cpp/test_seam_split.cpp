@@ -4,11 +4,15 @@
 #include <gtest/gtest.h>
 #include <BRepBuilderAPI_MakeEdge.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
+#include <ElSLib.hxx>
 #include <gp_Ax2.hxx>
+#include <gp_Ax3.hxx>
 #include <gp_Circ.hxx>
+#include <gp_Cone.hxx>
 #include <gp_Cylinder.hxx>
 
 #include <cmath>
+#include <string>
 
 #include "varsurf/core/errors.hpp"
 #include "varsurf/occ/curve_projection.hpp"
@@ -65,4 +69,35 @@ TEST(SeamSplit, CurvesThatDoNotCrossStayWhole) {
   EXPECT_EQ(occ::split_at_seams(occ::surface_from_face(half.Face()), arc(3.0, 0.5, 2.5)).size(),
             1u);
   EXPECT_THROW(occ::split_at_seams(sheet, arc(3.0, 0.5, 5.0), -1), InvalidInput);
+}
+
+TEST(SeamSplit, AnEndRingOfANarrowingTubeAcrossTheSeamIsCutNotRefusedAsLeavingTheFace) {
+  // A cone's face all the way round, narrowing upward; its top edge as a full circle that starts
+  // 1 rad past the seam. Where the ring's foot is held at the seam, its offset runs along the
+  // seam's other side, partly along the top's outward direction: that is the crossing, not the
+  // ring passing beyond the top.
+  const gp_Cone cone(gp_Ax3(gp::XOY()), -M_PI / 8, 10.0);
+  const double top = 20.0;
+  const BSplineSurface sheet =
+      occ::surface_from_face(BRepBuilderAPI_MakeFace(cone, 0.0, 2 * M_PI, 0.0, top).Face());
+  const gp_Pnt lip = ElSLib::Value(0.0, top, cone);
+  const double radius = std::hypot(lip.X(), lip.Y());
+  const BSplineCurve ring = occ::curve_from_edge(
+      BRepBuilderAPI_MakeEdge(gp_Circ(gp_Ax2(gp_Pnt(0, 0, lip.Z()), gp::DZ()), radius), 1.0,
+                              1.0 + 2 * M_PI)
+          .Edge());
+  try {
+    occ::project_curve(sheet, ring);
+    FAIL() << "a ring across the seam has no single pre-image";
+  } catch (const InvalidInput& error) {
+    EXPECT_NE(std::string(error.what()).find("crosses the seam"), std::string::npos)
+        << error.what();
+  }
+  const std::vector<BSplineCurve> pieces = occ::split_at_seams(sheet, ring);
+  ASSERT_EQ(pieces.size(), 2u);
+  for (const BSplineCurve& piece : pieces) {
+    const occ::PreImage pre = occ::project_curve(sheet, piece);
+    EXPECT_LT(pre.max_distance, 1e-9);
+    EXPECT_LT(pre.boundary_distance, 1e-9);
+  }
 }

@@ -463,6 +463,31 @@ def run(result):
     press_task_button(QtGui.QDialogButtonBox.Cancel)
     result["fill_hole_panel_restored"] = float(lid.Tolerance) == tolerance and lid.isValid()
 
+    # 6c. the Tube command on the duct example's sections: a sketch and a circle picked whole, the
+    # bulge by its edge; a picture of the view and of the whole window
+    import duct
+
+    tdoc = App.newDocument("TubeSmoke")
+    duct.rounded_rectangle(tdoc, "Port", 60.0, 30.0, 6.0)
+    round_port = tdoc.addObject("Part::Circle", "Round")
+    round_port.Radius = 12.0
+    round_port.Placement.Base = App.Vector(0, 0, 50)
+    duct.bulge(tdoc)
+    tdoc.recompute()
+    Gui.Selection.clearSelection()
+    Gui.Selection.addSelection(tdoc.Name, "Port")
+    result["tube_active_one_section"] = bool(Gui.Command.get("VarSurf_Tube").isActive())
+    Gui.Selection.addSelection(tdoc.Name, "Round")
+    Gui.Selection.addSelection(tdoc.Name, "Bulge", "Edge1")
+    result["tube_active"] = bool(Gui.Command.get("VarSurf_Tube").isActive())
+    Gui.runCommand("VarSurf_Tube")
+    tdoc.recompute()
+    tubes = [o for o in tdoc.Objects if o.Name.startswith("Tube") and "Sections" not in o.PropertiesList]
+    result["tube"] = [[o.Name, o.isValid(), o.Status] for o in tubes]
+    result["tube_base"] = tubes[0].Base[0].Proxy.Type if tubes and tubes[0].Base else ""
+    result["tube_image_stats"] = image_stats(snapshot("tube.png"))
+    Gui.getMainWindow().grab().save(os.path.join(OUT, "tube_window.png"))
+
     # 7. the Hinge and SpaceCurve commands on the hinge-pair example (built without its hinge)
     import hinge_pair
 

@@ -288,3 +288,12 @@ def test_fill_hole_panel_lists_its_joins(smoke):
     assert smoke["fill_hole_panel_continuity"] == "G0"
     assert smoke["fill_hole_panel_preview"] == [2.0, True] and smoke["fill_hole_panel_restored"]
     assert smoke["fill_hole_image_stats"]["variance"] > 50.0, smoke["fill_hole_image_stats"]  # the lid is drawn
+
+
+def test_tube_command_through_a_sketch_and_a_circle(smoke):
+    """The duct's sections picked in the GUI: inactive with one section, active with two; the
+    tube is valid on a TubeSkin and drawn."""
+    assert not smoke["tube_active_one_section"] and smoke["tube_active"]
+    assert len(smoke["tube"]) == 1 and smoke["tube"][0][1], smoke["tube"]
+    assert smoke["tube_base"] == "VarSurf::TubeSkin"
+    assert smoke["tube_image_stats"]["variance"] > 50.0, smoke["tube_image_stats"]

@@ -185,6 +185,12 @@ class Projector {
     const Eigen::Vector3d d = p - s.row(0).transpose();
     if (d.norm() <= tolerance_) return;
     const Eigen::Vector2d near = 1e-7 * (hi_ - lo_);
+    // A foot held at a closed sheet's seam belongs to a target crossing it (the jump check
+    // says so and the target is split there): its offset is along the seam's other side, not
+    // beyond an edge.
+    for (int c = 0; c < 2; ++c) {
+      if (domain_.closed(c) && (uv(c) <= lo_(c) + near(c) || uv(c) >= hi_(c) - near(c))) return;
+    }
     for (int c = 0; c < 2; ++c) {
       // Beyond a closed sheet's seam lies the sheet's other side: a crossing shows as a jump.
       if (domain_.closed(c)) continue;

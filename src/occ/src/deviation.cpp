@@ -38,7 +38,12 @@ constexpr int kRefinedMaxima = 24;
 class Measure {
  public:
   Measure(const Handle(Geom_BSplineSurface) & surface, const Handle(Geom_BSplineCurve) & curve)
-      : inversion_(surface), curve_(curve) {}
+      : inversion_(surface),
+        curve_(curve),
+        patches_u_(inversion_.patch_coordinate_u(surface->UKnot(surface->LastUKnotIndex()))),
+        patches_v_(inversion_.patch_coordinate_v(surface->VKnot(surface->LastVKnotIndex()))),
+        closed_u_(surface->IsUClosed()),
+        closed_v_(surface->IsVClosed()) {}
 
   Sample at(double t, const SurfacePoint* start) {
     Sample s;
@@ -52,15 +57,25 @@ class Measure {
   bool dense_enough(const Sample& a, const Sample& b) const {
     const double ta = a.tangent.Magnitude(), tb = b.tangent.Magnitude();
     if (ta > 0 && tb > 0 && a.tangent.Angle(b.tangent) > kMaxTurn) return false;
-    return std::abs(inversion_.patch_coordinate_u(a.foot.u) -
-                    inversion_.patch_coordinate_u(b.foot.u)) <= kMaxPatchStep &&
-           std::abs(inversion_.patch_coordinate_v(a.foot.v) -
-                    inversion_.patch_coordinate_v(b.foot.v)) <= kMaxPatchStep;
+    return step(inversion_.patch_coordinate_u(a.foot.u) - inversion_.patch_coordinate_u(b.foot.u),
+                patches_u_, closed_u_) <= kMaxPatchStep &&
+           step(inversion_.patch_coordinate_v(a.foot.v) - inversion_.patch_coordinate_v(b.foot.v),
+                patches_v_, closed_v_) <= kMaxPatchStep;
   }
 
  private:
+  // Around a closed surface the foot of a curve along its seam steps from one end of the
+  // parameter range to the other: that is no step at all (bisecting it to the limit made the
+  // measure of a tube's end section take minutes).
+  static double step(double delta, double patches, bool closed) {
+    const double d = std::abs(delta);
+    return closed ? std::min(d, std::abs(patches - d)) : d;
+  }
+
   SurfaceInversion inversion_;
   Handle(Geom_BSplineCurve) curve_;
+  double patches_u_, patches_v_;  // patch coordinate of the last knot: the number of patches
+  bool closed_u_, closed_v_;
 };
 
 // -distance(t) for math_BrentMinimum, starting each inversion from the nearest sample's foot.

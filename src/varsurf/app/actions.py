@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import FreeCAD
 
-from varsurf.app import macro, references, selection
+from varsurf.app import macro, references, selection, tube
 from varsurf.app.transaction import run_in_transaction
 
 #: Names of the undo transactions the commands open.
@@ -17,6 +17,7 @@ TRANSACTION_CONSTRAINT = "Add VarSurf constraint"
 TRANSACTION_SPACE_CURVE = "Add VarSurf space curve"
 TRANSACTION_HINGE = "Add VarSurf hinge"
 TRANSACTION_FILL_HOLE = "Fill hole with VarSurf sheet"
+TRANSACTION_TUBE = "Add VarSurf tube"
 
 
 def _report(error, on_error):
@@ -104,3 +105,17 @@ def run_hinge_command(selection_ex, do_command=None, on_error=None, angle: float
                               macro.hinge_command_lines(solid, a, b, obj, sub, angle),
                               do_command,
                               keep=lambda o: getattr(getattr(o, "Proxy", None), "Type", None) == "VarSurf::Hinge")
+
+
+def run_tube_command(selection_ex, do_command=None, on_error=None):
+    """What VarSurf_Tube does: a closed Sheet through the selected closed sections and curves.
+    Returns the new tube Sheet or None (sections with corners, or that cannot be ordered, are
+    reported and create nothing)."""
+    try:
+        sections, curves = selection.tube_selection_to_args(selection_ex)
+        tube.ordered_sections(sections)  # make_tube's own refusals, before the transaction opens
+    except ValueError as error:
+        _report(error, on_error)
+        return None
+    return run_in_transaction(sections[0].Document, TRANSACTION_TUBE, macro.tube_command_lines(sections, curves),
+                              do_command, keep=references.is_sheet)

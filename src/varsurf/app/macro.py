@@ -105,3 +105,13 @@ def hinge_command_lines(solid, a, b, obj, sub, angle) -> List[str]:
         f"angle={float(angle)!r})",
         f"App.getDocument({solid.Document.Name!r}).recompute()",
     ]
+
+
+def tube_command_lines(sections, curves) -> List[str]:
+    """Macro lines that add a tube through closed sections and curves, and recompute."""
+    listed = ", ".join(f"({ref(obj)}, {sub!r})" for obj, sub in curves)
+    return [
+        "import varsurf",
+        f"_tube = varsurf.make_tube([{', '.join(ref(obj) for obj in sections)}], [{listed}])",
+        f"App.getDocument({sections[0].Document.Name!r}).recompute()",
+    ]

@@ -16,9 +16,14 @@ def as_names(subs) -> Tuple[str, ...]:
 
 
 def shape_of(obj):
+    """The object's shape; one made in the same script (a sketch not yet recomputed) is
+    recomputed first."""
     shape = getattr(obj, "Shape", None)
+    if (shape is None or shape.isNull()) and "Touched" in getattr(obj, "State", ()):
+        obj.recompute()
+        shape = getattr(obj, "Shape", None)
     if shape is None or shape.isNull():
-        raise ValueError(f"{obj.Label} has no shape")
+        raise ValueError(f"{obj.Label} has no shape: recompute it, or select an object that has one")
     return shape
 
 

@@ -227,6 +227,43 @@ def constraint_selection_to_args(kind: str, selection_ex: Sequence):
     return sheet, args
 
 
+TUBE_HINT = ("Select two or more closed sections (sketches, circles, closed splines: each one closed curve) "
+             "and, optionally, edges of the curves the tube passes through between them.")
+
+
+def _one_closed_curve(obj) -> bool:
+    shape = getattr(obj, "Shape", None)
+    if shape is None or shape.isNull() or not shape.Edges or references.is_sheet(obj):
+        return False
+    wires = shape.Wires or [Part.Wire(Part.__sortEdges__(shape.Edges))]
+    return len(wires) == 1 and wires[0].isClosed() and len(wires[0].Edges) == len(shape.Edges)
+
+
+def tube_selection_to_args(selection_ex):
+    """(sections, curves) of a selection: every object that is one closed curve, picked whole or
+    by any of its edges, is a section (whole); edges of other objects are curves, as
+    (object, "EdgeN"). ValueError saying what to select otherwise."""
+    sections, curves = [], []
+    for sel in selection_ex or []:
+        obj, names = sel.Object, [n.split(".")[-1] for n in (sel.SubElementNames or []) if n]
+        if _one_closed_curve(obj):
+            if obj not in sections:
+                sections.append(obj)
+            continue
+        if references.is_sheet(obj):
+            raise ValueError(f"{obj.Label} is a Sheet, not a section. {TUBE_HINT}")
+        if not names:
+            raise ValueError(f"{obj.Label} is not one closed curve: pick the edges the tube must pass "
+                             f"through instead. {TUBE_HINT}")
+        for name in names:
+            if not name.startswith("Edge"):
+                raise ValueError(f"{obj.Label}:{name} is not an edge. {TUBE_HINT}")
+            curves.append((obj, name))
+    if len(sections) < 2:
+        raise ValueError(f"{len(sections)} closed sections selected: a tube needs two or more. {TUBE_HINT}")
+    return sections, curves
+
+
 SPACE_CURVE_HINT = "Select one edge (of a sketch or a Part object): the curve's start shape."
 HINGE_HINT = ("Select two Sheets of a Solid and the edge they share, or the edge of a Solid "
               "where two of its faces meet.")

@@ -102,6 +102,14 @@ SELECTION_COMMANDS = [
          "around; the result is the whole part. Select the face (or the free edges) and, optionally,\n"
          "curves inside it."),
      selection.fill_hole_selection_to_args, actions.run_fill_hole_command),
+    ("VarSurf_Tube", "VarSurf_Tube.svg",
+     QT_TRANSLATE_NOOP("VarSurf_Tube", "Tube through sections"),
+     QT_TRANSLATE_NOOP(
+         "VarSurf_Tube",
+         "A closed sheet through closed sections (sketches of smoothly joined lines and arcs, circles,\n"
+         "closed splines), ordered along the tube, and through curves between them. Select two or more\n"
+         "sections and, optionally, edges of the curves."),
+     selection.tube_selection_to_args, actions.run_tube_command),
     ("VarSurf_SpaceCurve", "VarSurf_SpaceCurve.svg",
      QT_TRANSLATE_NOOP("VarSurf_SpaceCurve", "Variational space curve"),
      QT_TRANSLATE_NOOP(

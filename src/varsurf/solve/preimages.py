@@ -40,22 +40,23 @@ def projection_failure(name, direction, error):
     return (f"{name} runs beyond the base face (it must lie over the face to be projected onto it): {error}")
 
 
-def _project(nat, base, curve, name, direction):
-    """The pre-image of one curve, or SheetError naming it."""
+def _project(nat, base, curve, name, direction, beyond):
+    """The pre-image of one curve, or SheetError naming it (also when it passes more than
+    ``beyond`` mm beyond the base face)."""
     try:
-        return nat.project_curve(base, curve, direction=direction)
+        return nat.project_curve(base, curve, direction=direction, tolerance=beyond)
     except nat.InvalidInput as error:
         raise SheetError(projection_failure(name, direction, str(error))) from error
     except nat.GeometryError as error:
         raise SheetError(f"{name} cannot be projected onto the base face: {error}") from error
 
 
-def _pieces(nat, base, curve, name, direction, closed):
+def _pieces(nat, base, curve, name, direction, closed, beyond):
     """[(pre-image, target piece)] of one curve: itself, or on a closed base (a sheet around a
     cylinder) its pieces between the points where it crosses the seam, each with a pre-image
     ending on the seam."""
     try:
-        return [(_project(nat, base, curve, name, direction), curve)]
+        return [(_project(nat, base, curve, name, direction, beyond), curve)]
     except SheetError as error:
         cause = error.__cause__
         if not (closed and direction is None and isinstance(cause, nat.InvalidInput)
@@ -65,7 +66,7 @@ def _pieces(nat, base, curve, name, direction, closed):
         pieces = list(nat.split_at_seams(base, curve))
     except (nat.InvalidInput, nat.GeometryError) as error:
         raise SheetError(f"{name} cannot be cut where it crosses the base face's seam: {error}") from error
-    return [(_project(nat, base, piece, name, direction), piece) for piece in pieces]
+    return [(_project(nat, base, piece, name, direction, beyond), piece) for piece in pieces]
 
 
 def curve_constraints(nat, base, edges, names, projections, settings, closed=False):
@@ -75,6 +76,10 @@ def curve_constraints(nat, base, edges, names, projections, settings, closed=Fal
     contain too. The targets are the whole curves (what the result is measured against)."""
     exact = set(settings.exact_curves)
     constraints, targets, more = [], [], []
+    # A curve on the base face's boundary may pass beyond it by a hundredth of the tolerance (a
+    # tube's end section, which the base's smooth section follows within 1e-7 of its length); its
+    # pre-image is then on the boundary. The native default, 1e-6 mm, is the floor.
+    beyond = max(1e-6, 1e-2 * settings.tolerance)
     for edge, name, direction in zip(edges, names, projections):
         if getattr(edge, "ShapeType", None) != "Edge":
             raise SheetError(f"{name} is not an edge")
@@ -82,7 +87,7 @@ def curve_constraints(nat, base, edges, names, projections, settings, closed=Fal
             curve = canonical_direction(nat, nat.curve_from_edge_brep(edge.exportBrepToString()))
         except (nat.InvalidInput, nat.GeometryError) as error:
             raise SheetError(f"{name} cannot be converted to a B-spline curve: {error}") from error
-        pieces = _pieces(nat, base, curve, name, direction, closed)
+        pieces = _pieces(nat, base, curve, name, direction, closed, beyond)
         for pre, piece in pieces:
             # Where the curve's foot point is on the face's boundary, a kept boundary cannot move to
             # it (the solver sees those samples on fixed poles only): say so instead of refining in
