@@ -337,3 +337,52 @@ def test_the_tube_command_on_a_selection_is_one_undoable_step(doc):
     doc.redo()
     with pytest.raises(ValueError, match="is a Sheet, not a section"):
         tube_selection_to_args([Sel(port), Sel(round_port), Sel(doc.getObject(tube.Name))])
+
+
+def _capped_duct(doc):
+    """The duct and two flat Sheets trimmed to its end sections, joined into a Solid."""
+    import duct
+
+    tube = duct.build(doc)
+    caps = []
+    for name, obj, z in (("PortCap", doc.getObject("Port"), 0.0), ("RoundCap", doc.getObject("Round"), 50.0)):
+        base = doc.addObject("Part::Feature", name + "Base")
+        base.Shape = Part.makePlane(80, 60, V(-40, -30, z))
+        cap = varsurf.make_sheet((base, "Face1"), [obj], name=name)
+        cap.Trim = "Loop"
+        caps.append(cap)
+    solid = varsurf.make_solid([tube] + caps, name="Capped")
+    doc.recompute()
+    return solid, tube
+
+
+def test_a_duct_capped_by_two_sheets_is_a_closed_solid(doc, native):
+    """A Solid of the duct and two flat Sheets trimmed to its end sections: the closed sheet is
+    joined at its two ends (an annulus around its seam, not one loop: its face is sewn as it is),
+    closed and valid, passes check(True), and holds the volume of the same tube closed by exact
+    planar faces. FreeCAD's booleans work on it."""
+    solid, tube = _capped_duct(doc)
+    assert solid.isValid(), solid.Status
+    shape = solid.Shape
+    assert shape.ShapeType == "Solid" and len(shape.Faces) == 3 and shape.check(True) is None
+    ends = [Part.Face(doc.getObject("Port").Shape.Wires[0]), Part.Face(Part.Wire(doc.getObject("Round").Shape.Edges))]
+    exact = Part.Shape()
+    exact.importBrepFromString(
+        native.sew_faces_brep([f.exportBrepToString() for f in [tube.Shape.Faces[0]] + ends], 1e-4).brep)
+    _, volume = native.mass_properties(shape.exportBrepToString())  # integrated to 1e-10
+    _, exact_volume = native.mass_properties(exact.exportBrepToString())
+    assert abs(volume - exact_volume) <= 1e-6 * exact_volume, (volume, exact_volume)
+    # The walls at the seams are as thick as their angles say (no knife edge found at a tube's end).
+    assert solid.ThinnestWall > 0.1, solid.ThinnestWall
+    half = shape.common(Part.makeBox(200, 200, 200, V(-100, 0, -50)))
+    assert 0.3 * shape.Volume < half.Volume < 0.7 * shape.Volume and half.isValid()
+
+
+@pytest.mark.xfail(strict=True, reason="the tube's ends are sewn to the caps' arc and circle edges, whose pcurves on "
+                   "the tube deviate by up to 1.8e-5 mm; the STEP reader re-parametrizes circle pieces and sets "
+                   "tolerances under that (BOPAlgo_InvalidCurveOnSurface), as for a filled cylinder's top")
+def test_a_capped_duct_reads_back_from_step(doc, native, tmp_path):
+    solid, _tube = _capped_duct(doc)
+    step = str(tmp_path / "capped.step")
+    varsurf.export_step([solid], step)
+    assert_reads_back(solid.Shape, step, native)

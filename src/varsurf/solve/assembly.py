@@ -16,7 +16,7 @@ from typing import List, Sequence
 
 from varsurf.solve.errors import SheetError
 from varsurf.solve.native import native
-from varsurf.solve.shapes import shape_from_brep
+from varsurf.solve.shapes import part, shape_from_brep
 
 
 class JoinGapError(SheetError):
@@ -62,6 +62,32 @@ def _closes(nat, surface, edges) -> bool:
         return False
 
 
+def _closed_ends(face, edges, tolerance):
+    """For a face closed around one direction whose join curves all lie on its two ends (a tube
+    between two caps), each curve's largest distance from those ends; else None."""
+    surface = face.Surface
+    u0, u1, v0, v1 = face.ParameterRange
+    if surface.isUClosed() and not surface.isVClosed():
+        ends = [surface.vIso(v).toShape(u0, u1) for v in (v0, v1)]
+    elif surface.isVClosed() and not surface.isUClosed():
+        ends = [surface.uIso(u).toShape(v0, v1) for u in (u0, u1)]
+    else:
+        return None
+    gaps = []
+    for item in edges:
+        edge = item[1] if isinstance(item, tuple) else item
+        points = edge.discretize(JOIN_SAMPLES)
+        gap = max(min(end.distToShape(part().Vertex(p))[0] for end in ends) for p in points)
+        if gap > tolerance:
+            return None
+        gaps.append(gap)
+    return gaps
+
+
+#: Points along a join curve at which a closed sheet's ends are checked to hold it.
+JOIN_SAMPLES = 24
+
+
 def _bounding(nat, surface, shared, own):
     """The own curves that close the sheet's loop with its shared ones. A curve with an end that
     meets no other curve's end (one across the sheet's interior, a closed one) does not bound it:
@@ -105,12 +131,19 @@ def build_solid(sheets: Sequence, tolerance: float) -> AssemblyOutcome:
         raise SheetError(f"the tolerance must be a positive length (got {tolerance})")
     if len(sheets) < 1:
         raise SheetError("a solid needs at least one sheet")
-    curves, index, gaps, joined = [], {}, {}, []
+    curves, index, gaps, joined, whole = [], {}, {}, [], []
     for entry in sheets:
         label, face, edges = entry[0], entry[1], list(entry[2])
         own = list(entry[3]) if len(entry) > 3 else []
         if not edges:
             raise SheetError(f"{label} shares no curve with the other sheets: nothing bounds it")
+        ends = _closed_ends(face, edges, tolerance)
+        if ends is not None:  # a tube between its join curves: its face as it is
+            for item, gap in zip(edges, ends):
+                key = item[0] if isinstance(item, tuple) else item.hashCode()
+                gaps[key] = max(gaps.get(key, 0.0), gap)
+            whole.append(face)
+            continue
         surface = nat.surface_from_face_brep(face.exportBrepToString())
         if own and not _closes(nat, surface, edges):
             # the shared curves alone do not close: its own ones on the loop complete it
@@ -138,7 +171,12 @@ def build_solid(sheets: Sequence, tolerance: float) -> AssemblyOutcome:
             raise SheetError(f"{label}: its join curves do not close: {error}") from error
         joined.append(nat.JoinedSheet(surface=surface, curves=ids, preimages=pre_images))
     try:
-        result = nat.join_sheets(curves, joined, tolerance)
+        result = nat.join_sheets(curves, joined, tolerance) if joined else None
+        if whole:
+            # A closed sheet's ends are not one loop in its parameters (an annulus around its
+            # seam): its untrimmed face is sewn to the others' along its ends.
+            faces = shape_from_brep(result.brep).Faces if result is not None else []
+            result = nat.sew_faces_brep([f.exportBrepToString() for f in list(faces) + whole], tolerance)
     except (nat.InvalidInput, nat.GeometryError) as error:
         raise SheetError(str(error)) from error
     shape = shape_from_brep(result.brep)
@@ -217,9 +255,13 @@ def _across(face, other, point, normal, tangent, depth):
         return math.inf
     step.normalize()
     for direction in (step, -step):
-        u, v = face.Surface.parameter(point + direction * depth)
-        if face.isPartOfDomain(u, v):
-            return _surface_distance(other, face.Surface.value(u, v))
+        inside = point + direction * depth
+        u, v = face.Surface.parameter(inside)
+        on = face.Surface.value(u, v)
+        # Where the surface ends at the seam (a tube's end) the nearest point is the seam itself:
+        # that is no step into the face.
+        if face.isPartOfDomain(u, v) and (on - inside).Length <= 0.5 * depth:
+            return _surface_distance(other, on)
     return math.inf
 
 
