@@ -64,7 +64,8 @@ def _closes(nat, surface, edges) -> bool:
 
 def _closed_ends(face, edges, tolerance):
     """For a face closed around one direction whose join curves all lie on its two ends (a tube
-    between two caps), each curve's largest distance from those ends; else None."""
+    between two caps): (its two ends as edges, (largest distance, which end) per curve); else
+    None."""
     surface = face.Surface
     u0, u1, v0, v1 = face.ParameterRange
     if surface.isUClosed() and not surface.isVClosed():
@@ -73,15 +74,38 @@ def _closed_ends(face, edges, tolerance):
         ends = [surface.uIso(u).toShape(v0, v1) for u in (u0, u1)]
     else:
         return None
-    gaps = []
+    found = []
     for item in edges:
         edge = item[1] if isinstance(item, tuple) else item
         points = edge.discretize(JOIN_SAMPLES)
-        gap = max(min(end.distToShape(part().Vertex(p))[0] for end in ends) for p in points)
-        if gap > tolerance:
+        per_end = [max(end.distToShape(part().Vertex(p))[0] for p in points) for end in ends]
+        which = min((0, 1), key=per_end.__getitem__)
+        if per_end[which] > tolerance:
             return None
-        gaps.append(gap)
-    return gaps
+        found.append((per_end[which], which))
+    return ends, found
+
+
+def _end_piece(end, edge):
+    """The piece of a closed sheet's end (a closed edge) between the ends of a join curve that
+    lies on it: the whole end for a closed curve; None for a piece across the end's closing
+    point."""
+    if edge.isClosed():
+        return end
+    curve, a, b = end.Curve, end.FirstParameter, end.LastParameter
+    near = 1e-9 * (b - a)
+
+    def readings(point):  # the closing point reads as either end of the range
+        t = curve.parameter(point)
+        return (a, b) if min(t - a, b - t) <= near else (t,)
+
+    middle = curve.parameter(edge.valueAt(0.5 * (edge.FirstParameter + edge.LastParameter)))
+    for t0 in readings(edge.valueAt(edge.FirstParameter)):
+        for t1 in readings(edge.valueAt(edge.LastParameter)):
+            lo, hi = min(t0, t1), max(t0, t1)
+            if lo < middle < hi:
+                return curve.toShape(lo, hi)
+    return None
 
 
 #: Points along a join curve at which a closed sheet's ends are checked to hold it.
@@ -116,6 +140,41 @@ def _bounding(nat, surface, shared, own):
         keep = [item for item in keep if id(item) not in loose]
 
 
+@dataclass
+class _ClosedEnds:
+    sheets: dict  # sheet number -> [(distance, which end)] per join curve of a closed sheet
+    pieces: dict  # join curve key -> the piece of that sheet's end it lies on
+
+
+def _on_closed_ends(sheets, tolerance) -> _ClosedEnds:
+    """The closed sheets whose join curves lie on their two ends, and the pieces of those ends
+    that the other sheets are joined along instead of the curves: the closed sheet's face is then
+    sewn to them along its own edges (the curves themselves, a sketch's arcs a hundredth of the
+    tolerance off its ends, gave edges whose STEP re-read failed OCCT's check). No pieces when
+    one would run across an end's closing point: the curves, sewn within the tolerance."""
+    found = _ClosedEnds({}, {})
+    pieces, complete = {}, True
+    for number, entry in enumerate(sheets):
+        edges = list(entry[2])
+        closed = _closed_ends(entry[1], edges, tolerance) if edges else None
+        if closed is None:
+            continue
+        ends, on = closed
+        found.sheets[number] = on
+        for item, (_gap, which) in zip(edges, on):
+            key, edge = item if isinstance(item, tuple) else (item.hashCode(), item)
+            piece = _end_piece(ends[which], edge)
+            complete = complete and piece is not None
+            pieces[key] = piece
+    if complete:
+        found.pieces = pieces
+    return found
+
+
+def _key(item):
+    return item[0] if isinstance(item, tuple) else item.hashCode()
+
+
 def build_solid(sheets: Sequence, tolerance: float) -> AssemblyOutcome:
     """Join sheets along their shared curves into a shell, a solid when it closes.
 
@@ -132,18 +191,22 @@ def build_solid(sheets: Sequence, tolerance: float) -> AssemblyOutcome:
     if len(sheets) < 1:
         raise SheetError("a solid needs at least one sheet")
     curves, index, gaps, joined, whole = [], {}, {}, [], []
-    for entry in sheets:
+    on_ends = _on_closed_ends(sheets, tolerance)
+    for number, entry in enumerate(sheets):
         label, face, edges = entry[0], entry[1], list(entry[2])
         own = list(entry[3]) if len(entry) > 3 else []
         if not edges:
             raise SheetError(f"{label} shares no curve with the other sheets: nothing bounds it")
-        ends = _closed_ends(face, edges, tolerance)
-        if ends is not None:  # a tube between its join curves: its face as it is
-            for item, gap in zip(edges, ends):
+        if number in on_ends.sheets:  # a tube between its join curves: its face as it is
+            for item, (gap, _which) in zip(edges, on_ends.sheets[number]):
                 key = item[0] if isinstance(item, tuple) else item.hashCode()
                 gaps[key] = max(gaps.get(key, 0.0), gap)
             whole.append(face)
             continue
+        if any(_key(item) in on_ends.pieces for item in edges):
+            # Joined along a closed sheet's end, which lies up to the tolerance outside the
+            # curves this sheet was trimmed to: its whole surface, not its trimmed (u, v) box.
+            face = part().Face(face.Surface)
         surface = nat.surface_from_face_brep(face.exportBrepToString())
         if own and not _closes(nat, surface, edges):
             # the shared curves alone do not close: its own ones on the loop complete it
@@ -151,12 +214,15 @@ def build_solid(sheets: Sequence, tolerance: float) -> AssemblyOutcome:
         ids, pre_images = [], []
         for item in edges:
             key, edge = item if isinstance(item, tuple) else (item.hashCode(), item)
+            edge = on_ends.pieces.get(key, edge)
             if key not in index:
                 index[key] = len(curves)
                 curves.append(nat.curve_from_edge_brep(edge.exportBrepToString()))
             curve = curves[index[key]]
             try:
-                pre = nat.project_curve(surface, curve)
+                # A curve may pass beyond a trimmed sheet's (u, v) box by the tolerance, as it may
+                # pass beside the sheet.
+                pre = nat.project_curve(surface, curve, tolerance=tolerance)
             except (nat.InvalidInput, nat.GeometryError) as error:
                 raise SheetError(f"{label} does not reach a join curve: {error}") from error
             if pre.max_distance > tolerance:
