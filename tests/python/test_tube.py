@@ -214,7 +214,7 @@ def test_sections_of_lines_arcs_and_splines_and_a_rigid_motion(doc, native):
         worst = max((motion.multVec(surface.value(u0 + (u1 - u0) * i / 23, v0 + (v1 - v0) * j / 9))
                      - moved_surface.value(u0 + (u1 - u0) * i / 23, v0 + (v1 - v0) * j / 9)).Length
                     for i in range(24) for j in range(10))
-        assert worst <= 1e-6, worst
+        assert worst <= 1e-6, (worst, tube.Status, moved.Status)
     finally:
         FreeCAD.closeDocument(other.Name)
 
@@ -387,3 +387,32 @@ def test_a_capped_duct_reads_back_from_step(doc, native, tmp_path):
     step = str(tmp_path / "capped.step")
     varsurf.export_step([solid], step)
     assert_reads_back(solid.Shape, step, native)
+
+
+def test_the_order_and_direction_of_a_sections_edges_change_nothing(doc):
+    """The duct's port drawn again with its edges in another order and its lines the other way:
+    the same tube (its seam starts along the sketch's x axis, not at its first vertex)."""
+    import duct
+
+    first = duct.build(doc)
+    other = FreeCAD.newDocument("Redrawn")
+    try:
+        port = other.addObject("Sketcher::SketchObject", "Port")
+        drawn = doc.getObject("Port").Geometry
+        redrawn = []
+        for geometry in drawn[3:] + drawn[:3]:
+            if isinstance(geometry, Part.LineSegment):
+                geometry = Part.LineSegment(geometry.EndPoint, geometry.StartPoint)
+            redrawn.append(geometry)
+        port.addGeometry(redrawn, False)
+        round_port = other.addObject("Part::Circle", "Round")
+        round_port.Radius = 12.0
+        round_port.Placement.Base = V(0, 0, 50)
+        second = varsurf.make_tube([port, round_port], [duct.bulge(other)], doc=other, tolerance=0.01, name="Duct")
+        other.recompute()
+        assert second.isValid(), second.Status
+        a, b = first.Shape.Faces[0], second.Shape.Faces[0]
+        worst = max(b.distToShape(Part.Vertex(p))[0] for p in a.tessellate(1.0)[0][::7])
+        assert worst <= 1e-6, worst
+    finally:
+        FreeCAD.closeDocument(other.Name)

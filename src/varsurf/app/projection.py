@@ -66,9 +66,27 @@ def directions(obj, face, links):
                                     "the curves are projected along (e.g. 0, 0, 1 for a plan view)")
         return [(d.x, d.y, d.z)] * len(links)
     reference = base_normal(face)
+    closed = face.Surface.isUClosed() or face.Surface.isVClosed()
     found = []
-    for link_obj, _sub in links:
+    for link_obj, sub in links:
         normal = sketch_normal(link_obj)
+        if normal is not None and closed:
+            # Around a closed face (a tube) the normal at the middle of its parameters points
+            # wherever the seam puts it: judge each curve by the normal where it lies.
+            reference = _normal_near(face, link_obj, sub)
         facing = normal is not None and reference is not None and _facing(normal, reference)
         found.append(normal if facing else None)
     return found
+
+
+def _normal_near(face, link_obj, sub):
+    """The face's normal at the point nearest the middle of a curve, or None."""
+    import Part
+
+    try:
+        edge = Part.getShape(link_obj, sub, needSubElement=True)
+        middle = edge.valueAt(0.5 * (edge.FirstParameter + edge.LastParameter))
+        n = face.normalAt(*face.Surface.parameter(middle))
+    except Exception:  # a broken link or no normal: the solve reports it with its own message
+        return None
+    return (n.x, n.y, n.z)

@@ -21,8 +21,8 @@ import Part
 from varsurf.app.feature import FeatureProxy, mark_failed
 from varsurf.app.make import make_sheet
 from varsurf.solve.errors import SheetError
-from varsurf.solve.tube import (CORNER_DEGREES, MAX_EDGE_SPANS, SMOOTH_SAMPLES, SMOOTH_TOLERANCE, periodic_basis,
-                                periodic_fit, section_order, skin)
+from varsurf.solve.tube import (CORNER_DEGREES, MAX_EDGE_SPANS, SAME_KNOT, SMOOTH_SAMPLES, SMOOTH_TOLERANCE,
+                                periodic_basis, periodic_fit, section_order, skin)
 
 TYPE = "VarSurf::TubeSkin"
 
@@ -160,10 +160,16 @@ def _start(path, centre, toward, axis):
 
     step = path.length / (32 * len(path.edges))
     where = max((step * j for j in range(32 * len(path.edges))), key=closeness)
-    for _round in range(4):  # narrow down around the best
+    for _round in range(8):  # narrow down around the best, to 1e-7 of the step
         step /= 8
         where = max((where + step * j for j in range(-8, 9)), key=lambda s: closeness(s % path.length))
-    return where % path.length
+    where %= path.length
+    # A start a hair from an edge join would leave a knot span a hair wide (a circle's start is
+    # its own join): start at the join.
+    for join in path.starts:
+        if abs(where - join) <= SAME_KNOT * path.length:
+            return join % path.length
+    return where
 
 
 def _fit_data(path, spans, start):
@@ -188,7 +194,7 @@ def _fit_data(path, spans, start):
             middle = along + path.lengths[k] / (2 * steps)
             checks.append((shifted(path.starts[k] + middle), path.point(k, middle)))
             owners.append(k)
-    if not any(abs(s - start) <= 1e-12 * period for s in path.starts):
+    if not any(abs(s - start) <= SAME_KNOT * period for s in path.starts):
         knots.append(0.0)  # the curve starts inside an edge
     knots = [k if k < period * (1 - 1e-15) else 0.0 for k in knots]
     return sorted(knots), params, checks, owners
@@ -213,17 +219,19 @@ def ordered_sections(sections):
     return [sections[i] for i in order]
 
 
-def skin_surface(wires, labels):
+def skin_surface(wires, labels, reference=FreeCAD.Vector(1, 0, 0)):
     """(The tube's start surface through closed ``wires`` in their order, a Part.BSplineSurface
     periodic around the tube; how far its ends may be from the wires): each wire's smooth curve
-    starts toward the first wire's start and winds as the first wire does, so the skin does not
-    twist."""
+    starts toward the first wire's start (``reference``, the first section's x axis, when it is
+    of several edges) and winds as the first wire does, so the skin does not twist."""
     first = wires[0]
     axis = _winding_axis(first)
     if axis.Length == 0.0:
         axis = wires[-1].CenterOfMass - first.CenterOfMass
     axis.normalize()
-    toward = first.OrderedVertexes[0].Point - first.CenterOfMass
+    # Where the sections start: a single curve's own start (a circle's along its x axis), else
+    # the direction of the first section's own x axis, whatever order its edges were drawn in.
+    toward = first.OrderedVertexes[0].Point - first.CenterOfMass if len(first.Edges) == 1 else FreeCAD.Vector(reference)
     sections, error = [], 0.0
     for wire, label in zip(wires, labels):
         knots, poles, smoothed = smooth_section(wire, toward, axis, label)
@@ -257,7 +265,9 @@ class TubeSkinFeature(FeatureProxy):
             sections = list(obj.Sections)
             if len(sections) < 2:
                 raise ValueError(f"a tube needs two or more sections (got {len(sections)})")
-            surface, error = skin_surface([_closed_wire(o) for o in sections], [o.Label for o in sections])
+            placement = getattr(sections[0], "Placement", FreeCAD.Placement())
+            surface, error = skin_surface([_closed_wire(o) for o in sections], [o.Label for o in sections],
+                                          placement.Rotation.multVec(FreeCAD.Vector(1, 0, 0)))
         except Exception as error:
             mark_failed(obj, error)
             raise

@@ -86,12 +86,12 @@ def _closed_ends(face, edges, tolerance):
     return ends, found
 
 
-def _end_piece(end, edge):
-    """The piece of a closed sheet's end (a closed edge) between the ends of a join curve that
-    lies on it: the whole end for a closed curve; None for a piece across the end's closing
+def _end_pieces(end, edge):
+    """The pieces of a closed sheet's end (a closed edge) between the ends of a join curve that
+    lies on it: the whole end for a closed curve; two pieces for one across the end's closing
     point."""
     if edge.isClosed():
-        return end
+        return [end]
     curve, a, b = end.Curve, end.FirstParameter, end.LastParameter
     near = 1e-9 * (b - a)
 
@@ -100,12 +100,14 @@ def _end_piece(end, edge):
         return (a, b) if min(t - a, b - t) <= near else (t,)
 
     middle = curve.parameter(edge.valueAt(0.5 * (edge.FirstParameter + edge.LastParameter)))
-    for t0 in readings(edge.valueAt(edge.FirstParameter)):
-        for t1 in readings(edge.valueAt(edge.LastParameter)):
+    starts, stops = readings(edge.valueAt(edge.FirstParameter)), readings(edge.valueAt(edge.LastParameter))
+    for t0 in starts:
+        for t1 in stops:
             lo, hi = min(t0, t1), max(t0, t1)
             if lo < middle < hi:
-                return curve.toShape(lo, hi)
-    return None
+                return [curve.toShape(lo, hi)]
+    lo, hi = min(starts[0], stops[0]), max(starts[0], stops[0])  # across the closing point
+    return [curve.toShape(hi, b), curve.toShape(a, lo)]
 
 
 #: Points along a join curve at which a closed sheet's ends are checked to hold it.
@@ -143,7 +145,7 @@ def _bounding(nat, surface, shared, own):
 @dataclass
 class _ClosedEnds:
     sheets: dict  # sheet number -> [(distance, which end)] per join curve of a closed sheet
-    pieces: dict  # join curve key -> the piece of that sheet's end it lies on
+    pieces: dict  # join curve key -> the pieces of that sheet's end it lies on
 
 
 def _on_closed_ends(sheets, tolerance) -> _ClosedEnds:
@@ -153,7 +155,7 @@ def _on_closed_ends(sheets, tolerance) -> _ClosedEnds:
     tolerance off its ends, gave edges whose STEP re-read failed OCCT's check). No pieces when
     one would run across an end's closing point: the curves, sewn within the tolerance."""
     found = _ClosedEnds({}, {})
-    pieces, complete = {}, True
+    pieces = {}
     for number, entry in enumerate(sheets):
         edges = list(entry[2])
         closed = _closed_ends(entry[1], edges, tolerance) if edges else None
@@ -163,16 +165,23 @@ def _on_closed_ends(sheets, tolerance) -> _ClosedEnds:
         found.sheets[number] = on
         for item, (_gap, which) in zip(edges, on):
             key, edge = item if isinstance(item, tuple) else (item.hashCode(), item)
-            piece = _end_piece(ends[which], edge)
-            complete = complete and piece is not None
-            pieces[key] = piece
-    if complete:
-        found.pieces = pieces
+            pieces[key] = _end_pieces(ends[which], edge)
+    found.pieces = pieces
     return found
 
 
 def _key(item):
     return item[0] if isinstance(item, tuple) else item.hashCode()
+
+
+def _expanded(edges, pieces):
+    """(curve key, join curve key, edge) of each join curve, the curves on a closed sheet's end
+    replaced by the pieces of that end (curve keys (key, k) when there are two)."""
+    for item in edges:
+        key, edge = item if isinstance(item, tuple) else (item.hashCode(), item)
+        found = pieces.get(key, [edge])
+        for k, piece in enumerate(found):
+            yield ((key, k) if len(found) > 1 else key), key, piece
 
 
 def build_solid(sheets: Sequence, tolerance: float) -> AssemblyOutcome:
@@ -212,9 +221,7 @@ def build_solid(sheets: Sequence, tolerance: float) -> AssemblyOutcome:
             # the shared curves alone do not close: its own ones on the loop complete it
             edges = edges + _bounding(nat, surface, edges, own)
         ids, pre_images = [], []
-        for item in edges:
-            key, edge = item if isinstance(item, tuple) else (item.hashCode(), item)
-            edge = on_ends.pieces.get(key, edge)
+        for key, join, edge in _expanded(edges, on_ends.pieces):
             if key not in index:
                 index[key] = len(curves)
                 curves.append(nat.curve_from_edge_brep(edge.exportBrepToString()))
@@ -228,7 +235,7 @@ def build_solid(sheets: Sequence, tolerance: float) -> AssemblyOutcome:
             if pre.max_distance > tolerance:
                 raise JoinGapError(f"{label} passes {pre.max_distance:.3g} mm from a join curve "
                                    f"(more than the tolerance {tolerance:.3g} mm)")
-            gaps[key] = max(gaps.get(key, 0.0), float(pre.max_distance))
+            gaps[join] = max(gaps.get(join, 0.0), float(pre.max_distance))
             ids.append(index[key])
             pre_images.append(pre.curve)
         try:  # checked here too, so that the message names the sheet

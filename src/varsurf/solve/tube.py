@@ -23,6 +23,9 @@ SMOOTH_SAMPLES = 128
 #: from them: the loft's ends are the sheet's held boundary, and the section's edges must lie on
 #: it within the projection's 1e-6 mm.
 SMOOTH_TOLERANCE = 1e-7
+#: Knots of sections closer than this (relative to the period) are one: a span that narrow makes
+#: the sheet on it ill-conditioned (a rigidly moved scene's sheet then moved 0.36 mm at its seam).
+SAME_KNOT = 1e-6
 #: Spans per edge the smooth curve refines to at most.
 MAX_EDGE_SPANS = 256
 
@@ -122,7 +125,8 @@ def _grouped(knots, period):
 
 def merged_knots(knot_lists: Sequence[Sequence[float]], period: float = 1.0, gap: float = 0.1) -> List[float]:
     """Flat knots of a periodic space for all the periodic spaces given (knots in [0, period)):
-    every multiple knot of any (where a section's edges join) at its largest multiplicity, and
+    every multiple knot of any (where a section's edges join; those within SAME_KNOT of one
+    another as one) at its largest multiplicity, and
     the simple knots (there only for freedom) unless one lies within ``gap`` of its own span of a
     knot already kept. Knots of two sections a hair apart would leave a span a hair wide: the
     sheet on it is ill-conditioned (a 4.5e-5 span made a duct's solve 100 times slower)."""
@@ -132,7 +136,8 @@ def merged_knots(knot_lists: Sequence[Sequence[float]], period: float = 1.0, gap
         groups = _grouped(knots, period)
         for index, (value, count) in enumerate(groups):
             if count > 1:
-                key = next((m for m in kept if abs(m - value) <= 1e-12 * period), value)
+                key = next((m for m in kept if min(abs(m - value), period - abs(m - value)) <= SAME_KNOT * period),
+                           value)
                 kept[key] = max(kept.get(key, 0), count)
             else:
                 before = groups[index - 1][0] - (period if index == 0 else 0.0)
