@@ -4,10 +4,10 @@ between them. The sections are ordered along the tube and lofted (FreeCAD's own 
 changed section recomputes the start shape); the Sheet on the loft's face is closed around its
 seam, keeps the two end sections as its boundary and passes through the others and the curves.
 
-A section of several edges (a sketched rounded rectangle: lines and arcs) would make the loft a
-face per edge. Such a section enters the loft as a TubeSection: one smooth periodic curve through
-its edges, started toward the first section's start and wound as it is, so the loft is one face
-and does not twist. The Sheet still passes through the section's own edges. App side only."""
+A section of several edges (a sketched rounded rectangle: lines, arcs, B-splines) would make the
+loft a face per edge. Then the Sheet starts from a TubeSkin instead: one smooth periodic curve per
+section, all starting along the first section's x axis and winding as it does, skinned into one
+face that does not twist. The Sheet still passes through the sections' own edges. App side only."""
 
 from __future__ import annotations
 
