@@ -123,7 +123,7 @@ def smooth_section(wire, toward, axis, label):
     angle."""
     _refuse_corners(wire, label)
     centre = wire.CenterOfMass
-    path = _Path(wire, reverse=_winding(wire.discretize(Number=SMOOTH_SAMPLES + 1)[:-1], centre).dot(axis) < 0.0)
+    path = _Path(wire, reverse=_winding_axis(wire).dot(axis) < 0.0)
     start = _start(path, centre, toward, axis)
     curved = [not isinstance(e.Curve, Part.Line) for e in path.edges]
     spans = [2 if c else 1 for c in curved]
