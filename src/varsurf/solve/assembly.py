@@ -152,10 +152,9 @@ def _on_closed_ends(sheets, tolerance) -> _ClosedEnds:
     """The closed sheets whose join curves lie on their two ends, and the pieces of those ends
     that the other sheets are joined along instead of the curves: the closed sheet's face is then
     sewn to them along its own edges (the curves themselves, a sketch's arcs a hundredth of the
-    tolerance off its ends, gave edges whose STEP re-read failed OCCT's check). No pieces when
-    one would run across an end's closing point: the curves, sewn within the tolerance."""
+    tolerance off its ends, gave edges whose STEP re-read failed OCCT's check). A curve across
+    an end's closing point is joined along two pieces."""
     found = _ClosedEnds({}, {})
-    pieces = {}
     for number, entry in enumerate(sheets):
         edges = list(entry[2])
         closed = _closed_ends(entry[1], edges, tolerance) if edges else None
@@ -164,9 +163,7 @@ def _on_closed_ends(sheets, tolerance) -> _ClosedEnds:
         ends, on = closed
         found.sheets[number] = on
         for item, (_gap, which) in zip(edges, on):
-            key, edge = item if isinstance(item, tuple) else (item.hashCode(), item)
-            pieces[key] = _end_pieces(ends[which], edge)
-    found.pieces = pieces
+            found.pieces[_key(item)] = _end_pieces(ends[which], item[1] if isinstance(item, tuple) else item)
     return found
 
 
@@ -208,8 +205,7 @@ def build_solid(sheets: Sequence, tolerance: float) -> AssemblyOutcome:
             raise SheetError(f"{label} shares no curve with the other sheets: nothing bounds it")
         if number in on_ends.sheets:  # a tube between its join curves: its face as it is
             for item, (gap, _which) in zip(edges, on_ends.sheets[number]):
-                key = item[0] if isinstance(item, tuple) else item.hashCode()
-                gaps[key] = max(gaps.get(key, 0.0), gap)
+                gaps[_key(item)] = max(gaps.get(_key(item), 0.0), gap)
             whole.append(face)
             continue
         if any(_key(item) in on_ends.pieces for item in edges):
