@@ -54,10 +54,6 @@ def test_a_flat_top_replaced_g1_to_its_fillet_is_the_flat_top(doc, native, tmp_p
     assert not fillet.Visibility
 
 
-@pytest.mark.xfail(strict=True, reason="the sheet's rim is sewn to the fillet's circle edge, whose pcurve on the sheet "
-                   "deviates by 7e-7 mm with peaks inside the edge; split there (as B-spline and straight edges are) "
-                   "the circle's pieces are re-parametrized by the STEP reader and still come back 3 % under their "
-                   "deviation, so check(True) finds BOPAlgo_InvalidCurveOnSurface")
 def test_a_top_filled_g1_to_its_fillet_reads_back_from_step(doc, native, tmp_path):
     fillet = _filleted_cylinder(doc, 3.0)
     filled = varsurf.make_fill_hole(fillet, f"Face{_face_at_height(fillet.Shape, 30.0) + 1}")

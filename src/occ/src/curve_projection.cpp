@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "varsurf/core/curve_fit.hpp"
 #include "varsurf/core/errors.hpp"
 #include "varsurf/core/knot_vector.hpp"
 #include "varsurf/occ/directional_projection.hpp"
@@ -236,48 +237,17 @@ class Projector {
 // ones; every pre-image piece and degree multiplies the solver's constraint samples.
 BSplineCurve fit(const std::map<double, Sample>& samples, int degree,
                  const std::vector<double>& knots) {
-  BSplineCurve c;
-  c.degree = degree;
-  c.knots = knots;
-  const int n = static_cast<int>(knots.size()) - degree - 1;
-  const Eigen::Vector2d first = samples.begin()->second.uv, last = samples.rbegin()->second.uv;
-  c.poles.resize(n, 2);
-  c.poles.row(0) = first.transpose();
-  c.poles.row(n - 1) = last.transpose();
-  if (n == 2) return c;
-  std::vector<Eigen::Triplet<double>> entries;
-  Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(n - 2, 2);
-  Eigen::MatrixXd basis(1, degree + 1);
-  for (auto it = std::next(samples.begin()); it != std::prev(samples.end()); ++it) {
-    const double t = it->first;
-    const int span = find_span(knots, degree, t);
-    basis_derivatives(knots, degree, span, t, 0, basis);
-    Eigen::Vector2d r = it->second.uv;
-    for (int j = 0; j <= degree; ++j) {
-      const int col = span - degree + j;
-      if (col == 0) r -= basis(0, j) * first;
-      if (col == n - 1) r -= basis(0, j) * last;
-    }
-    for (int j = 0; j <= degree; ++j) {
-      const int cj = span - degree + j;
-      if (cj == 0 || cj == n - 1) continue;
-      rhs.row(cj - 1) += basis(0, j) * r.transpose();
-      for (int k = 0; k <= degree; ++k) {
-        const int ck = span - degree + k;
-        if (ck == 0 || ck == n - 1) continue;
-        entries.emplace_back(cj - 1, ck - 1, basis(0, j) * basis(0, k));
-      }
-    }
+  std::vector<double> t;
+  Eigen::MatrixXd uv(static_cast<Eigen::Index>(samples.size()), 2);
+  for (const auto& [at, s] : samples) {
+    uv.row(static_cast<Eigen::Index>(t.size())) = s.uv.transpose();
+    t.push_back(at);
   }
-  Eigen::SparseMatrix<double> normal(n - 2, n - 2);
-  normal.setFromTriplets(entries.begin(), entries.end());
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(normal);
-  if (ldlt.info() != Eigen::Success)
+  try {
+    return fit_clamped_curve(t, uv, degree, knots);
+  } catch (const SolveFailure&) {
     throw GeometryError("projection: the pre-image fit is singular (too few samples per span)");
-  c.poles.middleRows(1, n - 2) = ldlt.solve(rhs);
-  if (!c.poles.allFinite())
-    throw GeometryError("projection: the pre-image fit is singular (too few samples per span)");
-  return c;
+  }
 }
 
 // Samples of the pre-image, ordered by t; new ones start from their left neighbour's (u, v).

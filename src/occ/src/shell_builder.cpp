@@ -33,6 +33,7 @@
 #include "varsurf/occ/exchange_edges.hpp"
 #include "varsurf/occ/geom_convert.hpp"
 #include "varsurf/occ/occ_error.hpp"
+#include "varsurf/occ/pcurve_refit.hpp"
 #include "varsurf/occ/shape_check.hpp"
 
 namespace varsurf::occ {
@@ -145,6 +146,7 @@ ShellResult sew_faces(const std::vector<TopoDS_Face>& faces, double tolerance) {
     // Sewing sets an edge's tolerance from its own samples, which can fall short of the deviation
     // OCCT's Boolean check finds between them (a sheet sewn to a fillet's arcs: 3 of 4 radii
     // failed check(True)); cover what that check measures.
+    refit_pcurves(sewn, Precision::Confusion());
     cover_measured_deviations(sewn);
     ShellResult out;
     out.free_edges = sewing.NbFreeEdges();
