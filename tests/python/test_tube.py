@@ -66,6 +66,50 @@ def test_a_bottle_neck_between_two_rings_shaped_by_a_wavy_ring(doc, native, tmp_
     assert _through(tube.Shape.Faces[0], top.Shape.Edges[0]) <= 0.01
 
 
+def _bottle(doc, scale, **options):
+    """examples/bottle_neck.py's rings and waist, every length times `scale`."""
+    bottom = bottle_neck.ring(doc, "Bottom", 20.0 * scale, 0.0)
+    top = bottle_neck.ring(doc, "Top", 8.0 * scale, 60.0 * scale)
+    waist = bottle_neck.waist(doc, 15.0 * scale, 30.0 * scale, 2.0 * scale)
+    tube = varsurf.make_tube([bottom, top], [waist], doc=doc, **options)
+    doc.recompute()
+    return tube
+
+
+@pytest.mark.parametrize("scale", [1.0 / 60.0, 10000.0 / 60.0])  # a millimetre and ten metres tall
+def test_a_bottle_neck_a_millimetre_or_ten_metres_tall_is_the_same_tube_scaled(doc, scale):
+    """With the tolerance scaled too the problem is the same: the tube is the 60 mm one scaled
+    (to 1e-7 of its size). Left at its default (a fraction of the model's size), the tube meets
+    its curves within that tolerance and closes on its seam at either size."""
+    reference = _bottle(doc, 1.0, tolerance=0.01)
+    assert reference.isValid(), reference.Status
+    surface = reference.Shape.Faces[0].Surface
+    size = 60.0 * scale
+    for options in ({"tolerance": 0.01 * scale}, {}):
+        other = FreeCAD.newDocument("Scaled")
+        try:
+            tube = _bottle(other, scale, **options)
+            assert tube.isValid(), tube.Status
+            face = tube.Shape.Faces[0]
+            assert face.isValid() and face.check(True) is None
+            assert max(tube.MaxDeviations) <= tube.Tolerance.Value, (tube.MaxDeviations, tube.Tolerance)
+            angle, gap = _seam(face)
+            assert angle <= 0.01 and gap <= 1e-9 * size, (angle, gap)
+            if options:
+                assert tube.Tolerance.Value == pytest.approx(0.01 * scale, rel=1e-12)
+                scaled = face.Surface
+                u0, u1, v0, v1 = surface.bounds()
+                s0, s1, t0, t1 = scaled.bounds()
+                worst = max((surface.value(u0 + (u1 - u0) * i / 23, v0 + (v1 - v0) * j / 9) * scale
+                             - scaled.value(s0 + (s1 - s0) * i / 23, t0 + (t1 - t0) * j / 9)).Length
+                            for i in range(24) for j in range(10))
+                assert worst <= 1e-7 * size, (worst, size)
+            else:
+                assert 1e-6 * size < tube.Tolerance.Value <= 1e-3 * size, tube.Tolerance
+        finally:
+            FreeCAD.closeDocument(other.Name)
+
+
 def test_three_sections_with_an_ellipse_in_the_middle(doc):
     bottom = bottle_neck.ring(doc, "Bottom", 12.0, 0.0)
     middle = doc.addObject("Part::Ellipse", "Middle")

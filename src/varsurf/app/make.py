@@ -41,18 +41,20 @@ def attach_view_provider(obj, class_name: str):
 
 
 def _model_size(base, curves) -> float:
-    """The diagonal (mm) of what a new sheet is made from: its base face, else its curves."""
+    """The diagonal (mm) of what a new sheet is made from: its base face, else (or while the base
+    has no shape yet: a tube's skin is built on the first recompute) its curves."""
     boxes = []
     try:
         if base is not None:
             obj, sub = references.normalize_base(base)
             boxes.append(Part.getShape(obj, sub, needSubElement=True).BoundBox)
-        else:
+        if not any(b.isValid() for b in boxes):
             for obj, subs in references.normalize_curves(curves):
                 for sub in subs:
                     boxes.append(Part.getShape(obj, sub, needSubElement=True).BoundBox)
     except Exception:  # a broken link: the Sheet reports it when it recomputes
         return 0.0
+    boxes = [b for b in boxes if b.isValid()]
     if not boxes:
         return 0.0
     box = boxes[0]
