@@ -128,8 +128,16 @@ def test_a_shell_by_make_thickness(example):
     less than the solid's volume taken away."""
     name, shape, _columns = example
     if name == "pillow":
-        pytest.xfail("OCCT's makeThickness of the pillow with one of its two faces removed fails ('BRep_API: "
-                     "command not done', and an empty error at join 0) for -1, -0.5 and +1 mm: an open defect")
+        # OCCT 7.6 thickens a lens of two spherical caps, but not the same lens converted to
+        # B-splines (toNurbs): every thickness fails there as it does on the pillow. While that
+        # control fails, the pillow's failure is OCCT's; once it passes, so must the pillow.
+        lens = Part.makeSphere(50, V(0, 0, -40)).common(Part.makeSphere(50, V(0, 0, 40))).Solids[0].toNurbs()
+        top = max(lens.Faces, key=lambda f: f.CenterOfMass.z)
+        try:
+            lens.makeThickness([top], -1.0, 1e-3)
+        except Part.OCCError:
+            pytest.xfail("OCCT's makeThickness fails on a solid of two B-spline faces (the pillow, and a lens of "
+                         "two spherical caps converted to B-splines; the analytic lens passes)")
     opened = max(shape.Faces, key=lambda f: f.Surface.value(*f.Surface.parameter(f.CenterOfMass)).z)
     thick = shape.makeThickness([opened], -1.0, 1e-3)
     assert _valid_but_c0(thick), name
