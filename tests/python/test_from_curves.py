@@ -89,3 +89,36 @@ def test_degree_out_of_range_is_refused(doc, native):
         solve_sheet_from_curves(list(obj.Shape.Edges), degree=1)
     sheet = varsurf.make_sheet(None, [obj], degree=40)
     assert sheet.Degree == settings.MAX_DEGREE  # the property clamps to its range
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_the_start_plane_faces_the_same_way_whatever_the_order_of_the_curves(seed):
+    """The best-fit plane's axes are an SVD's, whose signs are its library's choice (and change
+    with the points' order and the processor): each axis points to +z (else +y, else +x), so the
+    curves in any order and direction give the same start face, poles for poles."""
+    import random
+
+    from varsurf.solve.plane_fit import plane_face_for_curves
+
+    rng = random.Random(seed)
+    axis = FreeCAD.Vector(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1))
+    if seed == 0:
+        axis = FreeCAD.Vector(0, 0, 1)  # curves in the xy plane: the face looks up +z
+    rotation = FreeCAD.Rotation(FreeCAD.Vector(0, 0, 1), axis)
+    centre = FreeCAD.Vector(rng.uniform(-50, 50), rng.uniform(-50, 50), rng.uniform(-50, 50))
+    corners = [centre + rotation.multVec(FreeCAD.Vector(x, y, 0)) for x, y in ((0, 0), (60, 5), (55, 40), (-5, 30))]
+    edges = [Part.LineSegment(corners[k], corners[(k + 1) % 4]).toShape() for k in range(4)]
+    reference = plane_face_for_curves(edges).Surface
+    normal = reference.normal(0.5, 0.5)
+    for axis_of in (reference.getPoles()[-1][0] - reference.getPoles()[0][0],
+                    reference.getPoles()[0][-1] - reference.getPoles()[0][0]):
+        significant = [c for c in (axis_of.z, axis_of.y, axis_of.x) if abs(c) > 1e-6 * axis_of.Length]
+        assert significant[0] > 0, axis_of
+    if seed == 0:
+        assert normal.z == pytest.approx(1.0)
+    for k in range(1, 4):
+        shuffled = edges[k:] + edges[:k]
+        shuffled = [e.reversed() if (k + i) % 2 else e for i, e in enumerate(shuffled)]
+        other = plane_face_for_curves(list(reversed(shuffled))).Surface
+        worst = max((a - b).Length for ra, rb in zip(reference.getPoles(), other.getPoles()) for a, b in zip(ra, rb))
+        assert worst <= 1e-9, (k, worst)

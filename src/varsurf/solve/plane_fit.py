@@ -17,6 +17,17 @@ PLANE_FIT_SAMPLES = 64
 PLANE_MARGIN = 0.1
 
 
+def _canonical(axis):
+    """The axis pointing to +z, else (lying in the xy plane) to +y, else +x. An SVD's signs are
+    its library's choice (OpenBLAS picked the opposite u direction for the hinge pair's sheets on
+    another processor): fixed here, the same curves give the same sheet, parametrized and facing
+    the same way, on every machine."""
+    for component in (2, 1, 0):
+        if abs(axis[component]) > 1e-9:
+            return axis if axis[component] > 0 else -axis
+    return axis
+
+
 def plane_face_for_curves(edges: Sequence, spans: int = DEFAULT_MIN_SPANS, margin: float = PLANE_MARGIN,
                           degree: int = SHEET_MIN_DEGREE):
     """A planar B-spline face for a sheet made from curves alone (Michalik & Bruderlin's
@@ -42,7 +53,7 @@ def plane_face_for_curves(edges: Sequence, spans: int = DEFAULT_MIN_SPANS, margi
         raise SheetError(
             "the curves lie on one line: they do not define a surface without a base face"
         )
-    e1, e2 = axes[0], axes[1]
+    e1, e2 = _canonical(axes[0]), _canonical(axes[1])
     s, t = (pts - center) @ e1, (pts - center) @ e2
     grow = margin * max(np.ptp(s), np.ptp(t))
     s0, s1 = s.min() - grow, s.max() + grow
