@@ -71,6 +71,46 @@ def snapshot(name):
     return path
 
 
+def window_shot(name):
+    """The whole main window as the user sees it; its path. Qt's grab() leaves the OpenGL 3D view
+    blank under Xvfb, so the active view is rendered offscreen (saveImage) and painted over it."""
+    Gui.updateGui()
+    window = Gui.getMainWindow()
+    picture = window.grab()
+    area = window.findChild(QtGui.QMdiArea)
+    sub = area.activeSubWindow() if area is not None else None
+    views = [w for w in sub.widget().findChildren(QtGui.QWidget)
+             if w.metaObject().className() == "QOpenGLWidget" and w.isVisible()] if sub is not None else []
+    path = os.path.join(OUT, name)
+    if views and Gui.ActiveDocument is not None:
+        view = views[0]
+        rendered = path + ".view.png"
+        Gui.ActiveDocument.ActiveView.saveImage(rendered, view.width(), view.height(), "Current")
+        painter = QtGui.QPainter(picture)
+        painter.drawImage(view.mapTo(window, QtCore.QPoint(0, 0)), QtGui.QImage(rendered))
+        painter.end()
+        os.remove(rendered)
+    picture.save(path)
+    return path
+
+
+def clipped_widgets(form_name):
+    """The named widgets of the open panel that reach beyond the right edge of the task view's
+    visible area (cut off, or only seen by scrolling sideways)."""
+    forms = [w for w in QtGui.QApplication.allWidgets() if w.objectName() == form_name and w.isVisible()]
+    if not forms:
+        return ["no visible " + form_name]
+    scroll = forms[-1].parentWidget()
+    while scroll is not None and not isinstance(scroll, QtGui.QScrollArea):
+        scroll = scroll.parentWidget()
+    if scroll is None:
+        return ["no scroll area"]
+    viewport = scroll.viewport()
+    return sorted(w.objectName() for w in forms[-1].findChildren(QtGui.QWidget)
+                  if w.isVisible() and w.objectName() and not w.objectName().startswith("qt_")
+                  and w.mapTo(viewport, QtCore.QPoint(w.width(), 0)).x() > viewport.width() + 1)
+
+
 def press_task_button(which):
     """Click OK or Cancel of the open task panel, as the user would."""
     for widget in QtGui.QApplication.allWidgets():
@@ -160,6 +200,8 @@ def run(result):
     result["icon"] = sheet.ViewObject.Proxy.getIcon()
 
     # 3. the task panel: opens, shows the results, Cancel restores the values
+    Gui.ActiveDocument.ActiveView.viewIsometric()
+    Gui.SendMsgToActiveView("ViewFit")
     Gui.ActiveDocument.setEdit(sheet.Name, 0)
     Gui.updateGui()
     result["task_panel_open"] = bool(Gui.Control.activeDialog())
@@ -170,9 +212,8 @@ def run(result):
     widgets["updateButton"].click()  # preview with the new value
     Gui.updateGui()
     result["task_panel_rows"] = table_rows
-    window_shot = os.path.join(OUT, "task_panel.png")  # the whole window, panel included
-    Gui.getMainWindow().grab().save(window_shot)
-    result["task_panel_image"] = window_shot
+    result["task_panel_clipped"] = clipped_widgets("VarSurfSheet")
+    result["task_panel_image"] = window_shot("task_panel.png")  # the whole window, panel included
     result["bend_during_edit"] = sheet.Bend
     press_task_button(QtGui.QDialogButtonBox.Cancel)
     result["bend_after_cancel"] = sheet.Bend
@@ -486,7 +527,7 @@ def run(result):
     result["tube"] = [[o.Name, o.isValid(), o.Status] for o in tubes]
     result["tube_base"] = tubes[0].Base[0].Proxy.Type if tubes and tubes[0].Base else ""
     result["tube_image_stats"] = image_stats(snapshot("tube.png"))
-    Gui.getMainWindow().grab().save(os.path.join(OUT, "tube_window.png"))
+    window_shot("tube_window.png")
 
     # 7. the Hinge and SpaceCurve commands on the hinge-pair example (built without its hinge)
     import hinge_pair
@@ -608,7 +649,7 @@ def every_constraint_command(result, doc, sheet, surface, rail):
                              doc.UndoNames[:1], list(handles.errors)]
     result["constraint_icons"] = {name: Gui.Command.get(name).getInfo().get("pixmap", "")
                                   for name, *_rest in commands.CONSTRAINT_COMMANDS}
-    Gui.getMainWindow().grab().save(os.path.join(OUT, "toolbars.png"))
+    window_shot("toolbars.png")
 
 
 def drag_space_curve(result):
@@ -652,11 +693,90 @@ def drag_space_curve(result):
     result["curve_volume_after_undo"] = abs(solid.Shape.Volume - volume) / volume
 
 
+#: Builds a document as `freecadcmd` or a test does (no GUI, so no view providers): the pillow
+#: example (two sheets on flat helper faces, a rim, a Solid) and a sheet on a Part Box's top face
+#: along an arc. Formatted with the examples folder and the file to write.
+HEADLESS_SCRIPT = """
+import sys
+sys.path.append("/usr/lib/freecad-python3/lib")
+import FreeCAD
+import Part
+sys.path.insert(0, {examples!r})
+import pillow
+import varsurf
+doc = FreeCAD.newDocument("Headless")
+pillow.build(doc)
+box = doc.addObject("Part::Box", "Box")
+box.Length, box.Width, box.Height = 60, 40, 20
+box.Placement.Base = FreeCAD.Vector(100, 0, 0)
+arc = doc.addObject("Part::Feature", "Arc")
+arc.Shape = Part.Arc(FreeCAD.Vector(100, 20, 20), FreeCAD.Vector(130, 20, 26),
+                     FreeCAD.Vector(160, 20, 20)).toShape()
+doc.recompute()
+top = next(i for i, f in enumerate(box.Shape.Faces) if abs(f.CenterOfMass.z - 20) < 1e-9)
+varsurf.make_sheet((box, "Face%d" % (top + 1)), [(arc, "Edge1")], name="Lid")
+doc.recompute()
+doc.saveAs({path!r})
+"""
+
+
+def _roots(vobj, name):
+    """How many Coin roots called `name` hang under the view provider's root."""
+    root = vobj.RootNode
+    return sum(1 for i in range(root.getNumChildren()) if root.getChild(i).getName().getString() == name)
+
+
+def headless_document(result, saved):
+    """A document built without the GUI, opened in it: every VarSurf object has its view provider
+    (icon, double click opens its panel), what a sheet replaces is hidden and nothing else; and a
+    document saved with the GUI opens with one of each of its overlays."""
+    import subprocess
+
+    import varsurf
+
+    repo = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(varsurf.__file__))))
+    path = os.path.join(OUT, "headless.FCStd")
+    script = HEADLESS_SCRIPT.format(examples=os.path.join(repo, "examples"), path=path)
+    run = subprocess.run(["/usr/bin/python3", "-c", script], capture_output=True, text=True, timeout=240)
+    result["headless_build"] = [run.returncode, run.stderr[-2000:]]
+    doc = App.openDocument(path)
+    Gui.updateGui()
+    varsurf_objects = [o for o in doc.Objects
+                       if str(getattr(getattr(o, "Proxy", None), "Type", "")).startswith("VarSurf")]
+    result["headless_view_providers"] = {o.Name: type(o.ViewObject.Proxy).__name__ for o in varsurf_objects}
+    result["headless_icons"] = {o.Name: os.path.basename(o.ViewObject.Proxy.getIcon() or "")
+                                for o in varsurf_objects if o.ViewObject.Proxy is not None}
+    result["headless_visible"] = {o.Name: bool(o.ViewObject.Visibility) for o in doc.Objects}
+    Gui.ActiveDocument.ActiveView.viewIsometric()
+    Gui.SendMsgToActiveView("ViewFit")
+    lid = doc.getObject("Lid")
+    lid.ViewObject.Proxy.doubleClicked(lid.ViewObject)  # what a double click in the tree runs
+    Gui.updateGui()
+    try:
+        result["headless_panel"] = sorted(n for n in task_widgets() if n in ("deviationTable", "bendSpin"))
+    except RuntimeError as error:
+        result["headless_panel"] = str(error)
+    result["headless_window"] = window_shot("headless_document.png")
+    press_task_button(QtGui.QDialogButtonBox.Cancel)
+    App.closeDocument(doc.Name)
+    # The smoke document, saved with the GUI, opened again under another name.
+    copy = os.path.join(OUT, "smoke_again.FCStd")
+    with open(saved, "rb") as source, open(copy, "wb") as target:
+        target.write(source.read())
+    again = App.openDocument(copy)
+    Gui.updateGui()
+    sheets = [o for o in again.Objects if varsurf.is_sheet(o)]
+    result["reopened_proxies"] = sorted({type(o.ViewObject.Proxy).__name__ for o in sheets})
+    result["reopened_overlay_roots"] = [_roots(o.ViewObject, "VarSurfAnalysis") for o in sheets]
+    App.closeDocument(again.Name)
+
+
 def main():
     result = {"ok": False}
     try:
         run(result)
         drag_space_curve(result)
+        headless_document(result, os.path.join(OUT, "smoke.FCStd"))
         result["report_view_at_end"] = report_view_lines()
         result["ok"] = True
     except Exception:

@@ -347,3 +347,26 @@ def test_anisotropic_weights_reproduce_isotropic_and_change_the_shape(scene):
     aniso.BendTensor = [1.0, 2.0]
     doc.recompute()
     assert not aniso.isValid() and "BendTensor takes three" in aniso.getStatusString()
+
+
+def test_a_sheet_hides_only_what_it_replaces(doc, native):
+    """A sheet on a face made for it (a Part Plane) hides it; one on a face of a Part Box leaves
+    the box shown, walls and all, as Surface Filling leaves its inputs. A Solid hides its sheets
+    (it shows their faces). Headless: FreeCAD saves this visibility with the document."""
+    plane = doc.addObject("Part::Plane", "Plane")
+    plane.Length, plane.Width = 50, 40
+    box = doc.addObject("Part::Box", "Box")
+    box.Placement.Base = FreeCAD.Vector(100, 0, 0)
+    arc = doc.addObject("Part::Feature", "Arc")
+    arc.Shape = Part.Arc(FreeCAD.Vector(100, 5, 10), FreeCAD.Vector(105, 5, 12), FreeCAD.Vector(110, 5, 10)).toShape()
+    line = doc.addObject("Part::Feature", "Line")
+    line.Shape = Part.LineSegment(FreeCAD.Vector(10, 10, 2), FreeCAD.Vector(40, 30, 2)).toShape()
+    doc.recompute()
+    top = next(i for i, f in enumerate(box.Shape.Faces) if abs(f.CenterOfMass.z - 10) < 1e-9)
+    on_plane = varsurf.make_sheet((plane, "Face1"), [(line, "Edge1")])
+    on_box = varsurf.make_sheet((box, f"Face{top + 1}"), [(arc, "Edge1")])
+    doc.recompute()
+    assert on_box.isValid(), on_box.getStatusString()
+    assert not plane.Visibility and box.Visibility and arc.Visibility and on_plane.Visibility and on_box.Visibility
+    solid = varsurf.make_solid([on_box])
+    assert not on_box.Visibility and solid.Visibility and box.Visibility

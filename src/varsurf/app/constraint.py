@@ -12,7 +12,7 @@ from __future__ import annotations
 import FreeCAD
 import Part
 
-from varsurf.app.feature import FeatureProxy, value
+from varsurf.app.feature import FeatureProxy, failure, value
 from varsurf.solve import constraints
 
 TYPE = "VarSurf::Constraint"
@@ -126,6 +126,7 @@ class ConstraintFeature(FeatureProxy):
 
     Type = TYPE
     TYPE = TYPE
+    VIEW_PROVIDER = "ViewProviderConstraint"
     PROPERTIES = _PROPERTIES
     DEFAULTS = _DEFAULTS
 
@@ -144,5 +145,4 @@ class ConstraintFeature(FeatureProxy):
         try:
             spec_of(obj)
         except Exception as error:
-            FreeCAD.Console.PrintError(f"VarSurf: {error}\n")
-            raise
+            raise failure(obj, error) from error

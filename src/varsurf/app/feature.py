@@ -3,8 +3,11 @@
 
 from __future__ import annotations
 
+import sys
+
 import FreeCAD
 
+from varsurf.app import view_link
 from varsurf.app.persistence import STATE_VERSION, VersionedState
 
 # Property status bits (App::PropertyType): read-only in the editor, output (does not touch).
@@ -39,17 +42,90 @@ def value(obj, name):
     return obj.getPropertyByName(name)
 
 
-def mark_failed(obj, error):
-    """A feature whose recompute failed: its Status says why, a Closed result is False, and the
-    report view gets one line (the caller re-raises, so the object is in error)."""
+#: Errors that are bugs, not bad input: reported with their traceback. Every other error a
+#: recompute raises is worded for the user (what is wrong, what to do) and reported as one line.
+INTERNAL_ERRORS = (AttributeError, TypeError, NameError, KeyError, IndexError, AssertionError,
+                   ZeroDivisionError, RecursionError)
+
+
+class _ShownAsVarSurf(type):
+    """FreeCAD reports an error raised from execute() as '<its class>: <message>' (report view,
+    freecadcmd, the console): this class shows as 'VarSurf', so the line reads
+    'VarSurf: <object>: <what is wrong, what to do>'."""
+
+    def __repr__(cls):
+        return "VarSurf"
+
+    __str__ = __repr__
+
+
+class RecomputeError(RuntimeError, metaclass=_ShownAsVarSurf):
+    """Raised from execute() so that FreeCAD marks the object in error (see fail)."""
+
+
+class StateError(RecomputeError):
+    """An object saved by a newer VarSurf, or with an unreadable state: not recomputed."""
+
+
+class _TracebackHider:
+    """FreeCAD prints a failed execute()'s traceback as soon as it returns, with Python's own
+    traceback formatting: sys.tracebacklimit = 0 leaves the one line. It is put back once FreeCAD
+    has reported the failure (the document's or object's recompute signal) and before any VarSurf
+    object executes again."""
+
+    _UNSET = object()
+
+    def __init__(self):
+        self.saved = self._UNSET
+        self.hiding = False
+        self.observing = False
+
+    def hide(self):
+        if not self.observing:
+            FreeCAD.addDocumentObserver(self)
+            self.observing = True
+        if not self.hiding:
+            self.saved = getattr(sys, "tracebacklimit", self._UNSET)
+            self.hiding = True
+        sys.tracebacklimit = 0
+
+    def restore(self):
+        if not self.hiding:
+            return
+        self.hiding = False
+        if self.saved is self._UNSET:
+            if hasattr(sys, "tracebacklimit"):
+                del sys.tracebacklimit
+        else:
+            sys.tracebacklimit = self.saved
+
+    def slotRecomputedDocument(self, _doc):
+        self.restore()
+
+    def slotRecomputedObject(self, _obj):
+        self.restore()
+
+
+_hider = _TracebackHider()
+
+
+def failure(obj, error) -> RecomputeError:
+    """The exception an execute() raises for ``error``: FreeCAD marks ``obj`` in error and reports
+    one line, 'VarSurf: <Label>: <error>'; bugs (INTERNAL_ERRORS) keep their traceback."""
+    text = str(error)
+    message = text if text.startswith(f"{obj.Label}: ") else f"{obj.Label}: {text}"
+    if not isinstance(error, INTERNAL_ERRORS):
+        _hider.hide()
+    return RecomputeError(message)
+
+
+def mark_failed(obj, error) -> RecomputeError:
+    """A feature whose recompute failed: its Status says why, a Closed result is False; returns the
+    exception its execute() raises (see failure)."""
     obj.Status = f"Error: {error}"
     if "Closed" in obj.PropertiesList:
         obj.Closed = False
-    FreeCAD.Console.PrintError(f"VarSurf: {obj.Label}: {error}\n")
-
-
-class StateError(RuntimeError):
-    """An object saved by a newer VarSurf, or with an unreadable state: not recomputed."""
+    return failure(obj, error)
 
 
 class FeatureProxy(VersionedState):
@@ -62,6 +138,7 @@ class FeatureProxy(VersionedState):
 
     PROPERTIES = ()
     DEFAULTS = {}
+    VIEW_PROVIDER = ""  # its class in varsurf.gui.view_providers (none: FreeCAD's own)
 
     def __init_subclass__(cls, **kwargs):
         super().__init_subclass__(**kwargs)
@@ -70,9 +147,10 @@ class FeatureProxy(VersionedState):
             return
 
         def execute(self, obj):
+            _hider.restore()  # a failure before this one has been reported
             problem = self.state_problem()
             if problem is not None:
-                FreeCAD.Console.PrintError(f"VarSurf: {obj.Label}: {problem}\n")
+                _hider.hide()
                 raise StateError(f"{obj.Label}: {problem}")
             return inner(self, obj)
 
@@ -87,8 +165,14 @@ class FeatureProxy(VersionedState):
 
     def onDocumentRestored(self, obj):
         self.Type = self.TYPE
+        view_link.restore(obj, self.VIEW_PROVIDER)  # a file written without the GUI names none
         if self.state_problem() is None:  # a newer file's object is left exactly as saved
             self.add_properties(obj)
 
     def add_properties(self, obj):
         add_missing_properties(obj, self.PROPERTIES, self.DEFAULTS)
+
+    def consumed(self, obj):
+        """The objects this one stands for in the view (hidden when it is made, as FreeCAD
+        features hide the shapes they consume): none by default."""
+        return []

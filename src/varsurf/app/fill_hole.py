@@ -79,6 +79,7 @@ class FillHoleFeature(FeatureProxy):
 
     Type = TYPE
     TYPE = TYPE
+    VIEW_PROVIDER = "ViewProviderFillHole"
     PROPERTIES = _PROPERTIES
     DEFAULTS = {"Tolerance": DEFAULT_TOLERANCE}
 
@@ -90,6 +91,10 @@ class FillHoleFeature(FeatureProxy):
             obj.Continuity = list(hole.CONTINUITIES)
             obj.Continuity = was
 
+    def consumed(self, obj):
+        base = getattr(obj, "Base", None)
+        return [base[0]] if base and base[0] is not None else []  # the FillHole is the whole part
+
     def execute(self, obj):
         try:
             shape, faces, edges = hole_elements(obj)
@@ -99,8 +104,7 @@ class FillHoleFeature(FeatureProxy):
             if not outcome.valid:
                 raise errors.SheetError("the filled part is not a valid shape")
         except Exception as error:
-            mark_failed(obj, error)
-            raise
+            raise mark_failed(obj, error) from error
         obj.Shape = outcome.shape
         obj.Closed = outcome.closed
         obj.MaxEdgeTolerance = outcome.max_tolerance

@@ -8,9 +8,7 @@ and holds each hinge's angle all along the curve; it reports the angles reached.
 
 from __future__ import annotations
 
-import FreeCAD
-
-from varsurf.app.feature import FeatureProxy, value
+from varsurf.app.feature import FeatureProxy, failure, value
 from varsurf.solve import errors
 from varsurf.solve.joint import HingeSpec
 
@@ -56,6 +54,7 @@ class HingeFeature(FeatureProxy):
 
     Type = TYPE
     TYPE = TYPE
+    VIEW_PROVIDER = "ViewProviderHinge"
     PROPERTIES = _PROPERTIES
     DEFAULTS = {"Angle": DEFAULT_ANGLE, "Enabled": True}
 
@@ -63,5 +62,4 @@ class HingeFeature(FeatureProxy):
         try:
             spec_of(obj)  # a broken link is reported on the hinge itself
         except errors.SheetError as error:
-            FreeCAD.Console.PrintError(f"VarSurf: {error}\n")
-            raise
+            raise failure(obj, error) from error

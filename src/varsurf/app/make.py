@@ -25,19 +25,7 @@ from varsurf.app.solid import SolidFeature
 from varsurf.solve import constraints, settings
 from varsurf.solve.native import native
 
-if FreeCAD.GuiUp:  # as Draft's make-functions: the view provider comes with the object
-    from varsurf.gui import view_providers
-
-
-def attach_view_provider(obj, class_name: str):
-    """In the GUI, give ``obj`` its view provider (``varsurf.gui.view_providers.<class_name>``)
-    and let it set itself up (e.g. hide the inputs the object consumes); headless, nothing."""
-    if not FreeCAD.GuiUp:
-        return
-    getattr(view_providers, class_name)(obj.ViewObject)
-    on_created = getattr(obj.ViewObject.Proxy, "on_created", None)
-    if on_created is not None:
-        on_created(obj.ViewObject)
+from varsurf.app.view_link import attach as attach_view_provider
 
 
 def _model_size(base, curves) -> float:
@@ -213,8 +201,6 @@ def make_fill_hole(part, elements, curves=(), continuity="G1", tolerance=None, n
     obj.Continuity = continuity
     if tolerance is not None:
         obj.Tolerance = float(tolerance)
-    if hasattr(part, "Visibility"):
-        part.Visibility = False  # the FillHole is the whole part now
     attach_view_provider(obj, "ViewProviderFillHole")
     return obj
 

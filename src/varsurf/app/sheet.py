@@ -16,7 +16,7 @@ import Part
 
 from varsurf.app import preferences, progress, projection
 from varsurf.app.constraint import spec_of
-from varsurf.app.feature import FeatureProxy, value
+from varsurf.app.feature import FeatureProxy, failure, value
 from varsurf.solve import errors, settings
 from varsurf.solve.sheet import solve_sheet_from_curves, solve_sheet_on_face
 
@@ -79,10 +79,6 @@ _PROPERTIES = [
     ("JoinAngles", "App::PropertyFloatList", "Result", "Largest angle (degrees) between the sheet's and the neighbour's tangent planes along each G1 or G2 join (G0: not measured, -1)", True),
     ("JoinCurvatureJumps", "App::PropertyFloatList", "Result", "Largest jump (%) of the normal curvature across each G1 or G2 join, relative to the larger of the two (a G2 join's target: under 1; G0: not measured, -1)", True),
 ]
-
-
-class SheetComputeError(RuntimeError):
-    """Raised from execute() so that FreeCAD marks the Sheet in error; names object and curve."""
 
 
 def _set_rest_shapes(obj):
@@ -305,6 +301,7 @@ class SheetFeature(FeatureProxy):
 
     Type = TYPE
     TYPE = TYPE
+    VIEW_PROVIDER = "ViewProviderSheet"
 
     PROPERTIES = _PROPERTIES
     DEFAULTS = _DEFAULTS
@@ -332,15 +329,21 @@ class SheetFeature(FeatureProxy):
     def onChanged(self, obj, prop):
         pass
 
+    def consumed(self, obj):
+        """A base object that is nothing but the face the sheet replaces (a plane, a loft made
+        for it); a part whose face it is stays shown, as Surface Filling leaves its inputs."""
+        base = getattr(obj, "Base", None)
+        if base and base[0] is not None and len(getattr(base[0].Shape, "Faces", ())) == 1:
+            return [base[0]]
+        return []
+
     def execute(self, obj):
         self.outcome = None
         try:
             outcome = compute(obj)
-        except Exception as error:  # report, then fail the recompute of this object
-            message = f"{obj.Label}: {error}"
+        except Exception as error:  # fail the recompute of this object, saying why
             _clear_results(obj, f"Error: {error}")
-            FreeCAD.Console.PrintError(f"VarSurf: {message}\n")
-            raise SheetComputeError(message) from error
+            raise failure(obj, error) from error
 
         self.outcome = outcome  # for joint solves (not saved: a reopened file solves again)
         obj.Shape = outcome.shape

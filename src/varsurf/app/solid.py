@@ -214,6 +214,7 @@ class SolidFeature(FeatureProxy):
 
     Type = TYPE
     TYPE = TYPE
+    VIEW_PROVIDER = "ViewProviderSolid"
     PROPERTIES = _PROPERTIES
     DEFAULTS = {"Tolerance": DEFAULT_TOLERANCE, "ToleranceFromSheets": True}
 
@@ -241,6 +242,9 @@ class SolidFeature(FeatureProxy):
         if obj.ToleranceFromSheets:
             obj.ToleranceFromSheets = False
 
+    def consumed(self, obj):
+        return list(obj.Sheets)  # the Solid shows their faces
+
     def execute(self, obj):
         try:
             problem = sheets_error(obj)
@@ -255,8 +259,7 @@ class SolidFeature(FeatureProxy):
             if not outcome.valid:
                 raise errors.SheetError("the sewn shape is not valid")
         except Exception as error:
-            mark_failed(obj, error)
-            raise
+            raise mark_failed(obj, error) from error
         obj.Shape = outcome.shape
         obj.Closed = outcome.closed
         obj.MaxEdgeTolerance = outcome.max_tolerance

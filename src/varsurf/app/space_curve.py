@@ -66,6 +66,7 @@ class SpaceCurveFeature(FeatureProxy):
 
     Type = TYPE
     TYPE = TYPE
+    VIEW_PROVIDER = "ViewProviderSpaceCurve"
     PROPERTIES = _PROPERTIES
     DEFAULTS = {
         "Spans": (space_curve.DEFAULT_SPANS, 1, 512, 1),
@@ -78,7 +79,6 @@ class SpaceCurveFeature(FeatureProxy):
             curve, _rest = variational_curve(obj)
             solved = space_curve.solve_alone(curve)
         except Exception as error:
-            mark_failed(obj, error)
-            raise
+            raise mark_failed(obj, error) from error
         obj.Shape = shapes.part_curve(solved).toShape()
         obj.Status = f"OK: {len(curve.handles)} handles, {len(solved.poles)} poles"

@@ -269,8 +269,7 @@ class TubeSkinFeature(FeatureProxy):
             surface, error = skin_surface([_closed_wire(o) for o in sections], [o.Label for o in sections],
                                           placement.Rotation.multVec(FreeCAD.Vector(1, 0, 0)))
         except Exception as error:
-            mark_failed(obj, error)
-            raise
+            raise mark_failed(obj, error) from error
         obj.Shape = surface.toShape()
         obj.Status = (f"OK: {surface.NbUPoles} x {surface.NbVPoles} poles through {len(sections)} sections, "
                       f"within {error:.2g} mm of them")
@@ -294,8 +293,7 @@ def _base(ordered, doc, name):
             message = loft.Status.removeprefix("Error: ")
             doc.removeObject(loft.Name)
             raise ValueError(message)
-    if getattr(loft, "ViewObject", None) is not None:
-        loft.ViewObject.Visibility = False
+    loft.Visibility = False
     return loft
 
 

@@ -10,6 +10,7 @@ from pivy import coin
 
 from varsurf.app.analysis import reference_of
 from varsurf.gui.coin_lines import add_polyline
+from varsurf.gui.scene_roots import own_root
 from varsurf.solve import analysis
 
 PROPERTY = "Analysis"
@@ -43,8 +44,7 @@ class AnalysisOverlay:
     """A switchable Coin mesh under the Sheet's view provider root."""
 
     def __init__(self, vobj):
-        self.root = coin.SoSeparator()
-        vobj.RootNode.addChild(self.root)
+        self.root = own_root(vobj, "VarSurfAnalysis")
         self.grid = None
         self.curves = None
 

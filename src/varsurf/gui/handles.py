@@ -16,6 +16,7 @@ from pivy import coin
 
 from varsurf.app import drag
 from varsurf.gui.coin_lines import add_polyline
+from varsurf.gui.scene_roots import own_root
 from varsurf.gui.drag_preview import DragPreview
 
 V = App.Vector
@@ -340,8 +341,7 @@ class CurveHandles:
     fast as their joint solve allows, every sheet joined to it (Welch & Witkin Figure 2)."""
 
     def __init__(self, vobj):
-        self.root = coin.SoSeparator()
-        vobj.RootNode.addChild(self.root)
+        self.root = own_root(vobj, "VarSurfCurveHandles")
         self.curve = None
         self.draggers = []
         self.scale = 1.0

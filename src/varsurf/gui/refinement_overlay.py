@@ -4,9 +4,8 @@ ShowRefinement): one color per level, so a user sees where the detail went."""
 
 from __future__ import annotations
 
-from pivy import coin
-
 from varsurf.gui.coin_lines import add_polyline
+from varsurf.gui.scene_roots import own_root
 from varsurf.solve.analysis import refined_outlines
 
 PROPERTY = "ShowRefinement"
@@ -23,8 +22,7 @@ def add_view_property(vobj):
 
 class RefinementOverlay:
     def __init__(self, vobj):
-        self.root = coin.SoSeparator()
-        vobj.RootNode.addChild(self.root)
+        self.root = own_root(vobj, "VarSurfRefinement")
         self.count = 0
 
     def update(self, vobj):

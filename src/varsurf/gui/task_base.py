@@ -25,6 +25,10 @@ class PropertyTaskPanel:
         self.doc = obj.Document
         self.form = Gui.PySideUic.loadUi(resources.ui(self.UI))
         self.form.setWindowIcon(QtGui.QIcon(resources.icon(self.ICON)))
+        # FreeCAD's combo view starts about 250 px wide: a field that does not fit beside its
+        # label goes under it, instead of being cut off at the panel's edge.
+        for layout in self.form.findChildren(QtGui.QFormLayout):
+            layout.setRowWrapPolicy(QtGui.QFormLayout.WrapLongRows)
         self._original = {name: getattr(obj, name) for name in self.EDITABLE}
         self.doc.openTransaction(self.TRANSACTION)
 

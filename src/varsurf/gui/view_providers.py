@@ -129,12 +129,6 @@ class ViewProviderSheet(_EditedInPanel, _ViewProvider):
         if prop == "ShowRefinement" and getattr(self, "refinement", None) is not None:
             self.refinement.update(vobj)
 
-    def on_created(self, vobj):
-        """Hide the base face's object, as FreeCAD features hide the shapes they consume."""
-        base = getattr(vobj.Object, "Base", None)
-        if base and base[0] is not None and base[0].ViewObject is not None:
-            base[0].ViewObject.Visibility = False
-
     def onDelete(self, vobj, subelements):
         base = getattr(vobj.Object, "Base", None)
         if base and base[0] is not None and base[0].ViewObject is not None:
@@ -194,11 +188,6 @@ class ViewProviderSolid(_EditedInPanel, _ViewProvider):
         if obj is None:
             return []
         return list(getattr(obj, "Sheets", None) or []) + list(getattr(obj, "Hinges", None) or [])
-
-    def on_created(self, vobj):
-        for sheet in getattr(vobj.Object, "Sheets", None) or []:
-            if sheet.ViewObject is not None:
-                sheet.ViewObject.Visibility = False
 
     def onDelete(self, vobj, subelements):
         for sheet in getattr(vobj.Object, "Sheets", None) or []:
