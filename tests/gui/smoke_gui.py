@@ -197,6 +197,13 @@ def run(result):
     result["base_hidden"] = not surface.ViewObject.Visibility
     result["undo_names"] = list(doc.UndoNames)
     result["children"] = [o.Name for o in sheet.ViewObject.Proxy.claimChildren()]
+    # A greyed-out command says why in its tooltip and status tip: one sheet is not a solid.
+    Gui.Selection.clearSelection()
+    Gui.Selection.addSelection(doc.Name, sheet.Name)
+    solid_command = Gui.Command.get("VarSurf_Solid")
+    result["solid_active_one_sheet"] = bool(solid_command.isActive())
+    result["solid_tip_one_sheet"] = [solid_command.getAction()[0].toolTip(), solid_command.getAction()[0].statusTip()]
+    Gui.Selection.clearSelection()
     result["icon"] = sheet.ViewObject.Proxy.getIcon()
 
     # 3. the task panel: opens, shows the results, Cancel restores the values

@@ -318,3 +318,12 @@ def test_the_sheet_panel_fits_freecads_default_task_view(smoke):
     """At FreeCAD's default window layout no field of the Sheet panel is cut off at the task
     view's right edge (long rows put the field under its label)."""
     assert smoke["task_panel_clipped"] == [], smoke["task_panel_clipped"]
+
+
+def test_a_greyed_out_command_says_why(smoke):
+    """One Sheet selected: Join sheets into a solid is greyed out, and its tooltip and status tip
+    say what is missing."""
+    assert not smoke["solid_active_one_sheet"]
+    tip, status = smoke["solid_tip_one_sheet"]
+    assert "Not available now:" in tip and "two or more Sheets, and only Sheet is selected" in tip, tip
+    assert status.startswith("Not available now: A Solid joins two or more Sheets"), status

@@ -6,6 +6,7 @@ Run with the interpreter FreeCAD uses: /usr/bin/python3 -m pytest tests/python/t
 """
 
 import math
+import re
 import sys
 from pathlib import Path
 
@@ -164,7 +165,12 @@ def test_projection_beyond_the_face_raises_invalid_input():
     far = line([5.0, 5.0, 50.0], [40.0, 5.0, 50.0])
     with pytest.raises(nat.InvalidInput, match="leaves the face") as info:
         nat.project_curve(sheet, far)
-    assert "t = " in str(info.value)
+    # Where it leaves (model coordinates) and by how much, in millimetres: the line starts 5 mm
+    # inside the 10 mm square, 50 mm above it, and leaves it at x = 10 (its first sample past it).
+    text = str(info.value)
+    x, y, z = (float(c) for c in re.search(r"leaves the face at \(([^,]+), ([^,]+), ([^)]+)\)", text).groups())
+    assert 10.0 < x <= 11.0 and y == pytest.approx(5.0) and z == pytest.approx(50.0), text
+    assert "t = " in text and " mm past it there" in text and " mm from the sheet" in text, text
 
 
 def test_bridge_failures_raise_geometry_error(tmp_path):

@@ -220,7 +220,7 @@ def test_solid_command_joins_selected_sheets_in_one_transaction(doc, native):
     assert name not in [o.Name for o in doc.Objects]
     messages = []
     assert actions.run_solid_command([Sel(top)], on_error=messages.append) is None
-    assert "select two or more" in messages[0]
+    assert "joins two or more Sheets, and only Top is selected" in messages[0], messages
     rim = doc.getObject("Rim")
     assert actions.run_solid_command([Sel(top), Sel(rim)], on_error=messages.append) is None
     assert "is not a Sheet" in messages[1]

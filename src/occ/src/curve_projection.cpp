@@ -208,10 +208,11 @@ class Projector {
         const double beyond = d.dot(out);
         if (beyond > tolerance_) {
           std::ostringstream msg;
-          msg << "the target curve leaves the face: at t = " << t << " it lies " << beyond
-              << " beyond the sheet's " << (c == 0 ? "u" : "v") << (side == 0 ? "-min" : "-max")
-              << " boundary (distance to the sheet " << d.norm()
-              << "); no orthogonal projection exists there";
+          msg << "the target curve leaves the face at (" << p(0) << ", " << p(1) << ", " << p(2)
+              << ") (t = " << t << "): from there on it lies beyond the sheet's "
+              << (c == 0 ? "u" : "v") << (side == 0 ? "-min" : "-max") << " boundary (" << beyond
+              << " mm past it there, " << d.norm()
+              << " mm from the sheet); no orthogonal projection exists there";
           throw InvalidInput(msg.str());
         }
       }

@@ -91,7 +91,8 @@ def solid_selection_to_sheets(selection_ex) -> List:
         if obj not in sheets:
             sheets.append(obj)
     if len(sheets) < 2:
-        raise ValueError(f"{len(sheets)} Sheets selected: select two or more. {SOLID_HINT}")
+        found = "no Sheet is selected" if not sheets else f"only {sheets[0].Label} is selected"
+        raise ValueError(f"A Solid joins two or more Sheets, and {found}. {SOLID_HINT}")
     return sheets
 
 

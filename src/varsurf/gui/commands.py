@@ -14,6 +14,7 @@ from varsurf.app import actions, references, selection
 from varsurf.app.macro import ref
 from varsurf.app.transaction import run_in_transaction
 from varsurf.gui import resources
+from varsurf.gui.command_tips import explain
 from varsurf.solve.analysis import MODES
 
 try:
@@ -52,7 +53,9 @@ class CommandSheet:
     def IsActive(self):
         if App.ActiveDocument is None:
             return False
-        return selection.selection_problem(Gui.Selection.getSelectionEx()) is None
+        problem = selection.selection_problem(Gui.Selection.getSelectionEx())
+        explain("VarSurf_Sheet", problem)
+        return problem is None
 
     def Activated(self):
         actions.run_sheet_command(
@@ -64,8 +67,8 @@ class CommandFromSelection:
     """A command that acts on the current selection: enabled when ``check`` accepts it, runs
     ``run`` (recorded macro lines, one undoable transaction) when activated."""
 
-    def __init__(self, icon: str, menu_text: str, tool_tip: str, check, run):
-        self.icon, self.menu_text, self.tool_tip = icon, menu_text, tool_tip
+    def __init__(self, name: str, icon: str, menu_text: str, tool_tip: str, check, run):
+        self.name, self.icon, self.menu_text, self.tool_tip = name, icon, menu_text, tool_tip
         self.check, self.run = check, run
 
     def GetResources(self):
@@ -76,8 +79,10 @@ class CommandFromSelection:
             return False
         try:
             self.check(Gui.Selection.getSelectionEx())
-        except ValueError:
+        except ValueError as problem:
+            explain(self.name, problem)
             return False
+        explain(self.name, None)
         return True
 
     def Activated(self):
@@ -130,7 +135,8 @@ SELECTION_COMMANDS = [
 class CommandConstraint:
     """Add a constraint or operator of one kind to the selected Sheet."""
 
-    def __init__(self, kind: str, menu_text: str, tool_tip: str):
+    def __init__(self, name: str, kind: str, menu_text: str, tool_tip: str):
+        self.name = name
         self.kind = kind
         self.menu_text = menu_text
         self.tool_tip = tool_tip
@@ -147,8 +153,10 @@ class CommandConstraint:
             return False
         try:
             selection.constraint_selection_to_args(self.kind, Gui.Selection.getSelectionEx())
-        except ValueError:
+        except ValueError as problem:
+            explain(self.name, problem)
             return False
+        explain(self.name, None)
         return True
 
     def Activated(self):
@@ -325,6 +333,6 @@ for _name, *_rest in REST_COMMANDS:
     Gui.addCommand(_name, CommandRestShape(*_rest))
 Gui.addCommand("VarSurf_LCurve", CommandLCurve())
 for _name, *_resources in SELECTION_COMMANDS:
-    Gui.addCommand(_name, CommandFromSelection(*_resources))
+    Gui.addCommand(_name, CommandFromSelection(_name, *_resources))
 for _name, _kind, _menu, _tip in CONSTRAINT_COMMANDS:
-    Gui.addCommand(_name, CommandConstraint(_kind, _menu, _tip))
+    Gui.addCommand(_name, CommandConstraint(_name, _kind, _menu, _tip))
