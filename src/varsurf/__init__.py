@@ -28,6 +28,10 @@ import sys
 
 __version__ = "0.1.0"
 
+from varsurf.solve.environment import require_numpy  # noqa: E402
+
+require_numpy()  # one clear line, not a traceback from deep inside, when this Python lacks it
+
 from varsurf.solve.errors import SheetError  # noqa: E402
 from varsurf.solve.outcome import SheetOutcome  # noqa: E402
 from varsurf.solve.plane_fit import plane_face_for_curves  # noqa: E402

@@ -5,22 +5,23 @@ from __future__ import annotations
 
 from typing import Optional
 
-try:  # the extension is optional at import time so that the workbench still loads and explains
+from varsurf.solve.environment import native_import_problem
+
+# The extension is imported once: a failed import is remembered, not tried again (a second
+# attempt after a partial initialization fails on the types the first one registered).
+try:  # optional at import time so that the workbench still loads and explains
     from varsurf import _native
 except ImportError as _error:  # pragma: no cover - exercised only without a build
     _native = None
-    _NATIVE_IMPORT_ERROR: Optional[BaseException] = _error
+    _NATIVE_IMPORT_PROBLEM: Optional[str] = native_import_problem(_error)
 else:
-    _NATIVE_IMPORT_ERROR = None
+    _NATIVE_IMPORT_PROBLEM = None
 
 
 def native():
-    """The compiled extension, or an ImportError that says how to build it."""
+    """The compiled extension, or an ImportError that says what is missing and what to do."""
     if _native is None:
-        raise ImportError(
-            "The VarSurf native extension (varsurf._native) is not built: run tools/build.sh "
-            f"in the VarSurf folder ({_NATIVE_IMPORT_ERROR})"
-        )
+        raise ImportError(_NATIVE_IMPORT_PROBLEM[0].upper() + _NATIVE_IMPORT_PROBLEM[1:])
     return _native
 
 
