@@ -359,6 +359,8 @@ def run(result):
         widget = page.findChild(kind, name)
         entries[name] = bytes(widget.property("prefEntry")).decode() if widget is not None else None
     result["preference_entries"] = entries
+    tolerance = page.findChild(QtGui.QDoubleSpinBox, "toleranceSpin")
+    result["preference_tolerance"] = [tolerance.value(), tolerance.text()]
     result["preference_modes"] = [page.findChild(QtGui.QComboBox, "solveModeCombo").itemText(i)
                                   for i in range(page.findChild(QtGui.QComboBox, "solveModeCombo").count())]
 

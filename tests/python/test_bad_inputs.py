@@ -127,7 +127,7 @@ def case_closed_face(sc):
 def case_huge_face(sc):
     # 100 km across: a new sheet's tolerance follows the size (1e-4 of the 128,062 m diagonal,
     # rounded down to 1, 2 or 5 x 10^k: 10 m), so the sheet solves (no overflow)
-    assert not preferences.is_set("Tolerance")  # else the preferences' tolerance would apply
+    assert preferences.tolerance_is_automatic()  # else the preferences' tolerance would apply
     huge = scenes.add_face(sc.doc, scenes.flat_face(width=1e8, depth=8e7), "HugeBase")
     rail = sc.curve("Far", Part.LineSegment(V(1e7, 4e7, 5e5), V(9e7, 4e7, 5e5)).toShape())
     sheet = varsurf.make_sheet((huge, "Face1"), [(rail, "Edge1")], min_spans=4, max_spans=16, name="HugeSheet")

@@ -188,6 +188,9 @@ def test_preferences_page_binds_the_defaults(smoke):
     from varsurf.solve import settings
 
     assert smoke["preference_modes"] == list(settings.SOLVE_MODES)  # the stored index means a mode
+    # Until a value is typed the page shows (and, on OK, stores) Automatic: a new sheet's
+    # tolerance then still follows the model's size.
+    assert smoke["preference_tolerance"] == [0.0, "Automatic (model size)"], smoke["preference_tolerance"]
 
 
 def test_sheet_panel_edits_space_mode_and_rest_shape(smoke):

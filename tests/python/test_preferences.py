@@ -57,5 +57,11 @@ def test_without_a_stored_tolerance_it_follows_the_model_size(doc, native, prefs
     sizes = {o.Name: float(varsurf.make_sheet((o, "Face1"), name=f"S{o.Name}").Tolerance)
              for o in (small, usual, large)}
     assert sizes == {"Small": 0.001, "Usual": 0.01, "Large": 0.1}, sizes
+    # The preferences page stores 0 ("Automatic") when OK is pressed without a change: still
+    # automatic. A value typed there applies to every size.
+    prefs.SetFloat("Tolerance", 0.0)
+    assert float(varsurf.make_sheet((large, "Face1"), name="AfterOk").Tolerance) == 0.1
+    prefs.SetFloat("Tolerance", 0.005)
+    assert float(varsurf.make_sheet((large, "Face1"), name="Typed").Tolerance) == 0.005
     assert settings.tolerance_for_size(250.0) == 0.02 and settings.tolerance_for_size(600.0) == 0.05
     assert settings.tolerance_for_size(float("nan")) == settings.DEFAULT_TOLERANCE

@@ -84,7 +84,7 @@ def make_sheet(
     given = dict(stretch=stretch, bend=bend, tolerance=tolerance, min_spans=min_spans,
                  max_spans=max_spans, degree=degree, solve_mode=solve_mode)
     values = {k: (v if v is not None else preferences.sheet_defaults()[k]) for k, v in given.items()}
-    if tolerance is None and not preferences.is_set("Tolerance"):
+    if tolerance is None and preferences.tolerance_is_automatic():
         values["tolerance"] = settings.tolerance_for_size(_model_size(base, curves))
     if values["solve_mode"] not in settings.SOLVE_MODES:
         raise ValueError(f"solve_mode must be one of {', '.join(settings.SOLVE_MODES)} (got {values['solve_mode']!r})")

@@ -57,8 +57,7 @@ def solve_limits() -> dict:
             "memory_limit": megabytes * 1e6 if megabytes > 0 else settings.default_memory_limit()}
 
 
-def is_set(name: str) -> bool:
-    """Whether the user stored a value for `name` (otherwise a default may depend on the model)."""
-    kind = _ENTRIES[name][0]
-    names = group().GetInts() if kind == "Int" else group().GetFloats()
-    return name in names
+def tolerance_is_automatic() -> bool:
+    """Whether new sheets take their tolerance from the model's size: no tolerance stored, or 0
+    (the preferences page's "Automatic", which it stores when OK is pressed without a change)."""
+    return not ("Tolerance" in group().GetFloats() and group().GetFloat("Tolerance") > 0.0)
