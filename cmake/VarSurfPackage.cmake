@@ -29,6 +29,10 @@ install(DIRECTORY src/varsurf/
   FILES_MATCHING PATTERN "*.py"
   PATTERN "__pycache__" EXCLUDE
   PATTERN "tests" EXCLUDE)
+# The module the commands are registered from (its name is what recorded macros import).
+install(FILES src/VarSurfGui.py
+  DESTINATION ${VARSURF_MOD_DESTINATION}/src
+  COMPONENT workbench)
 # Debian's place for the licence (machine-readable copyright, pointing to the LGPL's full text).
 install(FILES cmake/copyright
   DESTINATION ${CMAKE_INSTALL_DATADIR}/doc/varsurf

@@ -185,6 +185,7 @@ def test_package_holds_the_workbench_and_nothing_else(deb, contents):
     icon = ET.parse(REPO / "package.xml").getroot().find("p:icon", NS).text
     assert f"{MOD}/{icon}" in contents, icon
     assert f"{MOD}/Resources/ui/sheet.ui" in contents
+    assert f"{MOD}/src/VarSurfGui.py" in contents  # the commands' module (what macros import)
     native = [p for p in contents if re.fullmatch(rf"{MOD}/src/varsurf/_native\..*\.so", p)]
     assert len(native) == 1, sorted(contents)
     # the whole Python package, subpackages included, and only its sources
@@ -234,12 +235,14 @@ try:
     import Part
     import varsurf
     from varsurf import _native  # the packaged extension, not just the Python sources
+    import VarSurfGui  # what a recorded macro imports; it must import without the GUI
 
     result["varsurf"] = os.path.realpath(varsurf.__file__)
     result["native"] = os.path.realpath(_native.__file__)
     result["sys_path"] = [p for p in sys.path if isinstance(p, str)]
     assert under(varsurf.__file__, ROOT), varsurf.__file__
     assert under(_native.__file__, ROOT), _native.__file__
+    assert under(VarSurfGui.__file__, ROOT), VarSurfGui.__file__
     assert not under(varsurf.__file__, CHECKOUT), varsurf.__file__
 
     V = FreeCAD.Vector

@@ -9,6 +9,7 @@ import tempfile
 import FreeCAD as App
 import FreeCADGui as Gui
 from PySide import QtGui
+from VarSurfGui import add_command
 
 from varsurf.app import actions, references, selection
 from varsurf.app.macro import ref
@@ -327,12 +328,12 @@ COMMANDS = ["VarSurf_Sheet"] + [row[0] for row in SELECTION_COMMANDS] + [row[0] 
 ANALYSIS = ["VarSurf_ColorMap", "VarSurf_LCurve"]
 CONSTRAINTS = [name for name, _kind, _menu, _tip in CONSTRAINT_COMMANDS]
 
-Gui.addCommand("VarSurf_Sheet", CommandSheet())
-Gui.addCommand("VarSurf_ColorMap", CommandColorMap())
+add_command("VarSurf_Sheet", CommandSheet())
+add_command("VarSurf_ColorMap", CommandColorMap())
 for _name, *_rest in REST_COMMANDS:
-    Gui.addCommand(_name, CommandRestShape(*_rest))
-Gui.addCommand("VarSurf_LCurve", CommandLCurve())
+    add_command(_name, CommandRestShape(*_rest))
+add_command("VarSurf_LCurve", CommandLCurve())
 for _name, *_resources in SELECTION_COMMANDS:
-    Gui.addCommand(_name, CommandFromSelection(_name, *_resources))
+    add_command(_name, CommandFromSelection(_name, *_resources))
 for _name, _kind, _menu, _tip in CONSTRAINT_COMMANDS:
-    Gui.addCommand(_name, CommandConstraint(_name, _kind, _menu, _tip))
+    add_command(_name, CommandConstraint(_name, _kind, _menu, _tip))
