@@ -59,6 +59,22 @@ def image_difference(a, b):
     return changed / total
 
 
+def tones(path):
+    """Of a picture's pixels that are not white (the background): the fraction that are grey
+    (neither near black nor near white). Crisp zebra stripes leave grey only along their edges."""
+    image = QtGui.QImage(path)
+    grey = dark = 0
+    for y in range(0, image.height(), 2):
+        for x in range(0, image.width(), 2):
+            c = QtGui.QColor(image.pixel(x, y))
+            level = 0.299 * c.red() + 0.587 * c.green() + 0.114 * c.blue()
+            if level < 40:
+                dark += 1
+            elif level < 215:
+                grey += 1
+    return grey / max(1, grey + dark)
+
+
 def snapshot(name):
     """An isometric, fitted 800 x 600 picture of the active view, nothing selected; its path."""
     Gui.Selection.clearSelection()
@@ -309,6 +325,8 @@ def run(result):
     result["pin_panel_ok"] = [pin.Weight, list(pin.Origin) == origin_before, sheet.isValid(), doc.UndoNames[:1]]
 
     # 4c. color maps through the command (macro lines), and the L-curve plot
+    from varsurf.gui import color_legend
+
     Gui.Selection.clearSelection()
     Gui.Selection.addSelection(doc.Name, sheet.Name)
     result["color_map_active"] = bool(Gui.Command.get("VarSurf_ColorMap").isActive())
@@ -326,8 +344,23 @@ def run(result):
             "cells": len(overlay.grid.triangles) if overlay.grid is not None else 0,
             "curves": len(overlay.curves) if overlay.curves is not None else 0,
             "change": image_difference(plain, picture),
+            "legend": list(color_legend.legend_texts(overlay.legend)) if overlay.legend is not None else [],
+            "tones": tones(picture),
         }
+        if expected in ("Deviation", "Zebra"):  # the whole window: the map with its legend, zebra
+            window_shot(f"window_{expected.lower()}.png")
     result["color_maps"] = maps
+    # zebra stripes follow their view properties: fewer stripes, another direction
+    sheet.ViewObject.ZebraStripes = 4
+    sheet.ViewObject.ZebraDirection = App.Vector(1, 0, 0)
+    result["zebra_adjusted"] = [sheet.ViewObject.AnalysisRange, sheet.ViewObject.Proxy.overlay.grid.stripes,
+                                image_difference(os.path.join(OUT, "map_Zebra.png"), snapshot("map_Zebra_4x.png"))]
+    # a scale typed by the user replaces the data's range, in the map and its legend
+    sheet.ViewObject.Analysis = "Deviation"
+    sheet.ViewObject.AnalysisScale = 20.0
+    overlay = sheet.ViewObject.Proxy.overlay
+    result["scaled_legend"] = [sheet.ViewObject.AnalysisRange, list(color_legend.legend_texts(overlay.legend))]
+    sheet.ViewObject.AnalysisScale = 0.0
     sheet.ViewObject.Analysis = "None"
     result["overlay_cleared"] = sheet.ViewObject.Proxy.overlay.root.getNumChildren() == 0
     sheet.SolveMode = "TSVD"

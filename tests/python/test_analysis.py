@@ -31,18 +31,38 @@ def test_deviation_from_the_base_is_the_height(doc, native):
     lo, hi = analysis.color_range("Deviation", grid)
     assert lo == -hi and analysis.ramp(0.0, lo, hi) == (0.0, 1.0, 0.0)
     assert analysis.ramp(hi, lo, hi) == (1.0, 0.0, 0.0) and analysis.ramp(lo, lo, hi) == (0.0, 0.0, 1.0)
+    # a scale set by the user replaces the data's range (sheets compared on one scale)
+    assert analysis.color_range("Deviation", grid, 2.0) == (-2.0, 2.0)
+    assert analysis.colors("Deviation", grid, 1.0)[grid.values.index(max(grid.values))] == (1.0, 0.0, 0.0)
+    with pytest.raises(ValueError, match="scale"):
+        analysis.color_range("Deviation", grid, -1.0)
 
 
 def test_zebra_stripes_and_bad_requests(doc, native):
     sheet = railed_sheet(doc)
     zebra = analysis.analyse(sheet.Shape, "Zebra", n=30)
-    assert all(0.0 <= v <= 1.0 for v in zebra.values)
+    assert zebra.stripes == analysis.STRIPES and all(0.0 <= v <= analysis.STRIPES for v in zebra.values)
     flat = analysis.analyse(Part.makePlane(10, 10), "Zebra", n=4)
-    assert all(abs(v - 1.0) < 1e-12 for v in flat.values)  # a plane facing the direction: one stripe
-    sphere = analysis.analyse(Part.makeSphere(10.0).Faces[0], "Zebra", n=24)
-    finite = [v for v in sphere.values if math.isfinite(v)]
-    assert min(finite) < 0.05 and max(finite) > 0.95  # a sphere's normals sweep every stripe
+    assert all(abs(v) < 1e-12 for v in flat.values)  # a plane facing the direction: phase 0, white
     assert analysis.colors("Zebra", flat)[0] == (1.0, 1.0, 1.0)
+    # On a sphere the phase is stripes * (the normal's angle to the direction) / pi, exactly: the
+    # stripes are the sphere's latitude bands, white then black, whatever their count and direction.
+    for stripes, direction in ((12, (0, 0, 1)), (5, (1, 0, 0)), (30, (1, 1, 1))):
+        sphere = analysis.analyse(Part.makeSphere(10.0).Faces[0], "Zebra", n=24, stripes=stripes,
+                                  direction=direction)
+        d = [c / math.sqrt(sum(x * x for x in direction)) for c in direction]
+        worst = 0.0
+        for v, p in zip(sphere.values, sphere.points):
+            if math.isfinite(v) and math.hypot(p[0], p[1]) > 1e-6:  # the poles' normals are not defined
+                angle = math.acos(max(-1.0, min(1.0, sum(a * b / 10.0 for a, b in zip(p, d)))))
+                worst = max(worst, abs(v - stripes * angle / math.pi))
+        assert worst < 1e-9, (stripes, worst)
+        colors = analysis.colors("Zebra", sphere)
+        assert set(colors) <= {(1.0, 1.0, 1.0), (0.0, 0.0, 0.0), (0.6, 0.6, 0.6)}  # crisp: no greys
+        assert analysis.color_range("Zebra", sphere) == (0.0, float(stripes))
+    assert analysis.zebra_white(0.49) and not analysis.zebra_white(0.51) and analysis.zebra_white(3.2)
+    with pytest.raises(ValueError, match="stripes"):
+        analysis.analyse(sheet.Shape, "Zebra", stripes=0)
     with pytest.raises(ValueError, match="reference"):
         analysis.analyse(sheet.Shape, "Deviation")
     with pytest.raises(ValueError, match="one of"):

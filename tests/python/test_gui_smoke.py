@@ -170,8 +170,28 @@ def test_color_maps_and_the_l_curve(smoke):
             assert shown["cells"] == 2 * 48 * 48, mode
         # the sheet is colored (CurveDeviation: only its two curves are)
         assert shown["change"] > (0.001 if mode == "CurveDeviation" else 0.02), (mode, shown["change"])
+        if mode == "Zebra":  # stripes: their count and direction, and no legend
+            assert shown["range"] == "12 stripes from (0, 0, 1)" and not shown["legend"], shown
+            continue
         assert "…" in shown["range"], (mode, shown["range"])
-    assert maps["Deviation"]["range"].endswith("mm")
+        # a legend: five values from the range's low end to its high end, then what and which unit
+        lo, hi = (float(x) for x in shown["range"].split()[0:3:2])
+        labels, title = shown["legend"][:5], shown["legend"][5]
+        expected = [lo + (hi - lo) * k / 4 for k in range(5)]
+        assert [float(x) for x in labels] == pytest.approx(expected, rel=1e-3, abs=1e-12)
+        assert title.endswith("(" + shown["range"].split()[-1] + ")"), (title, shown["range"])
+    assert maps["Deviation"]["range"].endswith("mm") and maps["Deviation"]["legend"][2] == "0"
+    # Crisp zebra: of the non-white pixels nearly all are black (stripes' and lines' edges aside);
+    # the colored maps, for contrast, are mostly mid-tones.
+    assert maps["Zebra"]["tones"] < 0.15, maps["Zebra"]["tones"]
+    assert maps["Deviation"]["tones"] > 0.5
+    stripes, count, change = smoke["zebra_adjusted"]
+    assert stripes == "4 stripes from (1, 0, 0)" and count == 4 and change > 0.02, smoke["zebra_adjusted"]
+    shown, legend = smoke["scaled_legend"]
+    assert shown == "-20 … 20 mm", shown
+    assert legend == ["-20", "-10", "0", "10", "20", "Deviation (mm)"], legend
+    for name in ("window_deviation.png", "window_zebra.png"):
+        assert (OUT / name).is_file(), name
     assert smoke["overlay_cleared"]
     assert smoke["lcurve_active"]
     stats = smoke["lcurve_image_stats"]

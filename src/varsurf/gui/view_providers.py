@@ -124,7 +124,7 @@ class ViewProviderSheet(_EditedInPanel, _ViewProvider):
 
     def onChanged(self, vobj, prop):
         overlay = getattr(self, "overlay", None)
-        if prop == "Analysis" and overlay is not None:
+        if prop in analysis_overlay.REDRAW and overlay is not None:
             overlay.update(vobj)
         if prop == "ShowRefinement" and getattr(self, "refinement", None) is not None:
             self.refinement.update(vobj)

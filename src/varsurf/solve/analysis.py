@@ -20,15 +20,17 @@ from varsurf.solve.shapes import single_face
 MODES = ("None", "Deviation", "CurveDeviation", "MeanCurvature", "GaussianCurvature", "Zebra")
 #: Grid cells per direction.
 GRID = 48
-#: Zebra: stripes over the half turn of the normal.
+#: Zebra: black-and-white stripe pairs over the half turn of the normal (the default).
 STRIPES = 12
 
 
 @dataclass
 class AnalysisGrid:
-    """Grid points (row-major, (n+1)^2), their normals, values, and the quads' triangles."""
+    """Grid points (row-major, (n+1)^2), their normals, values, and the quads' triangles
+    (Zebra: ``stripes`` is the number of stripe pairs the values count)."""
 
     n: int
+    stripes: int = 0
     points: List[Tuple[float, float, float]] = field(default_factory=list)
     normals: List[Tuple[float, float, float]] = field(default_factory=list)
     values: List[float] = field(default_factory=list)
@@ -40,13 +42,16 @@ class AnalysisGrid:
         return (min(finite), max(finite)) if finite else (0.0, 0.0)
 
 
-def analyse(shape, mode: str, reference=None, direction=(0.0, 0.0, 1.0), n: int = GRID) -> AnalysisGrid:
+def analyse(shape, mode: str, reference=None, direction=(0.0, 0.0, 1.0), n: int = GRID,
+            stripes: int = STRIPES) -> AnalysisGrid:
     """Sample `mode` on an (n+1) x (n+1) grid over the face's parameter box.
 
     Deviation: signed distance (mm) from the reference face along its normal, by projecting each
     point onto it (None: the deviation is not defined, ValueError). MeanCurvature and
-    GaussianCurvature: 1/mm and 1/mm^2. Zebra: in [0, 1], light to dark as the normal's angle
-    to `direction` turns through STRIPES stripes over a half turn.
+    GaussianCurvature: 1/mm and 1/mm^2. Zebra: the stripe phase, ``stripes`` times the normal's
+    angle to `direction` over a half turn (0 ... stripes); a stripe is white where the phase's
+    fraction is below 0.5 (zebra_white). The phase varies smoothly, so a view can interpolate it per
+    pixel and draw crisp stripe edges (a texture coordinate), which per-vertex colors cannot.
     """
     if mode not in MODES or mode in ("None", "CurveDeviation"):
         raise ValueError("a grid analysis is one of "
@@ -54,6 +59,8 @@ def analyse(shape, mode: str, reference=None, direction=(0.0, 0.0, 1.0), n: int 
                          f" (got {mode!r})")
     if not 1 <= n <= 400:
         raise ValueError(f"analysis grid must have 1 to 400 cells per direction (got {n})")
+    if mode == "Zebra" and not 1 <= stripes <= 200:
+        raise ValueError(f"zebra needs 1 to 200 stripes (got {stripes})")
     face = single_face(shape, "analysis")
     surface = face.Surface
     ref = None
@@ -63,7 +70,7 @@ def analyse(shape, mode: str, reference=None, direction=(0.0, 0.0, 1.0), n: int 
         ref = single_face(reference, "analysis")
     u0, u1, v0, v1 = face.ParameterRange
     d = _unit(direction)
-    grid = AnalysisGrid(n=n)
+    grid = AnalysisGrid(n=n, stripes=stripes if mode == "Zebra" else 0)
     for i in range(n + 1):
         u = u0 + (u1 - u0) * i / n
         for j in range(n + 1):
@@ -75,7 +82,7 @@ def analyse(shape, mode: str, reference=None, direction=(0.0, 0.0, 1.0), n: int 
                 normal = None
             grid.points.append((p.x, p.y, p.z))
             grid.normals.append((normal.x, normal.y, normal.z) if normal is not None else (0.0, 0.0, 1.0))
-            grid.values.append(_value(mode, surface, ref, u, v, p, normal, d))
+            grid.values.append(_value(mode, surface, ref, u, v, p, normal, d, stripes))
     for i in range(n):
         for j in range(n):
             a, b = i * (n + 1) + j, (i + 1) * (n + 1) + j
@@ -112,7 +119,7 @@ def curve_deviations(shape, edges, samples: int = CURVE_SAMPLES) -> List[CurveDe
     return out
 
 
-def _value(mode, surface, ref, u, v, p, normal, d):
+def _value(mode, surface, ref, u, v, p, normal, d, stripes):
     if mode == "Deviation":
         ru, rv = ref.Surface.parameter(p)
         q = ref.valueAt(ru, rv)
@@ -130,7 +137,7 @@ def _value(mode, surface, ref, u, v, p, normal, d):
     if normal is None:
         return math.nan
     angle = math.acos(max(-1.0, min(1.0, normal.x * d[0] + normal.y * d[1] + normal.z * d[2])))
-    return 0.5 + 0.5 * math.cos(2.0 * STRIPES * angle)  # smooth: per-vertex colors blend it
+    return stripes * angle / math.pi
 
 
 def _unit(v):
@@ -153,18 +160,30 @@ def ramp(value: float, lo: float, hi: float) -> Tuple[float, float, float]:
     return (s, 1.0 - s, 0.0)
 
 
-def colors(mode: str, grid: AnalysisGrid) -> List[Tuple[float, float, float]]:
-    """Per-vertex colors: grey levels for zebra, the blue-green-red ramp otherwise."""
+def zebra_white(phase: float) -> bool:
+    """Whether a zebra phase falls in a white stripe (each stripe pair: white, then black)."""
+    return phase - math.floor(phase) < 0.5
+
+
+def colors(mode: str, grid: AnalysisGrid, scale: float = 0.0) -> List[Tuple[float, float, float]]:
+    """Per-vertex colors: black or white for zebra, the blue-green-red ramp otherwise (over
+    color_range)."""
     if mode == "Zebra":
-        return [(v, v, v) if math.isfinite(v) else (0.6, 0.6, 0.6) for v in grid.values]
-    lo, hi = color_range(mode, grid)
+        return [((1.0, 1.0, 1.0) if zebra_white(v) else (0.0, 0.0, 0.0)) if math.isfinite(v) else (0.6, 0.6, 0.6)
+                for v in grid.values]
+    lo, hi = color_range(mode, grid, scale)
     return [ramp(v, lo, hi) for v in grid.values]
 
 
-def color_range(mode: str, grid: AnalysisGrid) -> Tuple[float, float]:
-    """The range the colors span: symmetric about 0 for signed fields, 0..1 for zebra."""
+def color_range(mode: str, grid: AnalysisGrid, scale: float = 0.0) -> Tuple[float, float]:
+    """The range the colors span: -scale ... scale for signed fields, by default (scale 0) the
+    data's largest magnitude, so 0 stays green; the stripe phases for zebra."""
     if mode == "Zebra":
-        return (0.0, 1.0)
+        return (0.0, float(grid.stripes))
+    if scale < 0.0 or not math.isfinite(scale):
+        raise ValueError(f"the color scale must be 0 (the data's range) or positive (got {scale})")
+    if scale > 0.0:
+        return (-scale, scale)
     lo, hi = grid.range
     m = max(abs(lo), abs(hi))
     return (-m, m)
