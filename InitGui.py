@@ -49,7 +49,8 @@ class VarSurfWorkbench(FreeCADGui.Workbench):
         constraints = varsurf.gui.commands.CONSTRAINTS
         self.appendToolbar("VarSurf", commands)
         analysis = varsurf.gui.commands.ANALYSIS
-        self.appendToolbar("VarSurf constraints", constraints)
+        # one drop-down button per family of constraint kinds (the menu lists every kind)
+        self.appendToolbar("VarSurf constraints", varsurf.gui.commands.CONSTRAINT_TOOLBAR)
         self.appendToolbar("VarSurf analysis", analysis)
         self.appendMenu("&VarSurf", commands)
         self.appendMenu(["&VarSurf", "Constraints"], constraints)

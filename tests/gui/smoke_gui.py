@@ -157,10 +157,37 @@ def report_view_lines():
     return [line.strip() for line in report_view_text().splitlines() if line.strip()]
 
 
+def toolbars(result):
+    """At 1600 px wide no toolbar overflows (no visible extension arrow); the constraint kinds
+    sit in one drop-down button per family."""
+    import varsurf.gui.commands as commands
+
+    window = Gui.getMainWindow()
+    before = window.size()
+    window.resize(1600, before.height())
+    Gui.updateGui()
+    QtCore.QCoreApplication.processEvents()
+    result["toolbar_window_width"] = window.width()
+    result["toolbars_overflowing"] = sorted(
+        bar.windowTitle() for bar in window.findChildren(QtGui.QToolBar)
+        if bar.isVisible() and any(b.isVisible() for b in bar.findChildren(QtGui.QToolButton, "qt_toolbar_ext_button")))
+    bar = [b for b in window.findChildren(QtGui.QToolBar) if b.windowTitle() == "VarSurf constraints"]
+    result["constraint_toolbar_buttons"] = [
+        [a.text() for a in (button.menu().actions() if button.menu() is not None else [])]
+        for button in (bar[0].findChildren(QtGui.QToolButton) if bar else []) if button.isVisible()
+        and button.objectName() != "qt_toolbar_ext_button"]
+    result["constraint_groups"] = [list(members) for _name, _menu, _tip, members in commands.CONSTRAINT_GROUPS]
+    result["constraint_toolbar_items"] = Gui.activeWorkbench().getToolbarItems().get("VarSurf constraints")
+    window_shot("window_toolbars.png")
+    window.resize(before)
+    Gui.updateGui()
+
+
 def run(result):
     Gui.activateWorkbench("VarSurfWorkbench")
     result["workbench"] = Gui.activeWorkbench().name()
     result["command_registered"] = "VarSurf_Sheet" in Gui.listCommands()
+    toolbars(result)
 
     import varsurf
 

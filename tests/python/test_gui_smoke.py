@@ -350,3 +350,15 @@ def test_a_greyed_out_command_says_why(smoke):
     tip, status = smoke["solid_tip_one_sheet"]
     assert "Not available now:" in tip and "two or more Sheets, and only Sheet is selected" in tip, tip
     assert status.startswith("Not available now: A Solid joins two or more Sheets"), status
+
+
+def test_toolbars_fit_1600_px_with_one_button_per_constraint_family(smoke):
+    """No toolbar shows its overflow arrow in a 1600 px window; the constraint kinds are grouped
+    into drop-down buttons (each family's members in its menu), every kind in exactly one."""
+    assert smoke["toolbar_window_width"] == 1600
+    assert smoke["toolbars_overflowing"] == [], smoke["toolbars_overflowing"]
+    groups = smoke["constraint_groups"]
+    assert smoke["constraint_toolbar_items"] == ["VarSurf_PointConstraints", "VarSurf_CurveJoins", "VarSurf_Operators"]
+    assert [len(g) for g in smoke["constraint_toolbar_buttons"]] == [len(g) for g in groups]
+    members = [name for group in groups for name in group]
+    assert sorted(members) == sorted(smoke["constraint_commands"]) and len(set(members)) == len(members)

@@ -328,6 +328,46 @@ COMMANDS = ["VarSurf_Sheet"] + [row[0] for row in SELECTION_COMMANDS] + [row[0] 
 ANALYSIS = ["VarSurf_ColorMap", "VarSurf_LCurve"]
 CONSTRAINTS = [name for name, _kind, _menu, _tip in CONSTRAINT_COMMANDS]
 
+# The constraint kinds by family, one drop-down button each on the toolbar (17 buttons overflowed
+# a 1600 px window); the menu lists them all. Group name, its menu text and tooltip, members.
+CONSTRAINT_GROUPS = [
+    ("VarSurf_PointConstraints", QT_TRANSLATE_NOOP("VarSurf_PointConstraints", "Point constraints"),
+     QT_TRANSLATE_NOOP("VarSurf_PointConstraints", "Constraints at a point of the sheet: position, tangents, normal,\n"
+                       "in a plane, on a line"),
+     ["VarSurf_Point", "VarSurf_TangentU", "VarSurf_TangentV", "VarSurf_Normal", "VarSurf_PointInPlane",
+      "VarSurf_PointOnLine"]),
+    ("VarSurf_CurveJoins", QT_TRANSLATE_NOOP("VarSurf_CurveJoins", "Joins along curves"),
+     QT_TRANSLATE_NOOP("VarSurf_CurveJoins", "Joins along an edge: G0, G1, G2 to a neighbouring face, or a ribbon"),
+     ["VarSurf_G1", "VarSurf_G0", "VarSurf_G2", "VarSurf_Ribbon"]),
+    ("VarSurf_Operators", QT_TRANSLATE_NOOP("VarSurf_Operators", "Shape operators"),
+     QT_TRANSLATE_NOOP("VarSurf_Operators", "Operators on a region of the sheet: attractors to a point, plane, line,\n"
+                       "face or edge, a repeller, a director, a frozen region"),
+     ["VarSurf_PointAttractor", "VarSurf_PlaneAttractor", "VarSurf_LineAttractor", "VarSurf_SurfaceAttractor",
+      "VarSurf_CurveAttractor", "VarSurf_Repeller", "VarSurf_Director", "VarSurf_FrozenRegion"]),
+]
+CONSTRAINT_TOOLBAR = [name for name, *_rest in CONSTRAINT_GROUPS]
+
+
+class CommandGroup:
+    """A drop-down toolbar button of several commands (FreeCAD's Python command group): it shows
+    the last one used; each member keeps its own icon, tooltip and greyed-out state."""
+
+    def __init__(self, menu_text: str, tool_tip: str, members):
+        self.menu_text, self.tool_tip, self.members = menu_text, tool_tip, tuple(members)
+
+    def GetCommands(self):
+        return self.members
+
+    def GetDefaultCommand(self):
+        return 0
+
+    def GetResources(self):
+        return {"MenuText": self.menu_text, "ToolTip": self.tool_tip}
+
+    def IsActive(self):
+        return App.ActiveDocument is not None
+
+
 add_command("VarSurf_Sheet", CommandSheet())
 add_command("VarSurf_ColorMap", CommandColorMap())
 for _name, *_rest in REST_COMMANDS:
@@ -337,3 +377,5 @@ for _name, *_resources in SELECTION_COMMANDS:
     add_command(_name, CommandFromSelection(_name, *_resources))
 for _name, _kind, _menu, _tip in CONSTRAINT_COMMANDS:
     add_command(_name, CommandConstraint(_name, _kind, _menu, _tip))
+for _name, _menu, _tip, _members in CONSTRAINT_GROUPS:
+    add_command(_name, CommandGroup(_menu, _tip, _members))
