@@ -23,6 +23,8 @@ def add_missing_properties(obj, table, defaults=None):
     for row in table:
         name, kind, group, tip = row[:4]
         if name in obj.PropertiesList:
+            if obj.getGroupOfProperty(name) != group:  # a file from a version that grouped it elsewhere
+                obj.setGroupOfProperty(name, group)
             continue
         output = len(row) > 4 and row[4]
         obj.addProperty(kind, name, group, tip, (PROP_READONLY | PROP_OUTPUT) if output else 0)
