@@ -104,6 +104,17 @@ TEST(KnotVector, RejectsBadKnotVectors) {
   EXPECT_THROW(find_span({0, 0, 1, 1}, 3, 0.5), InvalidInput);
 }
 
+// Finite but huge sizes are refused before they cost minutes or gigabytes; the limits themselves
+// pass.
+TEST(KnotVector, RefusesHugeKnotsAndSpanCounts) {
+  EXPECT_THROW(validate_knots({0, 0, 1e308, 1e308}, 1, 2, "t"), InvalidInput);
+  EXPECT_THROW(validate_knots({-2e12, -2e12, 0, 0}, 1, 2, "t"), InvalidInput);
+  EXPECT_NO_THROW(validate_knots({0, 0, kMaxCoordinate, kMaxCoordinate}, 1, 2, "t"));
+  EXPECT_THROW(uniform_clamped_knots(3, kMaxSpans + 1), InvalidInput);
+  EXPECT_THROW(uniform_clamped_knots(3, 2147483647), InvalidInput);
+  EXPECT_EQ(uniform_clamped_knots(1, kMaxSpans).size(), static_cast<size_t>(kMaxSpans + 3));
+}
+
 TEST(GaussLegendre, IntegratesPolynomialsExactly) {
   for (int n = 1; n <= 30; ++n) {
     const GaussRule& g = gauss_legendre(n);

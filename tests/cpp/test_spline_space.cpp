@@ -6,6 +6,7 @@
 
 #include "test_support.hpp"
 #include "varsurf/core/errors.hpp"
+#include "varsurf/core/knot_vector.hpp"
 #include "varsurf/core/spline_space.hpp"
 
 using namespace varsurf;
@@ -116,4 +117,18 @@ TEST(SplineSpace, RejectsInconsistentData) {
   s.poles(3, 1) = NAN;
   EXPECT_THROW(s.validate(), InvalidInput);
   EXPECT_THROW(s.space.basis(0.5, 0.5, 3), InvalidInput);
+}
+
+// Finite poles beyond +-1e12 overflow when evaluated (a 1e308 sheet made a deviation search run
+// for minutes): validate() refuses them; poles at the limit pass.
+TEST(SplineSpace, RefusesHugePoles) {
+  const SplineSpace space = SplineSpace::uniform(3, 3, 2, 2);
+  Eigen::MatrixX3d poles = Eigen::MatrixX3d::Zero(space.size(), 3);
+  poles(7, 2) = kMaxCoordinate;
+  EXPECT_NO_THROW((BSplineSurface{space, poles}.validate()));
+  poles(7, 2) = -1e13;
+  EXPECT_THROW((BSplineSurface{space, poles}.validate()), InvalidInput);
+  poles(7, 2) = 1e308;
+  EXPECT_THROW((BSplineSurface{space, poles}.validate()), InvalidInput);
+  EXPECT_THROW(SplineSpace::uniform(3, 3, 2147483647, 2), InvalidInput);
 }

@@ -139,7 +139,8 @@ ConstraintSamples sample_curve(const SplineSpace& space, const CurveConstraint& 
 
 double incidence_error(const SplineSpace& space, const Eigen::MatrixX3d& poles,
                        const CurveConstraint& c, int samples) {
-  if (samples < 2) throw InvalidInput("incidence_error needs at least 2 samples");
+  if (samples < 2 || samples > 1000000)
+    throw InvalidInput("incidence_error takes 2 to 1,000,000 samples");
   BSplineSurface{space, poles}.validate();
   c.preimage.validate("curve pre-image");
   c.target.validate("target curve");

@@ -36,6 +36,9 @@ void split_knots(const std::vector<double>& flat, std::vector<double>& knots,
 std::vector<double> uniform_clamped_knots(int degree, int spans, double a, double b) {
   if (degree < 1 || spans < 1 || !(b > a))
     throw InvalidInput("uniform knots need degree, spans >= 1 and a < b");
+  // Refused before allocating: 2^31 spans took 50 s to fail with a MemoryError.
+  if (spans > kMaxSpans)
+    throw InvalidInput("uniform knots take 1 to " + std::to_string(kMaxSpans) + " spans");
   std::vector<double> k(static_cast<size_t>(degree), a);
   for (int i = 0; i <= spans; ++i) k.push_back(a + (b - a) * i / spans);
   k.back() = b;
@@ -54,6 +57,10 @@ void validate_knots(const std::vector<double>& k, int degree, int pole_count, co
                        " flat knots, got " + std::to_string(k.size()));
   for (size_t i = 0; i < k.size(); ++i) {
     if (!std::isfinite(k[i])) throw InvalidInput(w + ": knot value is not finite");
+    // Finite but huge knots overflow when differenced (1e308: a closest-point search ran for
+    // minutes); no model needs parameters beyond this.
+    if (std::abs(k[i]) > kMaxCoordinate)
+      throw InvalidInput(w + ": knot values must lie within +-1e12");
     if (i > 0 && k[i] < k[i - 1]) throw InvalidInput(w + ": knots must be non-decreasing");
   }
   const size_t p = static_cast<size_t>(degree);

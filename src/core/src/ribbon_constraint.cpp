@@ -79,7 +79,8 @@ double ribbon_angle_error(const SplineSpace& space, const Eigen::MatrixX3d& pole
                           const RibbonConstraint& c, int samples) {
   validate(c);
   BSplineSurface{space, poles}.validate();
-  if (samples < 2) throw InvalidInput("ribbon_angle_error needs at least 2 samples");
+  if (samples < 2 || samples > 1000000)
+    throw InvalidInput("ribbon_angle_error takes 2 to 1,000,000 samples");
   double worst = 0.0;
   const double t0 = c.preimage.first(), t1 = c.preimage.last();
   for (int i = 0; i < samples; ++i) {

@@ -80,6 +80,9 @@ void BSplineSurface::validate() const {
     throw InvalidInput("sheet: expected " + std::to_string(space.size()) + " poles, got " +
                        std::to_string(poles.rows()));
   if (!poles.allFinite()) throw InvalidInput("sheet: pole coordinates are not finite");
+  // Finite but huge poles overflow when evaluated (1e308: a deviation search ran for minutes).
+  if (poles.size() > 0 && poles.cwiseAbs().maxCoeff() > kMaxCoordinate)
+    throw InvalidInput("sheet: pole coordinates must lie within +-1e12 (model units)");
 }
 
 Eigen::Vector3d BSplineSurface::evaluate(double u, double v) const {

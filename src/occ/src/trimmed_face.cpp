@@ -641,6 +641,8 @@ TrimHit BaseTrim::place(double su, double sv, double tolerance) const {
 TrimHit BaseTrim::place(const BSplineCurve& preimage, double tolerance, int samples) const {
   preimage.validate("pre-image");
   if (preimage.dim() != 2) throw InvalidInput("placing on the base face: the pre-image is not 2D");
+  if (samples < 0 || samples > 1000000)
+    throw InvalidInput("placing on the base face takes 0 (automatic) to 1,000,000 samples");
   const int n = samples > 0 ? samples : std::max(64, 8 * static_cast<int>(preimage.knots.size()));
   TrimHit worst;
   for (int k = 0; k <= n; ++k) {

@@ -8,6 +8,11 @@
 
 namespace varsurf {
 
+// Largest span count a uniform knot vector may ask for (per direction).
+constexpr int kMaxSpans = 1000000;
+// Largest magnitude of a knot or pole coordinate (model units): beyond it evaluation overflows.
+constexpr double kMaxCoordinate = 1e12;
+
 // Flat knot vector from distinct knots and multiplicities (OCCT/FreeCAD store them that way).
 std::vector<double> flat_knots(const std::vector<double>& knots, const std::vector<int>& mults);
 
