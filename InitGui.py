@@ -57,6 +57,8 @@ class VarSurfWorkbench(FreeCADGui.Workbench):
         self.appendMenu(["&VarSurf", "Analysis"], analysis)
         ui = os.path.join(self._folder, "Resources", "ui", "preferences.ui")
         if os.path.isfile(ui):
+            # the Preferences dialog shows a group's icon by name: preferences-<group in lower case>
+            FreeCADGui.addIconPath(os.path.join(self._folder, "Resources", "icons"))
             FreeCADGui.addPreferencePage(ui, "VarSurf")
 
     def Activated(self):

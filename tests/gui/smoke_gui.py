@@ -127,6 +127,28 @@ def clipped_widgets(form_name):
                   and w.mapTo(viewport, QtCore.QPoint(w.width(), 0)).x() > viewport.width() + 1)
 
 
+def unseen_widgets(form_name, names):
+    """Of the named widgets of the open panel, those not wholly inside the task view's visible
+    area when it is scrolled to the top (as the panel opens)."""
+    forms = [w for w in QtGui.QApplication.allWidgets() if w.objectName() == form_name and w.isVisible()]
+    if not forms:
+        return ["no visible " + form_name]
+    scroll = forms[-1].parentWidget()
+    while scroll is not None and not isinstance(scroll, QtGui.QScrollArea):
+        scroll = scroll.parentWidget()
+    if scroll is None:
+        return ["no scroll area"]
+    scroll.verticalScrollBar().setValue(0)
+    Gui.updateGui()
+    viewport = scroll.viewport()
+    out = []
+    for name in names:
+        widget = forms[-1].findChild(QtGui.QWidget, name)
+        if widget is None or widget.mapTo(viewport, QtCore.QPoint(0, widget.height())).y() > viewport.height():
+            out.append(name)
+    return out
+
+
 def press_task_button(which):
     """Click OK or Cancel of the open task panel, as the user would."""
     for widget in QtGui.QApplication.allWidgets():
@@ -183,11 +205,29 @@ def toolbars(result):
     Gui.updateGui()
 
 
+def preferences_dialog(result):
+    """Edit > Preferences opens with a VarSurf group (FreeCAD looks its icon up by name, and says
+    'Cannot find icon' in its log when it is missing); closed again from a timer (it is modal)."""
+    groups = []
+
+    def look():
+        for widget in QtGui.QApplication.topLevelWidgets():
+            if widget.metaObject().className() == "Gui::Dialog::DlgPreferencesImp" and widget.isVisible():
+                for box in widget.findChildren(QtGui.QListWidget):
+                    groups.extend(box.item(i).text() for i in range(box.count()))
+                widget.reject()
+
+    QtCore.QTimer.singleShot(500, look)
+    Gui.runCommand("Std_DlgPreferences")
+    result["preference_groups"] = groups
+
+
 def run(result):
     Gui.activateWorkbench("VarSurfWorkbench")
     result["workbench"] = Gui.activeWorkbench().name()
     result["command_registered"] = "VarSurf_Sheet" in Gui.listCommands()
     toolbars(result)
+    preferences_dialog(result)
 
     import varsurf
 
@@ -263,6 +303,8 @@ def run(result):
     Gui.updateGui()
     result["task_panel_rows"] = table_rows
     result["task_panel_clipped"] = clipped_widgets("VarSurfSheet")
+    result["task_panel_results_unseen"] = unseen_widgets(
+        "VarSurfSheet", ("polesValue", "statusValue", "deviationTable"))
     result["task_panel_image"] = window_shot("task_panel.png")  # the whole window, panel included
     result["bend_during_edit"] = sheet.Bend
     press_task_button(QtGui.QDialogButtonBox.Cancel)

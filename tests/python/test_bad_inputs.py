@@ -179,12 +179,14 @@ def case_curve_self_intersecting(sc):
 
 def case_curve_zero_length(sc):
     p = V(50, 40, 3)
-    return sc.sheet, ["BadCurve:Edge1", "zero length"], sc.use_curve(Part.BSplineCurve([p, p, p, p]).toShape())
+    return sc.sheet, ["BadCurve:Edge1", "zero length", "remove it from the sheet's Curves"], \
+        sc.use_curve(Part.BSplineCurve([p, p, p, p]).toShape())
 
 
 def case_curve_not_an_edge(sc):
     sc.sheet.Curves = [(sc.base, "Face1")]
-    return sc.sheet, ["Base:Face1", "not an edge"], lambda: setattr(sc.sheet, "Curves", [(sc.ridge, "Edge1")])
+    return sc.sheet, ["Base:Face1", "not an edge", "link edges"], \
+        lambda: setattr(sc.sheet, "Curves", [(sc.ridge, "Edge1")])
 
 
 def case_curves_contradictory(sc):

@@ -362,3 +362,15 @@ def test_toolbars_fit_1600_px_with_one_button_per_constraint_family(smoke):
     assert [len(g) for g in smoke["constraint_toolbar_buttons"]] == [len(g) for g in groups]
     members = [name for group in groups for name in group]
     assert sorted(members) == sorted(smoke["constraint_commands"]) and len(set(members)) == len(members)
+
+
+def test_the_sheet_panel_shows_its_results_without_scrolling(smoke):
+    """At FreeCAD's default layout (1280 x 1024, the combo view's task tab) the results (poles,
+    status, the curves' deviations) are in view as the panel opens: they come first."""
+    assert smoke["task_panel_results_unseen"] == [], smoke["task_panel_results_unseen"]
+
+
+def test_the_preferences_page_has_its_icon(smoke):
+    assert "VarSurf" in smoke["preference_groups"], smoke["preference_groups"]
+    log = (OUT / "freecad.log").read_text()
+    assert "Cannot find icon" not in log, [line for line in log.splitlines() if "Cannot find icon" in line]

@@ -2,7 +2,6 @@
 #include "varsurf/occ/exchange_edges.hpp"
 
 #include <BRepAdaptor_Curve.hxx>
-#include <BRepLib_CheckCurveOnSurface.hxx>
 #include <BRepTools_ReShape.hxx>
 #include <BRep_Builder.hxx>
 #include <BRep_Tool.hxx>
@@ -25,6 +24,7 @@
 #include <cmath>
 #include <vector>
 
+#include "varsurf/occ/curve_on_surface.hpp"
 #include "varsurf/occ/occ_error.hpp"
 
 namespace varsurf::occ {
@@ -174,17 +174,6 @@ bool splittable(const TopoDS_Edge& edge, const std::vector<TopoDS_Face>& faces) 
   return true;
 }
 
-// The largest deviation OCCT's own curve-on-surface check finds on the edge.
-double checked_deviation(const TopoDS_Edge& edge, const std::vector<TopoDS_Face>& faces) {
-  double worst = 0.0;
-  for (const TopoDS_Face& face : faces) {
-    BRepLib_CheckCurveOnSurface check(edge, face);
-    check.Perform();
-    if (check.IsDone()) worst = std::max(worst, check.MaxDistance());
-  }
-  return worst;
-}
-
 }  // namespace
 
 ExchangeShape prepare_for_exchange(const TopoDS_Shape& shape) {
@@ -207,7 +196,7 @@ ExchangeShape prepare_for_exchange(const TopoDS_Shape& shape) {
       TopTools_MapOfShape seen;
       for (TopTools_ListIteratorOfListOfShape it(edge_faces(k)); it.More(); it.Next())
         if (seen.Add(it.Value())) faces.push_back(TopoDS::Face(it.Value()));
-      deviation_of[static_cast<size_t>(k - 1)] = checked_deviation(edge, faces);
+      deviation_of[static_cast<size_t>(k - 1)] = curve_on_surface_deviation(edge, faces);
       out.max_deviation = std::max(out.max_deviation, deviation_of[static_cast<size_t>(k - 1)]);
     }
     for (int k = 1; k <= edge_faces.Extent(); ++k) {
@@ -297,7 +286,7 @@ int cover_measured_deviations(const TopoDS_Shape& shape) {
       std::vector<TopoDS_Face> faces;
       for (TopTools_ListIteratorOfListOfShape it(edge_faces(k)); it.More(); it.Next())
         faces.push_back(TopoDS::Face(it.Value()));
-      const double deviation = checked_deviation(edge, faces);
+      const double deviation = curve_on_surface_deviation(edge, faces);
       if (deviation <= BRep_Tool::Tolerance(edge)) continue;
       const double tolerance = 1.0001 * deviation;
       builder.UpdateEdge(edge, tolerance);

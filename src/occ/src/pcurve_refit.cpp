@@ -3,7 +3,6 @@
 
 #include <BRepAdaptor_Curve.hxx>
 #include <BRepAdaptor_Surface.hxx>
-#include <BRepLib_CheckCurveOnSurface.hxx>
 #include <BRep_Builder.hxx>
 #include <BRep_TEdge.hxx>
 #include <BRep_Tool.hxx>
@@ -28,6 +27,7 @@
 #include "varsurf/core/curve_fit.hpp"
 #include "varsurf/core/errors.hpp"
 #include "varsurf/core/knot_vector.hpp"
+#include "varsurf/occ/curve_on_surface.hpp"
 #include "varsurf/occ/geom_convert.hpp"
 #include "varsurf/occ/occ_error.hpp"
 
@@ -41,12 +41,6 @@ constexpr int kMaxPoles = 4000;
 constexpr int kRounds = 12;
 constexpr int kPerSpan = 2 * (kDegree + 1);
 
-double deviation_on(const TopoDS_Edge& edge, const TopoDS_Face& face) {
-  BRepLib_CheckCurveOnSurface check(edge, face);
-  check.Perform();
-  return check.IsDone() ? check.MaxDistance() : -1.0;
-}
-
 // The edge's 3D curve and one face's surface, both placed (locations applied).
 class EdgeOnFace {
  public:
@@ -58,6 +52,8 @@ class EdgeOnFace {
 
   // The foot of p on the surface by Gauss-Newton from `uv`: the edge lies on the face within
   // its tolerance, so the old pcurve's (u, v) is already close and the steps converge fast.
+  // (point_projection is not used: it takes the core's B-spline sheets and searches the whole
+  // face; here the surface is any face's, a fillet's torus too, and a start is at hand.)
   std::optional<Eigen::Vector2d> foot(const gp_Pnt& p, Eigen::Vector2d uv) const {
     for (int it = 0; it < 30; ++it) {
       gp_Pnt s;
@@ -170,7 +166,7 @@ int refit_pcurves(const TopoDS_Shape& shape, double above) {
           faces.push_back(TopoDS::Face(it.Value().Oriented(TopAbs_FORWARD)));
       bool changed = false;
       for (const TopoDS_Face& face : faces) {
-        const double before = deviation_on(edge, face);
+        const double before = curve_on_surface_deviation(edge, face);
         if (before <= above || BRep_Tool::IsClosed(edge, face)) continue;
         double pf = 0.0, pl = 0.0;
         const Handle(Geom2d_Curve) old = BRep_Tool::CurveOnSurface(edge, face, pf, pl);
@@ -186,7 +182,7 @@ int refit_pcurves(const TopoDS_Shape& shape, double above) {
         }
         const double tolerance = BRep_Tool::Tolerance(edge);
         builder.UpdateEdge(edge, to_geom2d_curve(fitted), face, tolerance);
-        const double after = deviation_on(edge, face);
+        const double after = curve_on_surface_deviation(edge, face);
         if (after < 0.0 || after > 0.5 * before) {
           // Not much closer (the surfaces part there): the old one has fewer poles.
           builder.UpdateEdge(edge, old, face, tolerance);
@@ -197,7 +193,8 @@ int refit_pcurves(const TopoDS_Shape& shape, double above) {
       }
       if (!changed) continue;
       double measured = 0.0;
-      for (const TopoDS_Face& face : faces) measured = std::max(measured, deviation_on(edge, face));
+      for (const TopoDS_Face& face : faces)
+        measured = std::max(measured, curve_on_surface_deviation(edge, face));
       // BRep_Builder only raises a tolerance: set the measured one on the edge itself.
       Handle(BRep_TEdge)::DownCast(edge.TShape())
           ->Tolerance(std::max(Precision::Confusion(), 1.0001 * measured));

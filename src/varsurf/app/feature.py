@@ -62,7 +62,7 @@ class _ShownAsVarSurf(type):
 
 
 class RecomputeError(RuntimeError, metaclass=_ShownAsVarSurf):
-    """Raised from execute() so that FreeCAD marks the object in error (see fail)."""
+    """Raised from execute() so that FreeCAD marks the object in error (see failure)."""
 
 
 class StateError(RecomputeError):

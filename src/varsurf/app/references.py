@@ -58,7 +58,8 @@ def normalize_curves(curves) -> List[Tuple[object, Tuple[str, ...]]]:
             names = tuple(f"Edge{i + 1}" for i in range(len(shape_of(obj).Edges)))
         for name in names:
             if not name.startswith("Edge"):
-                raise ValueError(f"{obj.Label}:{name} is not an edge")
+                raise ValueError(f"{obj.Label}:{name} is not an edge: give edges (EdgeN), or the object for all its "
+                                 "edges")
         for entry in merged:
             if entry[0] is obj:
                 entry[1].extend(n for n in names if n not in entry[1])

@@ -142,7 +142,7 @@ def resolve_inputs(obj):
                 continue
             name = f"{link_obj.Label}:{sub}"
             if not sub.startswith("Edge"):
-                raise errors.SheetError(f"{name} is not an edge")
+                raise errors.SheetError(f"{name} is not an edge: link edges (EdgeN) as the sheet's Curves")
             _check_not_cyclic(obj, link_obj)
             edges.append(_element(Part, link_obj, sub))
             names.append(name)

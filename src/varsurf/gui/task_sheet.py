@@ -117,6 +117,13 @@ class TaskPanelSheet(PropertyTaskPanel):
             item = QtGui.QTableWidgetItem(text)
             item.setTextAlignment(QtCore.Qt.AlignRight | QtCore.Qt.AlignVCenter)
             self.table.setItem(row, 1, item)
+        # As tall as its rows (up to eight; more scroll), so the settings below stay close.
+        # (the horizontal scroll bar counted: the default combo view is narrower than the names)
+        rows_shown = self.table.verticalHeader()
+        body = min(rows_shown.length(), 8 * rows_shown.defaultSectionSize()) if rows else \
+            rows_shown.defaultSectionSize()
+        self.table.setFixedHeight(self.table.horizontalHeader().sizeHint().height() + 2 * self.table.frameWidth()
+                                  + body + self.table.horizontalScrollBar().sizeHint().height())
         text = f"{obj.PoleCountU} × {obj.PoleCountV}, degree {obj.DegreeU} × {obj.DegreeV}"
         if str(getattr(obj, "Refinement", "Uniform")) == "Local":
             text += f"; local: {obj.RefinementDepth} levels, {obj.DegreesOfFreedom} poles solved"

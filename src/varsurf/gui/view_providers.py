@@ -55,6 +55,15 @@ class _ViewProvider(VersionedState):
     def onChanged(self, vobj, prop):
         pass
 
+    def onDelete(self, vobj, subelements):
+        """What the object stood for in the view (its proxy's consumed(), hidden when it was
+        made) is shown again."""
+        proxy = getattr(vobj.Object, "Proxy", None)
+        for obj in proxy.consumed(vobj.Object) if hasattr(proxy, "consumed") else []:
+            if obj is not None and obj.ViewObject is not None:
+                obj.ViewObject.Visibility = True
+        return True
+
 
 class _EditedInPanel:
     """Double click or the context menu opens the object's task panel (PANEL: module, class).
@@ -129,12 +138,6 @@ class ViewProviderSheet(_EditedInPanel, _ViewProvider):
         if prop == "ShowRefinement" and getattr(self, "refinement", None) is not None:
             self.refinement.update(vobj)
 
-    def onDelete(self, vobj, subelements):
-        base = getattr(vobj.Object, "Base", None)
-        if base and base[0] is not None and base[0].ViewObject is not None:
-            base[0].ViewObject.Visibility = True
-        return True
-
 
 class ViewProviderConstraint(_EditedInPanel, _ViewProvider):
     """Tree icon of a Constraint, and its handles in the 3D view (gui.handles): a Point's pin drags
@@ -188,12 +191,6 @@ class ViewProviderSolid(_EditedInPanel, _ViewProvider):
         if obj is None:
             return []
         return list(getattr(obj, "Sheets", None) or []) + list(getattr(obj, "Hinges", None) or [])
-
-    def onDelete(self, vobj, subelements):
-        for sheet in getattr(vobj.Object, "Sheets", None) or []:
-            if sheet.ViewObject is not None:
-                sheet.ViewObject.Visibility = True
-        return True
 
 
 class ViewProviderFillHole(_EditedInPanel, _ViewProvider):

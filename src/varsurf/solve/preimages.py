@@ -82,11 +82,12 @@ def curve_constraints(nat, base, edges, names, projections, settings, closed=Fal
     beyond = max(1e-6, 1e-2 * settings.tolerance)
     for edge, name, direction in zip(edges, names, projections):
         if getattr(edge, "ShapeType", None) != "Edge":
-            raise SheetError(f"{name} is not an edge")
+            raise SheetError(f"{name} is not an edge: link an edge (EdgeN) of the object as a curve")
         try:
             curve = canonical_direction(nat, nat.curve_from_edge_brep(edge.exportBrepToString()))
         except (nat.InvalidInput, nat.GeometryError) as error:
-            raise SheetError(f"{name} cannot be converted to a B-spline curve: {error}") from error
+            raise SheetError(f"{name} cannot be converted to a B-spline curve: {error}; remove it from the "
+                             "sheet's Curves, or redraw it (a point or a zero-length edge is no curve)") from error
         pieces = _pieces(nat, base, curve, name, direction, closed, beyond)
         for pre, piece in pieces:
             # Where the curve's foot point is on the face's boundary, a kept boundary cannot move to
