@@ -5,6 +5,7 @@
 # bounded time (FUZZ_SECONDS, default 60) from its seed corpus. Any sanitizer report, crash or
 # escaping exception fails. A finding is written as build-san/fuzz_<harness>-crash-<hash> (or
 # -leak-, -timeout-, -oom-); reproduce it with: build-san/tests/fuzz/fuzz_<harness> <that file>
+# With --build-only it builds and stops (tools/test.sh starts the build early, at low priority).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 FUZZ_SECONDS=${FUZZ_SECONDS:-60}
@@ -13,19 +14,26 @@ FUZZ_SECONDS=${FUZZ_SECONDS:-60}
 FUZZ_SEED=${FUZZ_SEED:-1}
 
 # RelWithDebInfo: optimized like the shipped build (the sanitizers check every access anyway; a
-# Debug build ran the C++ tests about 5x slower, too slow for CI on two cores).
+# Debug build ran the C++ tests about 5x slower, too slow for CI on two cores). Line tables are all
+# the debug information a sanitizer's stack trace needs: full -g compiled 15 % slower (measured on
+# the two longest files: 45 s against 40 s, 8.5 s against 7.4 s).
 SAN="-fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer"
 mkdir -p build-san
 CC=clang CXX=clang++ cmake -S . -B build-san -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -gline-tables-only -DNDEBUG" \
   -DVARSURF_BUILD_PYTHON=OFF -DVARSURF_BUILD_BENCH=OFF -DVARSURF_BUILD_FUZZ=ON \
   -DCMAKE_CXX_FLAGS="$SAN" -DCMAKE_EXE_LINKER_FLAGS="$SAN" > build-san/build.log
 cmake --build build-san -j2 >> build-san/build.log || { tail -50 build-san/build.log; exit 1; }
+if [ "${1:-}" = "--build-only" ]; then exit 0; fi
 
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 export LSAN_OPTIONS=suppressions=$PWD/tools/lsan.supp
 status=0
-ctest --test-dir build-san --output-on-failure -j2 -R '^core[.]' || status=1
+# Degrees 6 and 7 of the rest-shape test are left out here (58 s of the stage under ASan): they run
+# the code degrees 1 to 5 run here, and all seven run in the GCC build.
+ctest --test-dir build-san --output-on-failure -j2 -R '^core[.]' -E '^core[.]Degrees/RestAtDegree[.].*/[67]$' \
+  || status=1
 # OCCT is built without frame pointers: leak stacks through it need the slow unwinder to reach
 # the frames tools/lsan.supp names.
 # Two deviation tests are left out here (both run in the GCC build):
@@ -36,9 +44,11 @@ ctest --test-dir build-san --output-on-failure -j2 -R '^core[.]' || status=1
 # - EqualsTheKnownOffsetFromPeriodicFaces: 117 s under ASan (2.4 s in GCC), the longest test of
 #   the stage by far; its closest-point searches are the ones SurfaceInversion.* and the other
 #   MaxDeviation tests run here.
+# - WigglyCurveDoesNotDependOnTheSampleCount: 57 s under ASan; the same searches at growing sample
+#   counts.
 ASAN_OPTIONS=$ASAN_OPTIONS:fast_unwind_on_malloc=0 \
   ctest --test-dir build-san --output-on-failure -j2 -R '^occ[.]' \
-  -E '^occ[.]MaxDeviation[.](AgreesWithOcctsDistanceOnRationalNonUniformFaces|EqualsTheKnownOffsetFromPeriodicFaces)$' \
+  -E '^occ[.]MaxDeviation[.](AgreesWithOcctsDistanceOnRationalNonUniformFaces|EqualsTheKnownOffsetFromPeriodicFaces|WigglyCurveDoesNotDependOnTheSampleCount)$' \
   || status=1
 
 # Both harnesses at once (one core each). One input may take up to a minute: the bridge's
