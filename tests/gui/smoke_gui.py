@@ -110,19 +110,27 @@ def window_shot(name):
     return path
 
 
-def clipped_widgets(form_name):
-    """The named widgets of the open panel that reach beyond the right edge of the task view's
-    visible area (cut off, or only seen by scrolling sideways)."""
+def panel_in_view(form_name):
+    """The open panel's form and the task view's scroll area around it, or a string saying which
+    is missing."""
     forms = [w for w in QtGui.QApplication.allWidgets() if w.objectName() == form_name and w.isVisible()]
     if not forms:
-        return ["no visible " + form_name]
+        return "no visible " + form_name
     scroll = forms[-1].parentWidget()
     while scroll is not None and not isinstance(scroll, QtGui.QScrollArea):
         scroll = scroll.parentWidget()
-    if scroll is None:
-        return ["no scroll area"]
+    return (forms[-1], scroll) if scroll is not None else "no scroll area"
+
+
+def clipped_widgets(form_name):
+    """The named widgets of the open panel that reach beyond the right edge of the task view's
+    visible area (cut off, or only seen by scrolling sideways)."""
+    found = panel_in_view(form_name)
+    if isinstance(found, str):
+        return [found]
+    form, scroll = found
     viewport = scroll.viewport()
-    return sorted(w.objectName() for w in forms[-1].findChildren(QtGui.QWidget)
+    return sorted(w.objectName() for w in form.findChildren(QtGui.QWidget)
                   if w.isVisible() and w.objectName() and not w.objectName().startswith("qt_")
                   and w.mapTo(viewport, QtCore.QPoint(w.width(), 0)).x() > viewport.width() + 1)
 
@@ -130,20 +138,16 @@ def clipped_widgets(form_name):
 def unseen_widgets(form_name, names):
     """Of the named widgets of the open panel, those not wholly inside the task view's visible
     area when it is scrolled to the top (as the panel opens)."""
-    forms = [w for w in QtGui.QApplication.allWidgets() if w.objectName() == form_name and w.isVisible()]
-    if not forms:
-        return ["no visible " + form_name]
-    scroll = forms[-1].parentWidget()
-    while scroll is not None and not isinstance(scroll, QtGui.QScrollArea):
-        scroll = scroll.parentWidget()
-    if scroll is None:
-        return ["no scroll area"]
+    found = panel_in_view(form_name)
+    if isinstance(found, str):
+        return [found]
+    form, scroll = found
     scroll.verticalScrollBar().setValue(0)
     Gui.updateGui()
     viewport = scroll.viewport()
     out = []
     for name in names:
-        widget = forms[-1].findChild(QtGui.QWidget, name)
+        widget = form.findChild(QtGui.QWidget, name)
         if widget is None or widget.mapTo(viewport, QtCore.QPoint(0, widget.height())).y() > viewport.height():
             out.append(name)
     return out

@@ -12,6 +12,8 @@ from pathlib import Path
 
 import pytest
 
+from gui_run import run_gui_script
+
 REPO = Path(__file__).resolve().parents[2]
 SCRIPT = REPO / "tests" / "gui" / "macro_gui.py"
 OUT = REPO / "out" / "gui-macro"
@@ -36,20 +38,8 @@ with open(os.environ["VARSURF_REPLAY_OUT"], "w") as handle:
 
 @pytest.fixture(scope="module")
 def session(home, native):
-    for tool in ("xvfb-run", "freecad", "freecadcmd"):
-        assert shutil.which(tool), f"{tool} is needed for the macro test (tools/setup.sh)"
-    if OUT.exists():
-        shutil.rmtree(OUT)
-    OUT.mkdir(parents=True)
-    env = dict(os.environ)  # HOME is the temporary one with the Mod symlink (conftest)
-    env.update(VARSURF_GUI_OUT=str(OUT), VARSURF_NO_DIALOGS="1", QTWEBENGINE_CHROMIUM_FLAGS="--no-sandbox")
-    env.pop("QT_QPA_PLATFORM", None)  # offscreen aborts FreeCAD; Xvfb is the display
-    cmd = ["xvfb-run", "-a", "-s", "-screen 0 1280x1024x24", "freecad", str(SCRIPT)]
-    run = subprocess.run(cmd, env=env, capture_output=True, text=True, timeout=300, cwd=OUT)
-    (OUT / "freecad.log").write_text(run.stdout + "\n--- stderr ---\n" + run.stderr)
-    result_file = OUT / "macro.json"
-    assert result_file.is_file(), f"no macro.json (exit {run.returncode}):\n{run.stdout[-3000:]}\n{run.stderr[-3000:]}"
-    result = json.loads(result_file.read_text())
+    assert shutil.which("freecadcmd"), "freecadcmd is needed for the macro test (tools/setup.sh)"
+    result = run_gui_script(SCRIPT, OUT, "macro.json")
     assert result["ok"], result.get("error")
     return result
 

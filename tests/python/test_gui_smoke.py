@@ -1,13 +1,11 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
 """Runs tests/gui/smoke_gui.py in the real FreeCAD GUI under Xvfb and checks its JSON report."""
 
-import json
-import os
-import shutil
-import subprocess
 from pathlib import Path
 
 import pytest
+
+from gui_run import run_gui_script
 
 REPO = Path(__file__).resolve().parents[2]
 SCRIPT = REPO / "tests" / "gui" / "smoke_gui.py"
@@ -16,24 +14,7 @@ OUT = REPO / "out" / "gui-smoke"  # kept after the run: smoke.png is worth a loo
 
 @pytest.fixture(scope="module")
 def smoke(home, native):
-    for tool in ("xvfb-run", "freecad"):
-        assert shutil.which(tool), f"{tool} is needed for the GUI smoke test (tools/setup.sh)"
-    if OUT.exists():
-        shutil.rmtree(OUT)
-    OUT.mkdir(parents=True)
-    env = dict(os.environ)  # HOME is the temporary one with the Mod symlink (conftest)
-    env.update(
-        VARSURF_GUI_OUT=str(OUT),
-        VARSURF_NO_DIALOGS="1",
-        QTWEBENGINE_CHROMIUM_FLAGS="--no-sandbox",
-    )
-    env.pop("QT_QPA_PLATFORM", None)  # offscreen aborts FreeCAD; Xvfb is the display
-    cmd = ["xvfb-run", "-a", "-s", "-screen 0 1280x1024x24", "freecad", str(SCRIPT)]
-    run = subprocess.run(cmd, env=env, capture_output=True, text=True, timeout=300, cwd=OUT)
-    (OUT / "freecad.log").write_text(run.stdout + "\n--- stderr ---\n" + run.stderr)
-    result_file = OUT / "smoke.json"
-    assert result_file.is_file(), f"no smoke.json (exit {run.returncode}):\n{run.stdout[-3000:]}\n{run.stderr[-3000:]}"
-    return json.loads(result_file.read_text())
+    return run_gui_script(SCRIPT, OUT, "smoke.json")
 
 
 def test_gui_run_completed(smoke):
