@@ -284,7 +284,8 @@ def case_negative_bend(sc):
 
 
 def case_no_energy(sc):
-    return sc.sheet, ["Stretch and Bend are both 0"], sc.set(Stretch=0.0, Bend=0.0)
+    return sc.sheet, ["Stretch and Bend are both 0", "give Bend (or Stretch) a positive weight"], \
+        sc.set(Stretch=0.0, Bend=0.0)
 
 
 def case_enormous_pressure(sc):

@@ -134,3 +134,4 @@ def test_installed_without_a_shape_is_an_error(doc, native):
     doc.recompute()
     assert not sheet.isValid()
     assert "no rest shape was installed" in sheet.getStatusString()
+    assert "set RestShape to Base" in sheet.getStatusString()  # and what to do about it

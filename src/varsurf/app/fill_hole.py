@@ -102,7 +102,7 @@ class FillHoleFeature(FeatureProxy):
             outcome = hole.fill_hole(shape, replace=faces, edges=edges, curves=interior_curves(obj),
                                      continuity_kind=str(obj.Continuity), settings=settings)
             if not outcome.valid:
-                raise errors.SheetError("the filled part is not a valid shape")
+                raise errors.SheetError("the filled part is not a valid shape: try a larger Tolerance, or G0 continuity")
         except Exception as error:
             raise mark_failed(obj, error) from error
         obj.Shape = outcome.shape

@@ -34,7 +34,8 @@ def curve_key(obj) -> str:
     link, subs = obj.Curve
     subs = [s for s in subs if s]
     if len(subs) != 1 or not subs[0].startswith("Edge"):
-        raise errors.SheetError(f"{obj.Label}: Curve must reference exactly one edge")
+        raise errors.SheetError(f"{obj.Label}: Curve must reference exactly one edge: pick the edge the two Sheets "
+                                "share")
     return f"{link.Name}:{subs[0]}"
 
 
@@ -42,7 +43,8 @@ def spec_of(obj):
     """The joint solve's HingeSpec of a Hinge (SheetError if its links are wrong)."""
     sheets = list(obj.Sheets or [])
     if len(sheets) != 2:
-        raise errors.SheetError(f"{obj.Label}: a hinge needs exactly two Sheets (has {len(sheets)})")
+        raise errors.SheetError(f"{obj.Label}: a hinge needs exactly two Sheets (has {len(sheets)}): set its Sheets to "
+                                "the two it joins")
     angle = value(obj, "Angle")
     angle = float(angle.Value if hasattr(angle, "Value") else angle)
     return HingeSpec(name=obj.Label, key=curve_key(obj), sheet_a=sheets[0].Label,

@@ -132,7 +132,8 @@ def resolve_inputs(obj):
         base_obj, base_subs = obj.Base
         base_subs = [s for s in base_subs if s]
         if len(base_subs) != 1 or not base_subs[0].startswith("Face"):
-            raise errors.SheetError(f"Base must reference exactly one face of {base_obj.Label}")
+            raise errors.SheetError(f"Base must reference exactly one face of {base_obj.Label}: pick one face (FaceN) "
+                                    "in the Base property")
         _check_not_cyclic(obj, base_obj)
         face = _element(Part, base_obj, base_subs[0])
     edges, names = [], []
@@ -157,7 +158,8 @@ def _rest_of(obj, face):
     if mode == "Installed":
         shape = obj.InstalledRest
         if shape.isNull() or len(shape.Faces) != 1:
-            raise errors.SheetError("RestShape is Installed but no rest shape was installed")
+            raise errors.SheetError("RestShape is Installed but no rest shape was installed: install one (Install rest "
+                                    "shape), or set RestShape to Base")
         return shape.Faces[0]
     return None
 
@@ -181,9 +183,11 @@ def _element(Part, link_obj, sub):
     try:
         shape = Part.getShape(link_obj, sub, needSubElement=True)
     except Exception as error:
-        raise errors.SheetError(f"{link_obj.Label}:{sub} cannot be found ({error})") from error
+        raise errors.SheetError(f"{link_obj.Label}:{sub} cannot be found ({error}): the object has changed; select "
+                                "the element again") from error
     if shape.isNull():
-        raise errors.SheetError(f"{link_obj.Label}:{sub} does not exist (anymore)")
+        raise errors.SheetError(f"{link_obj.Label}:{sub} does not exist (anymore): the object has changed; select the "
+                                "element again")
     return shape
 
 
@@ -251,7 +255,8 @@ def compute(obj):
     values = settings_of(obj)
     unknown = [n for n in values.exact_curves if n not in names]
     if unknown:
-        raise errors.SheetError(f"ExactCurves names curves the sheet does not have: {', '.join(unknown)}")
+        raise errors.SheetError(f"ExactCurves names curves the sheet does not have: {', '.join(unknown)}; remove them "
+                                "from ExactCurves (names as in CurveNames)")
     inputs = dict(
         names=names,
         projections=projection.directions(obj, face, curve_links(obj)),

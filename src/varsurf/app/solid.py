@@ -257,7 +257,8 @@ class SolidFeature(FeatureProxy):
             except assembly.JoinGapError as error:
                 raise errors.SheetError(f"{error}{_hinge_blame(obj)}{_tolerance_hint(obj, tolerance)}") from error
             if not outcome.valid:
-                raise errors.SheetError("the sewn shape is not valid")
+                raise errors.SheetError("the sewn shape is not valid: raise the Solid's Tolerance, or check that "
+                                        "the Sheets meet along the curves they share (SeamGaps)")
         except Exception as error:
             raise mark_failed(obj, error) from error
         obj.Shape = outcome.shape

@@ -36,10 +36,12 @@ def base_edge(obj):
     link, subs = obj.Base
     subs = [s for s in subs if s]
     if len(subs) != 1 or not subs[0].startswith("Edge"):
-        raise errors.SheetError(f"Base must reference exactly one edge of {link.Label}")
+        raise errors.SheetError(f"Base must reference exactly one edge of {link.Label}: pick one edge (EdgeN) in the "
+                                "Base property")
     edge = Part.getShape(link, subs[0], needSubElement=True)
     if edge.isNull():
-        raise errors.SheetError(f"{link.Label}:{subs[0]} does not exist (anymore)")
+        raise errors.SheetError(f"{link.Label}:{subs[0]} does not exist (anymore): the object has changed; select "
+                                "the edge again")
     return edge
 
 

@@ -33,7 +33,8 @@ def parameter_lengths(surface, samples=12):
             total_u += math.sqrt(sum(float(x) ** 2 for x in rows[1]))
             total_v += math.sqrt(sum(float(x) ** 2 for x in rows[2]))
     if not (math.isfinite(total_u) and math.isfinite(total_v) and total_u > 0.0 and total_v > 0.0):
-        raise SheetError("the base face's parametrization is degenerate (no length along one direction)")
+        raise SheetError("the base face's parametrization is degenerate (no length along one direction): pick "
+                         "another face, or leave Base empty to start from the curves' plane")
     mean = math.sqrt(total_u * total_v)
     return total_u / mean, total_v / mean
 

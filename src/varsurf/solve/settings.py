@@ -117,7 +117,8 @@ class SheetSettings:
             if not value >= 0.0:  # also rejects NaN
                 raise SheetError(f"{label} must be >= 0 (got {value})")
         if self.stretch == 0.0 and self.bend == 0.0 and not self.stretch_tensor and not self.bend_tensor:
-            raise SheetError("Stretch and Bend are both 0: the sheet would have no energy to minimize")
+            raise SheetError("Stretch and Bend are both 0: the sheet would have no energy to minimize; give Bend (or "
+                             "Stretch) a positive weight")
         if not (self.tolerance > 0.0 and math.isfinite(self.tolerance)):
             raise SheetError(f"Tolerance must be a positive length (got {self.tolerance})")
         if not 1 <= int(self.min_spans) <= int(self.max_spans) <= 512:

@@ -72,7 +72,7 @@ class _Sheet:
 def _base(nat, face, settings):
     """Stage 1: the base face's surface and trim (SheetError if the face cannot carry a sheet)."""
     if getattr(face, "ShapeType", None) != "Face":
-        raise SheetError("the base must be a face")
+        raise SheetError("the base must be a face: link a face (FaceN) as Base")
     try:
         base = nat.surface_from_face_brep(face.exportBrepToString())
         trim = nat.BaseTrim(face.exportBrepToString())  # the face's wires and orientation
