@@ -188,3 +188,100 @@ TEST(HierarchicalSolver, RefusesWhatItCannotRepresent) {
   ho.manual = {{0, 0.6, 0.2, 0.0, 1.0}};  // u0 > u1
   EXPECT_THROW(solve_hierarchical(wave_problem(2), ho, exact_options()), InvalidInput);
 }
+
+namespace {
+
+// Half a unit cylinder (rational, like a Part cylinder's face) with its boundary kept and as its
+// rest shape, and a generator of it as a curve: a curve the base already contains.
+SheetProblem half_cylinder_problem() {
+  SheetProblem pb;
+  pb.space = test::half_cylinder_space();
+  pb.initial_poles = test::half_cylinder_poles(pb.space);
+  pb.rest_poles = pb.initial_poles;
+  pb.energy = ThinPlateWeights::isotropic(0.0, 1.0);
+  pb.fixed_poles = boundary_pole_indices(pb.space);
+  const Eigen::Vector3d a = evaluate_surface(pb.space, pb.initial_poles, 0.25, 0.1, 0).row(0);
+  const Eigen::Vector3d b = evaluate_surface(pb.space, pb.initial_poles, 0.25, 0.9, 0).row(0);
+  CurveConstraint c;
+  c.preimage = test::line_curve(Eigen::Vector2d(0.25, 0.1), Eigen::Vector2d(0.25, 0.9));
+  c.target = test::line_curve(a, b);  // a straight line on the cylinder
+  pb.curves.push_back(c);
+  return pb;
+}
+
+// A curve along v at u = 0.75, pushed out of the cylinder by up to `bump`.
+CurveConstraint bump_curve(const SheetProblem& pb, double bump) {
+  const auto pre = [](double t) { return Eigen::Vector2d(0.75, 0.2 + 0.6 * t); };
+  CurveConstraint c;
+  c.preimage = test::line_curve(pre(0.0), pre(1.0));
+  std::vector<double> breaks;
+  for (int i = 0; i <= 24; ++i) breaks.push_back(i / 24.0);
+  c.target = fit_piecewise_curve(breaks, 3, 3, [&](double t) {
+    const Eigen::Vector2d uv = pre(t);
+    const Eigen::Vector3d p = evaluate_surface(pb.space, pb.initial_poles, uv(0), uv(1), 0).row(0);
+    const double s = 1.0 + bump * std::pow(std::sin(pi * t), 2);
+    Eigen::VectorXd q(3);
+    q << s * p(0), s * p(1), p(2);
+    return q;
+  });
+  return c;
+}
+
+}  // namespace
+
+TEST(HierarchicalSolver, ARationalBaseThatMeetsItsCurvesComesBackItself) {
+  // Curves lying on a cylinder reproduce the cylinder, with refined layers too.
+  const SheetProblem pb = half_cylinder_problem();
+  HierarchicalSpace h(pb.space);
+  h.refine_box(0, 0.0, 0.5, 0.3, 0.7);
+  h.refine_box(1, 0.1, 0.3, 0.4, 0.6);
+  ASSERT_EQ(h.levels(), 3);
+  SolveReport rep;
+  const Eigen::MatrixX3d p = solve_on_hierarchy(pb, h, exact_options(), rep);
+  EXPECT_LT((p - h.base_to_finest(pb.initial_poles)).cwiseAbs().maxCoeff(), 1e-12);
+  for (double u : {0.1, 0.3, 0.6, 0.9})
+    for (double v : {0.2, 0.5, 0.8}) {
+      const Eigen::Vector3d x = evaluate_surface(h.finest(), p, u, v, 0).row(0);
+      EXPECT_NEAR(std::hypot(x(0), x(1)), 1.0, 1e-12);
+    }
+}
+
+TEST(HierarchicalSolver, ARationalBaseRefinedEverywhereEqualsTheUniformSolve) {
+  SheetProblem pb = half_cylinder_problem();
+  pb.curves.push_back(bump_curve(pb, 0.05));
+  HierarchicalSpace h(pb.space);
+  EXPECT_EQ(h.refine_box(0, 0.0, 1.0, 0.0, 1.0), 6);
+  SolveReport rep;
+  const Eigen::MatrixX3d hp = solve_on_hierarchy(pb, h, exact_options(), rep);
+  // The same problem posed on the halved rational space itself (every base span refined: the
+  // hierarchy's functions are that space's), solved by the uniform solver.
+  SheetProblem fine = pb;
+  fine.space = h.finest();
+  fine.initial_poles = h.base_to_finest(pb.initial_poles);
+  fine.rest_poles = fine.initial_poles;
+  fine.fixed_poles = boundary_pole_indices(fine.space);
+  const SolveResult u = solve_sheet(fine, exact_options());
+  EXPECT_LT((hp - u.poles).cwiseAbs().maxCoeff(), 1e-7);
+}
+
+TEST(HierarchicalSolver, ARationalBaseIsRefinedWhereItsCurveIsOff) {
+  SheetProblem pb = half_cylinder_problem();
+  pb.curves.push_back(bump_curve(pb, 0.05));
+  HierarchicalOptions ho;
+  ho.tolerance = 1e-5;
+  ho.max_depth = 6;
+  const HierarchicalResult r = solve_hierarchical(pb, ho, exact_options());
+  ASSERT_TRUE(r.report.met) << r.report.round_error.back();
+  ASSERT_TRUE(r.space.rational());
+  EXPECT_GT(r.report.depth, 0);
+  EXPECT_GT(r.report.round_error.front(), 1e-3);  // the coarse cylinder cannot hold the bump
+  EXPECT_LT(r.report.dofs, r.report.export_poles);
+  for (const CurveConstraint& c : pb.curves)
+    EXPECT_LE(incidence_error(r.space, r.poles, c, 1000), 1.5e-5);  // between the samples too
+  // The boundary is kept: the half circles at the ends are still circles.
+  for (double u : {0.1, 0.4, 0.7})
+    for (double v : {0.0, 1.0}) {
+      const Eigen::Vector3d x = evaluate_surface(r.space, r.poles, u, v, 0).row(0);
+      EXPECT_NEAR(std::hypot(x(0), x(1)), 1.0, 1e-12);
+    }
+}

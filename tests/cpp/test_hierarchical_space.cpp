@@ -6,6 +6,7 @@
 #include <Eigen/SVD>
 #include <random>
 
+#include "test_support.hpp"
 #include "varsurf/core/bspline_curve.hpp"
 #include "varsurf/core/errors.hpp"
 #include "varsurf/core/hierarchical_space.hpp"
@@ -148,4 +149,68 @@ TEST(HierarchicalSpace, TheSumIsC2AcrossLayerBorders) {
       jump3 = std::max(jump3, (d.row(3) - c.row(3)).cwiseAbs().maxCoeff() / 2e-3);
     }
   EXPECT_GT(jump3, 1e-3);  // and not trivially smooth there: the third derivative is far from zero
+}
+
+namespace {
+
+// Half a cylinder (rational along u) refined over a corner and then again inside it.
+HierarchicalSpace refined_half_cylinder() {
+  HierarchicalSpace h(test::half_cylinder_space());
+  h.refine(0, 0, 1);
+  h.refine(0, 1, 1);
+  h.refine(1, 1, 2);
+  return h;
+}
+
+// The weight function of a rational space at (u, v).
+double weight_at(SplineSpace s, double u, double v) {
+  Eigen::MatrixX3d w = Eigen::MatrixX3d::Zero(s.size(), 3);
+  w.col(0) = s.weights;
+  s.weights.resize(0);
+  return evaluate_surface(s, w, u, v, 0)(0, 0);
+}
+
+}  // namespace
+
+TEST(HierarchicalSpace, RationalLayersAddUpInHomogeneousCoordinates) {
+  const HierarchicalSpace h = refined_half_cylinder();
+  ASSERT_EQ(h.levels(), 3);
+  ASSERT_TRUE(h.finest().rational());
+  std::mt19937 rng(13);
+  std::uniform_real_distribution<double> r(-1.0, 1.0);
+  const Eigen::MatrixX3d values =
+      Eigen::MatrixX3d::NullaryExpr(h.dof_count(), 3, [&] { return r(rng); });
+  const Eigen::MatrixX3d finest = h.to_finest() * values;
+  for (int i = 0; i <= 40; ++i)
+    for (int j = 0; j <= 30; ++j) {
+      const double u = i / 40.0, v = j / 30.0;
+      // Every layer carries the base's weight function exactly.
+      EXPECT_NEAR(weight_at(h.finest(), u, v), weight_at(h.layer(0), u, v), 1e-14);
+      const Eigen::Vector3d a = h.evaluate(values, u, v);
+      const Eigen::Vector3d b = evaluate_surface(h.finest(), finest, u, v, 0).row(0).transpose();
+      EXPECT_LT((a - b).norm(), 1e-12) << u << " " << v;
+    }
+}
+
+TEST(HierarchicalSpace, ARationalBaseStaysItselfWhenRefined) {
+  const HierarchicalSpace h = refined_half_cylinder();
+  const SplineSpace base = h.layer(0);
+  const Eigen::MatrixX3d poles = test::half_cylinder_poles(base);
+  const Eigen::MatrixX3d fine = h.base_to_finest(poles);
+  for (int i = 0; i <= 50; ++i)
+    for (int j = 0; j <= 20; ++j) {
+      const double u = i / 50.0, v = j / 20.0;
+      const Eigen::Vector3d p = evaluate_surface(h.finest(), fine, u, v, 0).row(0).transpose();
+      EXPECT_NEAR(std::hypot(p(0), p(1)), 1.0, 1e-14) << u << " " << v;  // still the cylinder
+      EXPECT_LT((p - evaluate_surface(base, poles, u, v, 0).row(0).transpose()).norm(), 1e-14);
+    }
+  // The refined space holds the cylinder, and its functions stay independent (a definite energy).
+  const Eigen::MatrixXd b = Eigen::MatrixXd(h.to_finest());
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(b, Eigen::ComputeThinU | Eigen::ComputeThinV);
+  EXPECT_GT(svd.singularValues().minCoeff(), 1e-6);
+  const Eigen::MatrixX3d x = svd.solve(Eigen::MatrixXd(fine));
+  EXPECT_LT((b * x - fine).cwiseAbs().maxCoeff(), 1e-12);
+  // Unrefined, a point's values are the base's own poles.
+  const HierarchicalSpace plain(base);
+  EXPECT_LT((Eigen::MatrixXd(plain.to_finest()) * poles - poles).cwiseAbs().maxCoeff(), 1e-15);
 }

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <cmath>
 #include <functional>
 #include <vector>
 
@@ -89,6 +90,33 @@ inline BSplineCurve line_curve(const Eigen::VectorXd& a, const Eigen::VectorXd& 
   c.poles.row(0) = a.transpose();
   c.poles.row(1) = b.transpose();
   return c;
+}
+
+// Half a unit cylinder, two exact rational quarter circles along u (degree 2, weights 1, 1/sqrt 2,
+// 1, ...) and z = 2 v along v (cubic, `spans_v` spans): a rational base like a Part cylinder's
+// face.
+inline SplineSpace half_cylinder_space(int spans_v = 3) {
+  SplineSpace s;
+  s.degree_u = 2;
+  s.knots_u = {0.0, 0.0, 0.0, 0.5, 0.5, 1.0, 1.0, 1.0};
+  s.degree_v = 3;
+  s.knots_v = uniform_clamped_knots(3, spans_v);
+  const double h = std::sqrt(0.5);
+  const double wu[5] = {1.0, h, 1.0, h, 1.0};
+  s.weights.resize(s.size());
+  for (int i = 0; i < s.nu(); ++i)
+    for (int j = 0; j < s.nv(); ++j) s.weights(s.index(i, j)) = wu[i];
+  return s;
+}
+
+inline Eigen::MatrixX3d half_cylinder_poles(const SplineSpace& s) {
+  const double xy[5][2] = {{1, 0}, {1, 1}, {0, 1}, {-1, 1}, {-1, 0}};
+  const std::vector<double> gv = greville(s.knots_v, s.degree_v);
+  Eigen::MatrixX3d p(s.size(), 3);
+  for (int i = 0; i < s.nu(); ++i)
+    for (int j = 0; j < s.nv(); ++j)
+      p.row(s.index(i, j)) << xy[i][0], xy[i][1], 2.0 * gv[static_cast<size_t>(j)];
+  return p;
 }
 
 }  // namespace varsurf::test

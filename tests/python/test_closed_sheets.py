@@ -188,3 +188,54 @@ def test_a_revolved_profile_and_a_sphere_keep_their_seams_smooth(doc, native, tm
         path = tmp_path / f"{base.Name}.step"
         varsurf.export_step([sheet], str(path))
         assert_reads_back(sheet.Shape, path, native)
+
+
+def test_local_refinement_on_a_cylinder_meets_a_bump_with_fewer_poles_and_keeps_the_seam(doc):
+    """Local refinement on a rational base (a Part cylinder's face): the layers carry its weight
+    function, so the sheet stays a cylinder where nothing pulls it. A bump 2 mm out over 72° at
+    1e-4 mm: uniform refinement stops at its 64 spans short of the tolerance (measured 1.9e-4 mm
+    with 4 690 poles); local refinement meets it with about a fifth of the unknowns, and its
+    seam stays closed and smooth."""
+    cyl, sub = _cylinder(doc)
+    bump = _curve_object(doc, _bump(R, 15.0, 0.8 * math.pi, 0.4 * math.pi, 2.0), "Bump")
+    c = R * math.sqrt(0.5)  # a generator at -45°, away from the bump (144° to 216°)
+    line = _curve_object(doc, Part.LineSegment(V(c, -c, 4), V(c, -c, 26)).toShape(), "Generator")
+    sheets = {}
+    for mode in ("Uniform", "Local"):
+        sheets[mode] = varsurf.make_sheet((cyl, sub), [bump, line], doc=doc, tolerance=1e-4, name=mode)
+        sheets[mode].Refinement = mode
+        sheets[mode].MaxDepth = 5
+    doc.recompute()
+    uniform, local = sheets["Uniform"], sheets["Local"]
+    assert uniform.isValid() and local.isValid(), (uniform.Status, local.Status)
+    assert local.Status.startswith("OK"), local.Status
+    assert max(local.MaxDeviations) <= 1e-4, local.MaxDeviations  # measured by OCCT on the result
+    assert local.RefinementDepth >= 1
+    assert 2 * local.DegreesOfFreedom < uniform.DegreesOfFreedom, (local.DegreesOfFreedom, uniform.DegreesOfFreedom)
+    face = local.Shape.Faces[0]
+    assert face.Surface.isURational() or face.Surface.isVRational()
+    assert face.isValid() and face.check(True) is None
+    angle, gap, _jump = _seam(face)
+    assert angle <= 0.01 and gap <= 1e-7, (angle, gap)
+    for z in (0.0, H):  # the kept boundary circles are still the cylinder's
+        for a in (0.3, 2.0, 4.5):
+            assert face.distToShape(Part.Vertex(V(R * math.cos(a), R * math.sin(a), z)))[0] <= 1e-7
+
+
+def test_local_refinement_on_a_cylinder_through_its_own_generator_is_the_cylinder(doc):
+    """Curves on the face reproduce the face: a generator of the cylinder and a manual refinement
+    region (layers that have nothing to do) give back the cylinder itself."""
+    cyl, sub = _cylinder(doc)
+    line = _curve_object(doc, Part.LineSegment(V(0, R, 3), V(0, R, 27)).toShape(), "Generator")
+    sheet = varsurf.make_sheet((cyl, sub), [line], doc=doc, tolerance=1e-4)
+    sheet.Refinement = "Local"
+    sheet.RefineRegions = [1, 0.0, 0.5, 0.3, 0.7]
+    doc.recompute()
+    assert sheet.isValid(), sheet.Status
+    assert sheet.RefinementDepth == 2
+    surface = sheet.Shape.Faces[0].Surface
+    u0, u1, v0, v1 = surface.bounds()
+    worst = max(abs(math.hypot(p.x, p.y) - R)
+                for p in (surface.value(u0 + (u1 - u0) * i / 24, v0 + (v1 - v0) * j / 12)
+                          for i in range(25) for j in range(13)))
+    assert worst <= 1e-9 * R, worst

@@ -22,23 +22,6 @@ namespace {
 using Sparse = Eigen::SparseMatrix<double>;
 using RowSparse = Eigen::SparseMatrix<double, Eigen::RowMajor>;
 
-// Level-0 poles (n x 3) written on the finest level.
-Eigen::MatrixX3d refine_poles(const Eigen::MatrixX3d& poles, const HierarchicalSpace& h) {
-  const SplineSpace& base = h.layer(0);
-  const Sparse tu = h.level_to_finest_u(0), tv = h.level_to_finest_v(0);
-  const SplineSpace& fine = h.finest();
-  Eigen::MatrixX3d out(fine.size(), 3);
-  for (int c = 0; c < 3; ++c) {
-    Eigen::MatrixXd grid(base.nu(), base.nv());
-    for (int i = 0; i < base.nu(); ++i)
-      for (int j = 0; j < base.nv(); ++j) grid(i, j) = poles(base.index(i, j), c);
-    const Eigen::MatrixXd g = Eigen::MatrixXd(tu) * grid * Eigen::MatrixXd(tv).transpose();
-    for (int i = 0; i < fine.nu(); ++i)
-      for (int j = 0; j < fine.nv(); ++j) out(fine.index(i, j), c) = g(i, j);
-  }
-  return out;
-}
-
 // The span (between distinct breakpoints) holding t; the last one for t at the end.
 int span_index(const std::vector<double>& knots, int degree, double t) {
   const std::vector<double> bp = breakpoints(knots, degree);
@@ -68,8 +51,8 @@ bool is_boundary_set(const SheetProblem& pb, std::vector<int> fixed) {
 SheetProblem finest_problem(const SheetProblem& base, const HierarchicalSpace& h) {
   SheetProblem fine = base;
   fine.space = h.finest();
-  fine.initial_poles = refine_poles(base.initial_poles, h);
-  if (base.rest_poles.rows() > 0) fine.rest_poles = refine_poles(base.rest_poles, h);
+  fine.initial_poles = h.base_to_finest(base.initial_poles);
+  if (base.rest_poles.rows() > 0) fine.rest_poles = h.base_to_finest(base.rest_poles);
   fine.fixed_poles = base.fixed_poles.empty()
                          ? std::vector<int>{}
                          : boundary_pole_indices(fine.space, base.closed_u, base.closed_v);

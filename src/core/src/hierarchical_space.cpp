@@ -33,11 +33,25 @@ int spans_of(const std::vector<double>& knots, int degree) {
   return static_cast<int>(breakpoints(knots, degree).size()) - 1;
 }
 
+// A rational layer's weights written on the finer layer's knots: the weight function w(u, v) is
+// a polynomial spline, so knot insertion carries it over exactly.
+Eigen::VectorXd refined_weights(const SplineSpace& coarse, const SplineSpace& fine) {
+  const Eigen::MatrixXd tu =
+      Eigen::MatrixXd(refinement_matrix(coarse.knots_u, coarse.degree_u, fine.knots_u));
+  const Eigen::MatrixXd tv =
+      Eigen::MatrixXd(refinement_matrix(coarse.knots_v, coarse.degree_v, fine.knots_v));
+  const Eigen::MatrixXd grid =
+      Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
+          coarse.weights.data(), coarse.nu(), coarse.nv());
+  const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> out =
+      tu * grid * tv.transpose();
+  return Eigen::Map<const Eigen::VectorXd>(out.data(), out.size());
+}
+
 }  // namespace
 
 HierarchicalSpace::HierarchicalSpace(SplineSpace base) {
   base.validate();
-  if (base.weights.size() > 0) throw InvalidInput("a hierarchical space needs a non-rational base");
   layers_.push_back(make_layer(std::move(base)));
   std::fill(layers_[0].region.begin(), layers_[0].region.end(), 1);
   collect_dofs();
@@ -91,6 +105,7 @@ void HierarchicalSpace::add_level() {
   SplineSpace next = last;
   next.knots_u = dyadic_knots(last.knots_u, last.degree_u);
   next.knots_v = dyadic_knots(last.knots_v, last.degree_v);
+  if (last.rational()) next.weights = refined_weights(last, next);
   layers_.push_back(make_layer(std::move(next)));
 }
 
@@ -177,6 +192,35 @@ Eigen::SparseMatrix<double> HierarchicalSpace::level_to_finest_v(int level) cons
   return chain_to_finest(*this, level, false);
 }
 
+double HierarchicalSpace::layer_weight(int level, int i, int j) const {
+  const SplineSpace& s = layer(level);
+  return s.rational() ? s.weights(s.index(i, j)) : 1.0;
+}
+
+Eigen::MatrixX3d HierarchicalSpace::base_to_finest(const Eigen::MatrixX3d& poles) const {
+  const SplineSpace& base = layer(0);
+  const SplineSpace& fine = finest();
+  if (poles.rows() != base.size())
+    throw InvalidInput("base_to_finest: " + std::to_string(poles.rows()) + " poles for " +
+                       std::to_string(base.size()));
+  const Eigen::MatrixXd tu = Eigen::MatrixXd(level_to_finest_u(0));
+  const Eigen::MatrixXd tv = Eigen::MatrixXd(level_to_finest_v(0));
+  Eigen::MatrixX3d out(fine.size(), 3);
+  for (int c = 0; c < 3; ++c) {
+    Eigen::MatrixXd grid(base.nu(), base.nv());
+    for (int i = 0; i < base.nu(); ++i)
+      for (int j = 0; j < base.nv(); ++j)
+        grid(i, j) = layer_weight(0, i, j) * poles(base.index(i, j), c);
+    const Eigen::MatrixXd g = tu * grid * tv.transpose();
+    for (int i = 0; i < fine.nu(); ++i)
+      for (int j = 0; j < fine.nv(); ++j) {
+        const int row = fine.index(i, j);
+        out(row, c) = g(i, j) / (fine.rational() ? fine.weights(row) : 1.0);
+      }
+  }
+  return out;
+}
+
 Eigen::SparseMatrix<double> HierarchicalSpace::to_finest() const {
   const SplineSpace& fine = finest();
   std::vector<Eigen::SparseMatrix<double>> tu, tv;
@@ -189,10 +233,14 @@ Eigen::SparseMatrix<double> HierarchicalSpace::to_finest() const {
     const HierarchicalDof& f = dofs_[d];
     const Eigen::SparseMatrix<double>& a = tu[static_cast<size_t>(f.level)];
     const Eigen::SparseMatrix<double>& b = tv[static_cast<size_t>(f.level)];
+    // Rational: the layers add up in homogeneous coordinates (w P), where knot insertion is exact.
+    const double w = layer_weight(f.level, f.i, f.j);
     for (Eigen::SparseMatrix<double>::InnerIterator x(a, f.i); x; ++x)
-      for (Eigen::SparseMatrix<double>::InnerIterator y(b, f.j); y; ++y)
-        t.emplace_back(fine.index(static_cast<int>(x.row()), static_cast<int>(y.row())),
-                       static_cast<int>(d), x.value() * y.value());
+      for (Eigen::SparseMatrix<double>::InnerIterator y(b, f.j); y; ++y) {
+        const int row = fine.index(static_cast<int>(x.row()), static_cast<int>(y.row()));
+        const double scale = fine.rational() ? w / fine.weights(row) : 1.0;
+        t.emplace_back(row, static_cast<int>(d), x.value() * y.value() * scale);
+      }
   }
   Eigen::SparseMatrix<double> out(fine.size(), dof_count());
   out.setFromTriplets(t.begin(), t.end());
@@ -204,19 +252,30 @@ Eigen::Vector3d HierarchicalSpace::evaluate(const Eigen::MatrixX3d& values, doub
   if (values.rows() != dof_count())
     throw InvalidInput("evaluate: " + std::to_string(values.rows()) + " values for " +
                        std::to_string(dof_count()) + " degrees of freedom");
+  // Each layer's share of the numerator sum w P N (of the weight function alone, with all-one
+  // weights, when the base is polynomial), divided by the base's weight function.
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
   for (int k = 0; k < levels(); ++k) {
-    const SplineSpace& s = layer(k);
+    SplineSpace s = layer(k);
+    s.weights.resize(0);
     Eigen::MatrixX3d poles = Eigen::MatrixX3d::Zero(s.size(), 3);
     bool any = false;
     for (size_t d = 0; d < dofs_.size(); ++d)
       if (dofs_[d].level == k) {
-        poles.row(s.index(dofs_[d].i, dofs_[d].j)) = values.row(static_cast<Eigen::Index>(d));
+        const HierarchicalDof& f = dofs_[d];
+        poles.row(s.index(f.i, f.j)) =
+            layer_weight(k, f.i, f.j) * values.row(static_cast<Eigen::Index>(d));
         any = true;
       }
     if (any) sum += evaluate_surface(s, poles, u, v, 0).row(0).transpose();
   }
-  return sum;
+  const SplineSpace& base = layer(0);
+  if (!base.rational()) return sum;
+  SplineSpace plain = base;
+  plain.weights.resize(0);
+  Eigen::MatrixX3d w = Eigen::MatrixX3d::Zero(base.size(), 3);
+  w.col(0) = base.weights;
+  return sum / evaluate_surface(plain, w, u, v, 0)(0, 0);
 }
 
 }  // namespace varsurf

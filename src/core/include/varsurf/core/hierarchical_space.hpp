@@ -9,6 +9,12 @@
 // of poles held at zero), the sum stays C^(p-1), and the functions used are linearly independent,
 // so an energy stays positive definite on them. Refined patches that meet simply merge: the
 // region is a set of spans.
+//
+// A rational base keeps its weight function w(u, v): every layer carries it exactly (knot
+// insertion of the weights), and the layers add up in homogeneous coordinates, so the surface is
+// (sum over layers of w_k P N_k) / w. A degree of freedom's value is a point (its homogeneous
+// coefficient divided by its own weight): with only the base's functions, the values are the
+// base's poles and the surface is the base's (a cylinder stays a cylinder).
 #pragma once
 
 #include <Eigen/Core>
@@ -25,7 +31,7 @@ struct HierarchicalDof {
 
 class HierarchicalSpace {
  public:
-  // Level 0: the whole of `base` (validated; non-rational).
+  // Level 0: the whole of `base` (validated; rational or not).
   explicit HierarchicalSpace(SplineSpace base);
 
   int levels() const { return static_cast<int>(layers_.size()); }
@@ -57,6 +63,8 @@ class HierarchicalSpace {
   Eigen::SparseMatrix<double> level_to_finest_v(int level) const;
   // finest poles = to_finest() * dof values (finest size x dof_count), per coordinate.
   Eigen::SparseMatrix<double> to_finest() const;
+  // Poles of a surface of the base space (layer 0) written exactly on the finest space.
+  Eigen::MatrixX3d base_to_finest(const Eigen::MatrixX3d& poles) const;
   // The surface at (u, v) summed layer by layer from dof values (dof_count x 3): independent of
   // to_finest, for checking it.
   Eigen::Vector3d evaluate(const Eigen::MatrixX3d& values, double u, double v) const;
@@ -72,6 +80,7 @@ class HierarchicalSpace {
   void add_level();
   void collect_dofs();
   const Layer& at(int level) const;
+  double layer_weight(int level, int i, int j) const;  // 1 for polynomial layers
   std::vector<Layer> layers_;
   std::vector<HierarchicalDof> dofs_;
 };
