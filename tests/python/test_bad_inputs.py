@@ -251,6 +251,13 @@ def case_constraint_bad_reference(sc):
     return c, ["Location vertex", c.Label], fix
 
 
+def case_runaway_sheet(sc):
+    # A curve 10 mm up, 0.001 mm inside the kept boundary: met to 1e-12 only by poles 1e5 mm out
+    # (a dome kilometres high), which used to be reported OK.
+    put_back = sc.use_curve(Part.LineSegment(V(20, 0.001, 10), V(80, 0.001, 10)).toShape())
+    return sc.sheet, ["runs away", "nearest to BadCurve:Edge1", "FixBoundary"], put_back
+
+
 def case_g2_on_a_degree_two_sheet(sc):
     c = varsurf.make_constraint(sc.sheet, "G2", curve=(sc.ridge, "Edge1"), reference=(sc.base, "Face1"))
     sc.sheet.Degree = 2

@@ -68,6 +68,29 @@ def _loop_sides(nat, preimages: Dict[str, object], gap: float) -> Dict[str, int]
     return {keys[step.curve]: int(step.inside) for step in loop.steps}
 
 
+def _domain_side(space, preimage) -> int:
+    """+1 / -1: the side of a pre-image along the domain's edge (a closed sheet's end: a ring at
+    the end of a tube) on which the domain lies; 0 for a curve with the domain on both sides."""
+    t0, t1 = preimage.knots[0], preimage.knots[-1]
+    u0, u1, v0, v1 = space.knots_u[0], space.knots_u[-1], space.knots_v[0], space.knots_v[-1]
+    su, sv = u1 - u0, v1 - v0
+    votes = 0
+    for k in (1, 2, 3):  # three places along it, so an end touching a corner does not decide
+        t = t0 + (t1 - t0) * k / 4.0
+        a, b = preimage.evaluate(t - 1e-4 * (t1 - t0)), preimage.evaluate(t + 1e-4 * (t1 - t0))
+        du, dv = (b[0] - a[0]) / su, (b[1] - a[1]) / sv  # in domain sizes: both directions alike
+        norm = math.hypot(du, dv)
+        if norm == 0.0:
+            continue
+        mid = preimage.evaluate(t)
+        step = 1e-3 / norm  # a thousandth of the domain to the left (+) and to the right (-)
+        inside = [u0 < mid[0] - sign * dv * step * su < u1 and v0 < mid[1] + sign * du * step * sv < v1
+                  for sign in (1, -1)]
+        if inside[0] != inside[1]:
+            votes += 1 if inside[0] else -1
+    return (votes > 0) - (votes < 0)
+
+
 def solve_joint(sheets: Sequence[JointSheet], variational: Dict[str, VariationalCurve],
                 hinges: Sequence[HingeSpec], keep_going=None) -> JointOutcome:
     nat = native()
@@ -116,6 +139,8 @@ def solve_joint(sheets: Sequence[JointSheet], variational: Dict[str, Variational
             every = dict(zip(s.keys, s.outcome.problem.curves))
             sides = _loop_sides(nat, {k: c.preimage for k, c in every.items()}, gap)
         for key, constraint in mine.items():
+            if key not in sides:  # no loop says it: a curve along the domain's edge (a tube's end)
+                sides[key] = _domain_side(space, constraint.preimage)
             join = nat.Join()
             join.sheet, join.curve = i, index[key]
             join.preimage = constraint.preimage
@@ -140,8 +165,9 @@ def solve_joint(sheets: Sequence[JointSheet], variational: Dict[str, Variational
                                  "a curve both sheets share")
             join = next(j for j in joins if j.sheet == end and j.curve == index[h.key])
             if join.side == 0:
-                raise SheetError(f"{h.name}: {labels[end]}'s curves do not close a loop, so it has no "
-                                 "side of the hinge's curve")
+                raise SheetError(f"{h.name}: {labels[end]}'s curves do not close a loop and the hinge's curve "
+                                 "does not run along its edge, so it has no side of the curve: add the curves "
+                                 "that bound it to the Sheet")
         hinge = nat.Hinge()
         hinge.curve, hinge.sheet_a, hinge.sheet_b = index[h.key], ends[0], ends[1]
         hinge.angle = math.radians(h.angle)

@@ -179,11 +179,59 @@ def _problem(nat, sheet, spans):
     return space, problem
 
 
+#: How far beyond the box of its base and curves a solved sheet's poles may reach, in sizes of
+#: that box. A fair sheet's control net stays close to its inputs (a pillow's pressure moves its
+#: poles well under one size); a curve rising steeply right beside a kept boundary is met exactly by
+#: poles hundreds of sizes away (measured: a 10 mm rise 0.001 mm from the boundary of a 100 mm face,
+#: poles 1.2e5 mm out, "OK" at 1e-12 mm), a surface nobody can use.
+RUNAWAY_SIZES = 20.0
+
+
+def _runaway(nat, sheet, poles):
+    """How far the poles reach beyond the inputs' box (mm) and that box's diagonal, or None when
+    they stay within RUNAWAY_SIZES of it."""
+    import numpy
+
+    inputs = [numpy.asarray(sheet.base.poles, dtype=float)]
+    inputs += [numpy.asarray(c.poles, dtype=float)[:, :3] for c in sheet.targets]
+    points = numpy.vstack(inputs)
+    low, high = points.min(axis=0), points.max(axis=0)
+    size = max(float(numpy.linalg.norm(high - low)), sheet.settings.tolerance)
+    poles = numpy.asarray(poles, dtype=float)
+    beyond = numpy.maximum(low - poles, 0.0) + numpy.maximum(poles - high, 0.0)
+    reach = numpy.linalg.norm(beyond, axis=1)
+    worst = int(numpy.argmax(reach)) if len(reach) else 0
+    if not (len(reach) and numpy.isfinite(reach).all()) or reach[worst] > RUNAWAY_SIZES * size:
+        return float(reach[worst]) if len(reach) else math.inf, size, worst
+    return None
+
+
+def _refuse_runaway(nat, sheet, space, poles, spans, runaway, edges):
+    """SheetError saying how far the sheet ran away, where, and the curve nearest that place."""
+    reach, size, worst = runaway
+    i, j = divmod(worst, int_of(space.nv))
+    greville = [sum(k[a + 1:a + d + 1]) / d for k, d, a in ((space.knots_u, space.degree_u, i),
+                                                              (space.knots_v, space.degree_v, j))]
+    where = [float(x) for x in sheet.base.evaluate(greville[0], greville[1])]  # the base under that pole
+    nearest = ""
+    if edges:
+        part = shapes.part()
+        vertex = part.Vertex(shapes.vector(*where))
+        distances = [(e.distToShape(vertex)[0], n) for e, n in zip(edges, sheet.names)]
+        nearest = f" nearest to {min(distances)[1]}"
+    raise SheetError(
+        f"the sheet runs away: its poles reach {reach:.3g} mm beyond its base and curves (which span "
+        f"{size:.3g} mm) near ({where[0]:.4g}, {where[1]:.4g}, {where[2]:.4g}){nearest}, even with {spans} spans "
+        "per direction; a curve that rises steeply right beside a kept boundary asks for this: move it away "
+        "from the boundary, turn FixBoundary off, or give the sheet more spans (MaxSpans)"
+    )
+
+
 def _deviations(nat, surface, targets):
     return [float(nat.max_deviation(surface, c, DEVIATION_SAMPLES)) for c in targets]
 
 
-def _solve(nat, sheet, budget, keep_going):
+def _solve(nat, sheet, budget, keep_going, edges=()):
     """Stage 4: solve, doubling the spans (Uniform) while the curves are not met, or refining
     locally (Local). Returns (space, result, problem, local report or None, deviations or None)."""
     settings = sheet.settings
@@ -197,6 +245,9 @@ def _solve(nat, sheet, budget, keep_going):
             hierarchy = local_refinement.hierarchy_options(nat, space, settings)
             solved = budget.run(nat.solve_hierarchical, problem, hierarchy, budget.options)
             local = solved.report
+            runaway = _runaway(nat, sheet, solved.poles)
+            if runaway:
+                _refuse_runaway(nat, sheet, solved.space, solved.poles, spans * 2 ** local.depth, runaway, edges)
             if local.depth > 0:  # joint solves start from the outcome's problem: the finest level's
                 problem = _problem(nat, sheet, spans * 2 ** local.depth)[1]
             result = SimpleNamespace(poles=solved.poles, report=solved.report.solve)
@@ -211,7 +262,10 @@ def _solve(nat, sheet, budget, keep_going):
             )
         conflict = float(result.report.conflict)
         deviations = None
-        if conflict <= tolerance:
+        # A sheet that runs away is not met whatever its deviations say (measuring them on it can
+        # take minutes): more spans may hold the curves calmly.
+        runaway = _runaway(nat, sheet, result.poles)
+        if conflict <= tolerance and not runaway:
             # The fit is judged per curve by its RMS; a curve can still stray further somewhere.
             deviations = _deviations(nat, build(nat.BSplineSurface, space=space, poles=result.poles), sheet.targets)
             if max(deviations, default=0.0) <= tolerance:
@@ -219,8 +273,10 @@ def _solve(nat, sheet, budget, keep_going):
         if 2 * spans > settings.max_spans:
             break
         spans *= 2
-    if conflict > tolerance:
+    if conflict > tolerance:  # the more telling reason when both hold
         _refuse_conflict(nat, sheet, build(nat.BSplineSurface, space=space, poles=result.poles), conflict, spans)
+    if runaway:
+        _refuse_runaway(nat, sheet, space, result.poles, spans, runaway, edges)
     return space, result, problem, None, deviations
 
 
@@ -413,7 +469,7 @@ def _stages(face, edges, settings, names, projections, constraints, rest, keep_g
     # Pre-images and constraint (u, v) stay valid on every refinement: knot insertion keeps the
     # parametrization.
     options = _options(nat, settings, keep_going)
-    solved = _solve(nat, sheet, _Budget(nat, options, settings.time_seconds()), keep_going)
+    solved = _solve(nat, sheet, _Budget(nat, options, settings.time_seconds()), keep_going, edges)
     return _outcome(nat, sheet, solved, options, started)
 
 
