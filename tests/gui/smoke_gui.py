@@ -293,6 +293,22 @@ def run(result):
     Gui.Selection.clearSelection()
     result["icon"] = sheet.ViewObject.Proxy.getIcon()
 
+    # 2b. an error as the user sees it: the Sheet in error, one line in the report view
+    sheet.Bend = 0.0  # with Stretch 0 (its default) there is no energy left to minimize
+    doc.recompute()
+    Gui.updateGui()
+    result["error_status"] = sheet.Status
+    result["error_valid"] = sheet.isValid()
+    Gui.ActiveDocument.ActiveView.viewIsometric()
+    Gui.SendMsgToActiveView("ViewFit")
+    Gui.Selection.addSelection(doc.Name, sheet.Name)  # its properties, Status in error, shown
+    result["error_window"] = window_shot("window_error.png")
+    Gui.Selection.clearSelection()
+    sheet.Bend = 1.0
+    doc.recompute()
+    Gui.updateGui()
+    result["repaired_status"] = sheet.Status
+
     # 3. the task panel: opens, shows the results, Cancel restores the values
     Gui.ActiveDocument.ActiveView.viewIsometric()
     Gui.SendMsgToActiveView("ViewFit")

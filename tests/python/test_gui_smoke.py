@@ -21,11 +21,13 @@ def test_gui_run_completed(smoke):
     assert smoke["ok"], smoke.get("error")
 
 
-#: The errors the smoke run provokes on purpose, each the message of one object in error: the
-#: Sheet panel's spans changed under an installed rest shape, a Ribbon command on a rail 5 mm above
-#: the face it references, a constraint command whose default asks what the rail forbids, and the
-#: Hinge panel's 150 and 90 degrees against side curves opening at 180.
+#: The errors the smoke run provokes on purpose, each the message of one object in error: a Sheet
+#: whose Bend is set to 0 (no energy left), the Sheet panel's spans changed under an installed
+#: rest shape, a Ribbon command on a rail 5 mm above the face it references, a constraint command
+#: whose default asks what the rail forbids, and the Hinge panel's 150 and 90 degrees against side
+#: curves opening at 180.
 PROVOKED = (
+    "Stretch and Bend are both 0",
     "the installed rest shape does not match the sheet's spline space",
     "ribbon: the curve passes 5.000000 from its reference face",
     "the curves and constraints cannot all be met",
@@ -49,6 +51,15 @@ def test_report_view_shows_only_the_provoked_errors(smoke):
     unexpected = [line for line in failures if not any(p in line for p in PROVOKED)]
     assert not unexpected, unexpected
     assert any(PROVOKED[-1] in line for line in failures), failures
+
+
+def test_an_error_shows_on_the_sheet_and_in_a_window_picture(smoke):
+    """The error case the README shows: the Sheet in error with what is wrong and what to do, a
+    full main-window picture of it, and the sheet back to OK once repaired."""
+    assert smoke["error_valid"] is False
+    assert smoke["error_status"].startswith("Error:") and "give Bend" in smoke["error_status"], smoke["error_status"]
+    assert Path(smoke["error_window"]).is_file()
+    assert smoke["repaired_status"].startswith("OK"), smoke["repaired_status"]
 
 
 def test_workbench_and_command(smoke):
