@@ -52,12 +52,9 @@ HierarchicalSpace refined_space() {
   return h;
 }
 
-}  // namespace
-
-TEST(HierarchicalSpace, ExportEqualsTheSumOfLayers) {
-  const HierarchicalSpace h = refined_space();
-  ASSERT_EQ(h.levels(), 3);
-  std::mt19937 rng(3);
+// Random values: the exported finest surface equals the layers summed one by one, on a grid.
+void expect_export_is_the_sum_of_layers(const HierarchicalSpace& h, unsigned seed) {
+  std::mt19937 rng(seed);
   std::uniform_real_distribution<double> r(-1.0, 1.0);
   const Eigen::MatrixX3d values =
       Eigen::MatrixX3d::NullaryExpr(h.dof_count(), 3, [&] { return r(rng); });
@@ -69,6 +66,14 @@ TEST(HierarchicalSpace, ExportEqualsTheSumOfLayers) {
       const Eigen::Vector3d b = evaluate_surface(h.finest(), finest, u, v, 0).row(0).transpose();
       EXPECT_LT((a - b).norm(), 1e-12) << u << " " << v;
     }
+}
+
+}  // namespace
+
+TEST(HierarchicalSpace, ExportEqualsTheSumOfLayers) {
+  const HierarchicalSpace h = refined_space();
+  ASSERT_EQ(h.levels(), 3);
+  expect_export_is_the_sum_of_layers(h, 3);
 }
 
 TEST(HierarchicalSpace, DegreesOfFreedomAreIndependentAndNested) {
@@ -176,20 +181,11 @@ TEST(HierarchicalSpace, RationalLayersAddUpInHomogeneousCoordinates) {
   const HierarchicalSpace h = refined_half_cylinder();
   ASSERT_EQ(h.levels(), 3);
   ASSERT_TRUE(h.finest().rational());
-  std::mt19937 rng(13);
-  std::uniform_real_distribution<double> r(-1.0, 1.0);
-  const Eigen::MatrixX3d values =
-      Eigen::MatrixX3d::NullaryExpr(h.dof_count(), 3, [&] { return r(rng); });
-  const Eigen::MatrixX3d finest = h.to_finest() * values;
-  for (int i = 0; i <= 40; ++i)
-    for (int j = 0; j <= 30; ++j) {
-      const double u = i / 40.0, v = j / 30.0;
-      // Every layer carries the base's weight function exactly.
-      EXPECT_NEAR(weight_at(h.finest(), u, v), weight_at(h.layer(0), u, v), 1e-14);
-      const Eigen::Vector3d a = h.evaluate(values, u, v);
-      const Eigen::Vector3d b = evaluate_surface(h.finest(), finest, u, v, 0).row(0).transpose();
-      EXPECT_LT((a - b).norm(), 1e-12) << u << " " << v;
-    }
+  for (int i = 0; i <= 40; ++i)  // every layer carries the base's weight function exactly
+    for (int j = 0; j <= 30; ++j)
+      EXPECT_NEAR(weight_at(h.finest(), i / 40.0, j / 30.0),
+                  weight_at(h.layer(0), i / 40.0, j / 30.0), 1e-14);
+  expect_export_is_the_sum_of_layers(h, 13);
 }
 
 TEST(HierarchicalSpace, ARationalBaseStaysItselfWhenRefined) {
