@@ -17,6 +17,8 @@ from dataclasses import dataclass
 from types import SimpleNamespace
 from typing import List, Optional, Sequence
 
+import numpy
+
 from varsurf.solve import constraints as constraint_specs
 from varsurf.solve import boundary, continuity, energy, local_refinement, plane_fit, preimages, seams, shapes
 from varsurf.solve.errors import CANCELLED, SheetError
@@ -187,11 +189,10 @@ def _problem(nat, sheet, spans):
 RUNAWAY_SIZES = 20.0
 
 
-def _runaway(nat, sheet, poles):
-    """How far the poles reach beyond the inputs' box (mm) and that box's diagonal, or None when
-    they stay within RUNAWAY_SIZES of it."""
-    import numpy
-
+def _runaway(sheet, poles):
+    """(how far the farthest pole reaches beyond the box of the base's poles and the curves' poles
+    (mm), that box's diagonal, the pole's index), or None when every pole stays within
+    RUNAWAY_SIZES diagonals of the box."""
     inputs = [numpy.asarray(sheet.base.poles, dtype=float)]
     inputs += [numpy.asarray(c.poles, dtype=float)[:, :3] for c in sheet.targets]
     points = numpy.vstack(inputs)
@@ -206,12 +207,12 @@ def _runaway(nat, sheet, poles):
     return None
 
 
-def _refuse_runaway(nat, sheet, space, poles, spans, runaway, edges):
+def _refuse_runaway(sheet, space, spans, runaway, edges):
     """SheetError saying how far the sheet ran away, where, and the curve nearest that place."""
     reach, size, worst = runaway
     i, j = divmod(worst, int_of(space.nv))
-    greville = [sum(k[a + 1:a + d + 1]) / d for k, d, a in ((space.knots_u, space.degree_u, i),
-                                                              (space.knots_v, space.degree_v, j))]
+    directions = ((space.knots_u, space.degree_u, i), (space.knots_v, space.degree_v, j))
+    greville = [sum(k[a + 1:a + d + 1]) / d for k, d, a in directions]
     where = [float(x) for x in sheet.base.evaluate(greville[0], greville[1])]  # the base under that pole
     nearest = ""
     if edges:
@@ -245,9 +246,9 @@ def _solve(nat, sheet, budget, keep_going, edges=()):
             hierarchy = local_refinement.hierarchy_options(nat, space, settings)
             solved = budget.run(nat.solve_hierarchical, problem, hierarchy, budget.options)
             local = solved.report
-            runaway = _runaway(nat, sheet, solved.poles)
+            runaway = _runaway(sheet, solved.poles)
             if runaway:
-                _refuse_runaway(nat, sheet, solved.space, solved.poles, spans * 2 ** local.depth, runaway, edges)
+                _refuse_runaway(sheet, solved.space, spans * 2 ** local.depth, runaway, edges)
             if local.depth > 0:  # joint solves start from the outcome's problem: the finest level's
                 problem = _problem(nat, sheet, spans * 2 ** local.depth)[1]
             result = SimpleNamespace(poles=solved.poles, report=solved.report.solve)
@@ -264,7 +265,7 @@ def _solve(nat, sheet, budget, keep_going, edges=()):
         deviations = None
         # A sheet that runs away is not met whatever its deviations say (measuring them on it can
         # take minutes): more spans may hold the curves calmly.
-        runaway = _runaway(nat, sheet, result.poles)
+        runaway = _runaway(sheet, result.poles)
         if conflict <= tolerance and not runaway:
             # The fit is judged per curve by its RMS; a curve can still stray further somewhere.
             deviations = _deviations(nat, build(nat.BSplineSurface, space=space, poles=result.poles), sheet.targets)
@@ -276,7 +277,7 @@ def _solve(nat, sheet, budget, keep_going, edges=()):
     if conflict > tolerance:  # the more telling reason when both hold
         _refuse_conflict(nat, sheet, build(nat.BSplineSurface, space=space, poles=result.poles), conflict, spans)
     if runaway:
-        _refuse_runaway(nat, sheet, space, result.poles, spans, runaway, edges)
+        _refuse_runaway(sheet, space, spans, runaway, edges)
     return space, result, problem, None, deviations
 
 
