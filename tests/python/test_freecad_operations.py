@@ -22,9 +22,6 @@ V = FreeCAD.Vector
 
 EXAMPLES = {"pillow": pillow.build, "rounded box": rounded_box.build, "crowned lid": crowned_lid.build,
             "corner blend": corner_blend.build, "smooth box": smooth_box.build}
-#: (example, half-space) whose cut is valid and of the right volume but fails FreeCAD's BOP
-#: check with a fault it prints no name for (the smooth box's 11th half-space; not investigated).
-KNOWN_BOP_FAULTS = {("smooth box", 10)}
 #: Hole fills: their seams are the edges of the sheet sewn into the part, not every edge.
 HOLE_FILLS = {"crowned lid", "corner blend"}
 
@@ -101,29 +98,18 @@ def test_twenty_random_half_spaces_cut_the_right_volume(example):
     name, shape, columns = example
     rng = random.Random(20)
     box = shape.BoundBox
-    known = []
     for k in range(20):
         normal = V(rng.gauss(0, 1), rng.gauss(0, 1), rng.gauss(0, 1)).normalize()
         origin = V(rng.uniform(box.XMin, box.XMax), rng.uniform(box.YMin, box.YMax),
                    rng.uniform(box.ZMin, box.ZMax)) * 0.8 + box.Center * 0.2
         half = _half_space(origin, normal)
         common, cut = shape.common(half), shape.cut(half)
-        if (name, k) in KNOWN_BOP_FAULTS:
-            # The known case still gives the right volumes and a valid shape; only the BOP check
-            # of the result complains. Strict: once it passes, the entry must go.
-            assert common.isValid() and cut.isValid(), (name, k)
-            faulty = not (_valid(common) and _valid(cut))
-            if not faulty:
-                pytest.fail(f"{name} half-space {k} passes check(True) now: remove it from KNOWN_BOP_FAULTS")
-            known.append(k)
-        else:
-            assert _valid(common) and _valid(cut), (name, k)
+        # A plane can miss a rounded solid near its box's corner: that side is then empty (no
+        # face to check; FreeCAD's BOP check calls an empty shape a bad type), its volume zero.
+        assert all(not r.Faces or _valid(r) for r in (common, cut)), (name, k)
         expected = columns.half_space_volume(origin, normal)
         assert common.Volume == pytest.approx(expected, abs=2e-3 * shape.Volume), (name, k)
         assert cut.Volume == pytest.approx(shape.Volume - expected, abs=2e-3 * shape.Volume), (name, k)
-    if known:
-        pytest.xfail(f"{name}: half-spaces {known} cut a shape that is valid and of the right volume but fails "
-                     "check(True) with a fault FreeCAD does not name")
 
 
 def _seam_points(name, shape, count=3):
