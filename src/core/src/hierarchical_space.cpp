@@ -33,19 +33,24 @@ int spans_of(const std::vector<double>& knots, int degree) {
   return static_cast<int>(breakpoints(knots, degree).size()) - 1;
 }
 
+using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+// Values on a coarse tensor grid (flat, pole order i * nv + j) written on the finer grid: tu * G *
+// tv^T, knot insertion along both directions.
+Eigen::VectorXd refine_grid(const Eigen::MatrixXd& tu, const Eigen::MatrixXd& tv,
+                            const Eigen::VectorXd& flat) {
+  const RowMajor out =
+      tu * Eigen::Map<const RowMajor>(flat.data(), tu.cols(), tv.cols()) * tv.transpose();
+  return Eigen::Map<const Eigen::VectorXd>(out.data(), out.size());
+}
+
 // A rational layer's weights written on the finer layer's knots: the weight function w(u, v) is
 // a polynomial spline, so knot insertion carries it over exactly.
 Eigen::VectorXd refined_weights(const SplineSpace& coarse, const SplineSpace& fine) {
-  const Eigen::MatrixXd tu =
-      Eigen::MatrixXd(refinement_matrix(coarse.knots_u, coarse.degree_u, fine.knots_u));
-  const Eigen::MatrixXd tv =
-      Eigen::MatrixXd(refinement_matrix(coarse.knots_v, coarse.degree_v, fine.knots_v));
-  const Eigen::MatrixXd grid =
-      Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
-          coarse.weights.data(), coarse.nu(), coarse.nv());
-  const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> out =
-      tu * grid * tv.transpose();
-  return Eigen::Map<const Eigen::VectorXd>(out.data(), out.size());
+  return refine_grid(
+      Eigen::MatrixXd(refinement_matrix(coarse.knots_u, coarse.degree_u, fine.knots_u)),
+      Eigen::MatrixXd(refinement_matrix(coarse.knots_v, coarse.degree_v, fine.knots_v)),
+      coarse.weights);
 }
 
 }  // namespace
@@ -205,19 +210,12 @@ Eigen::MatrixX3d HierarchicalSpace::base_to_finest(const Eigen::MatrixX3d& poles
                        std::to_string(base.size()));
   const Eigen::MatrixXd tu = Eigen::MatrixXd(level_to_finest_u(0));
   const Eigen::MatrixXd tv = Eigen::MatrixXd(level_to_finest_v(0));
+  // Rational: refined in homogeneous coordinates (w P), where knot insertion is exact.
+  const Eigen::VectorXd w0 = base.rational() ? base.weights : Eigen::VectorXd::Ones(base.size());
+  const Eigen::VectorXd w = fine.rational() ? fine.weights : Eigen::VectorXd::Ones(fine.size());
   Eigen::MatrixX3d out(fine.size(), 3);
-  for (int c = 0; c < 3; ++c) {
-    Eigen::MatrixXd grid(base.nu(), base.nv());
-    for (int i = 0; i < base.nu(); ++i)
-      for (int j = 0; j < base.nv(); ++j)
-        grid(i, j) = layer_weight(0, i, j) * poles(base.index(i, j), c);
-    const Eigen::MatrixXd g = tu * grid * tv.transpose();
-    for (int i = 0; i < fine.nu(); ++i)
-      for (int j = 0; j < fine.nv(); ++j) {
-        const int row = fine.index(i, j);
-        out(row, c) = g(i, j) / (fine.rational() ? fine.weights(row) : 1.0);
-      }
-  }
+  for (int c = 0; c < 3; ++c)
+    out.col(c) = refine_grid(tu, tv, w0.cwiseProduct(poles.col(c))).cwiseQuotient(w);
   return out;
 }
 

@@ -201,9 +201,9 @@ def _runaway(sheet, poles):
     poles = numpy.asarray(poles, dtype=float)
     beyond = numpy.maximum(low - poles, 0.0) + numpy.maximum(poles - high, 0.0)
     reach = numpy.linalg.norm(beyond, axis=1)
-    worst = int(numpy.argmax(reach)) if len(reach) else 0
-    if not (len(reach) and numpy.isfinite(reach).all()) or reach[worst] > RUNAWAY_SIZES * size:
-        return float(reach[worst]) if len(reach) else math.inf, size, worst
+    worst = int(numpy.argmax(reach))
+    if not numpy.isfinite(reach).all() or reach[worst] > RUNAWAY_SIZES * size:
+        return float(reach[worst]), size, worst
     return None
 
 
