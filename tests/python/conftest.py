@@ -60,7 +60,24 @@ def doc():
     name = document.Name
     yield document
     if name in FreeCAD.listDocuments():
+        unadvised = _unadvised_errors(FreeCAD.getDocument(name))  # the test may have reopened it
         FreeCAD.closeDocument(name)
+        assert not unadvised, f"objects in error whose message does not say what to do: {unadvised}"
+
+
+def _unadvised_errors(document):
+    """Every VarSurf object a test leaves in error: its message says what to do (a clause that
+    starts with a remedy verb), whatever the test provoked."""
+    from varsurf.solve import errors
+
+    found = []
+    for obj in document.Objects:
+        if not type(getattr(obj, "Proxy", None)).__module__.startswith("varsurf.") or obj.isValid():
+            continue
+        message = obj.getStatusString()  # VarSurf's own: "<Label>: <what is wrong, what to do>"
+        if message.startswith(f"{obj.Label}: ") and not errors.says_what_to_do(message):
+            found.append(f"{obj.Label}: {message}")
+    return found
 
 
 @pytest.fixture

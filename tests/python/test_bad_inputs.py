@@ -14,6 +14,7 @@ import pytest
 import varsurf
 from varsurf.app import actions
 from varsurf.app import preferences
+from varsurf.solve import errors
 
 import scenes
 
@@ -403,6 +404,17 @@ def case_solid_of_one_sheet(sc):
     return solid, [solid.Label], fix
 
 
+#: A distance given as a bare number: "lies 0.625 beyond the base face" (a parameter, not mm).
+BARE_DISTANCE = re.compile(r"\b\d[\d.e+-]*\s+(?:from|past|beyond|long|apart|off|away|wide|across)\b")
+
+
+def assert_says_what_to_do(message):
+    """A refusal names what is wrong and what to do (a clause starting with a remedy verb), and
+    gives its distances in model units."""
+    assert errors.says_what_to_do(message), f"says what is wrong, not what to do: {message!r}"
+    assert not BARE_DISTANCE.search(message), f"a distance without its unit: {message!r}"
+
+
 CASES = {name[len("case_"):].replace("_", "-"): fn for name, fn in globals().items() if name.startswith("case_")}
 ROW = re.compile(r"^\| *(\d+) *\| *([^|]+?) *\| *([^|]+?) *\| *`([^`]+)` *\|", flags=re.M)
 
@@ -446,6 +458,7 @@ def test_bad_input_is_reported_isolated_and_repairable(doc, native, case, consol
         for word in words:
             assert word in message, f"{word!r} not in {message!r}"
         assert f"{target.Label}" in report, report  # the report view names the object
+        assert_says_what_to_do(target.getStatusString())
     elif words and words[0] == "accepted":
         assert says.startswith("Accepted") or "solves without it" in says, says
         assert check, f"{case}: an accepted row needs a check of what it says"
@@ -454,6 +467,7 @@ def test_bad_input_is_reported_isolated_and_repairable(doc, native, case, consol
         assert "Nothing created" in says or "ValueError" in says, says
         for word in words[1:]:
             assert word in words[0], words
+        assert_says_what_to_do(words[0])
         assert {o.Name for o in doc.Objects} >= names_before
         assert {o.Name for o in doc.Objects} == names_before, "nothing may be created"
     for verify in check:

@@ -190,7 +190,8 @@ def test_bad_inputs_are_reported(doc, native, console_errors):
     open_loop = varsurf.make_solid(sheets[:2], name="OpenLoop")
     doc.recompute()
     status = open_loop.getStatusString()
-    assert not open_loop.isValid() and "does not close" in status, status
+    # said in mm: the arc's ends, (-30, 0, 0) and (30, 0, 0), are what the loop lacks
+    assert not open_loop.isValid() and "do not close a loop: their ends are up to 60 mm apart" in status, status
     unshared = varsurf.make_solid([sheets[0], sheets[1], sheets[2]], name="Unshared")
     doc.recompute()
     # A and B fail on their open loop first; C shares nothing: either is reported, nothing built.

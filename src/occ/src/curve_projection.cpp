@@ -9,6 +9,7 @@
 #include <Eigen/SparseCore>
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <iterator>
 #include <limits>
 #include <map>
@@ -496,9 +497,9 @@ PreImage project_curve(const BSplineSurface& base, const BSplineCurve& target,
   }
   if (target_length > 0.0 && image_length < 1e-3 * target_length) {
     std::ostringstream msg;
-    msg << "the target curve runs along the sheet's normal: its " << target_length
-        << " long path projects onto " << image_length
-        << " of the sheet, so no sheet over this face can contain it (tilt the curve or pick "
+    msg << std::setprecision(3) << "the target curve runs along the sheet's normal: its "
+        << target_length << " mm long path projects onto " << image_length
+        << " mm of the sheet, so no sheet over this face can contain it (tilt the curve or pick "
            "another base face)";
     throw InvalidInput(msg.str());
   }

@@ -12,6 +12,8 @@
 #include <TColgp_Array1OfPnt.hxx>
 #include <TopAbs_Orientation.hxx>
 #include <cmath>
+#include <iomanip>
+#include <sstream>
 #include <string>
 
 #include "varsurf/core/errors.hpp"
@@ -53,6 +55,15 @@ BSplineCurve sample_field(const BSplineCurve& curve, double angle_deg, int sampl
   return from_geom(fit.Curve());
 }
 
+// In mm, as the user measures the scene, with what to do about it.
+std::string off_face(double gap, double t) {
+  std::ostringstream msg;
+  msg << std::setprecision(4) << "ribbon: the curve passes " << gap
+      << " mm from its reference face (at t = " << t
+      << "): draw the curve on that face, or pick the face it lies on";
+  return msg.str();
+}
+
 }  // namespace
 
 BSplineCurve normal_field(const TopoDS_Face& reference, const BSplineCurve& curve, double angle_deg,
@@ -68,13 +79,13 @@ BSplineCurve normal_field(const TopoDS_Face& reference, const BSplineCurve& curv
     return sample_field(
         curve, angle_deg, samples, [&](double t, const Eigen::Vector3d& p, const Eigen::Vector3d&) {
           const gp_Pnt2d uv = analysis.ValueOfUV(gp_Pnt(p.x(), p.y(), p.z()), 1e-9);
-          if (analysis.Gap() > max_distance)
-            throw InvalidInput("ribbon: the curve passes " + std::to_string(analysis.Gap()) +
-                               " from its reference face (at t = " + std::to_string(t) + ")");
+          if (analysis.Gap() > max_distance) throw InvalidInput(off_face(analysis.Gap(), t));
           BRepLProp_SLProps props(adaptor, uv.X(), uv.Y(), 1, 1e-9);
           if (!props.IsNormalDefined())
-            throw InvalidInput("ribbon: the reference face has no normal at t = " +
-                               std::to_string(t));
+            throw InvalidInput(
+                "ribbon: the reference face has no normal at t = " + std::to_string(t) +
+                " (a cone's apex, a collapsed edge): pick a face "
+                "that is smooth along the curve");
           gp_Dir normal = props.Normal();
           if (reversed) normal.Reverse();
           return Eigen::Vector3d(normal.X(), normal.Y(), normal.Z());

@@ -58,7 +58,8 @@ def _location_point(obj):
     subs = [s for s in subs if s]
     shape = Part.getShape(link, subs[0], needSubElement=True) if subs else link.Shape
     if shape.isNull() or not shape.Vertexes:
-        raise constraints.ConstraintError(f"{obj.Label}: Location must be a vertex")
+        raise constraints.ConstraintError(f"{obj.Label}: Location must be a vertex: link a vertex "
+                                          "(VertexN) as its Location")
     p = shape.Vertexes[0].Point
     return (p.x, p.y, p.z)
 
@@ -72,10 +73,12 @@ def _sub_shape(obj, prop, kinds):
     subs = [s for s in subs if s]
     what = " or ".join(k.lower() for k in kinds)
     if not subs:
-        raise constraints.ConstraintError(f"{obj.Label}: {prop} must name one {what} of {target.Label}")
+        raise constraints.ConstraintError(f"{obj.Label}: {prop} must name one {what} of {target.Label}: "
+                                          "select it again")
     shape = Part.getShape(target, subs[0], needSubElement=True)
     if shape.isNull() or shape.ShapeType not in kinds:
-        raise constraints.ConstraintError(f"{obj.Label}: {prop} must be a {what} (got {subs[0]})")
+        raise constraints.ConstraintError(f"{obj.Label}: {prop} must be a {what} (got {subs[0]}): link "
+                                          f"a {what} as its {prop}")
     return shape
 
 
@@ -91,7 +94,8 @@ def _loop_shape(obj):
     else:
         shape = Part.Compound([Part.getShape(target, sub, needSubElement=True) for sub in subs])
     if shape.isNull() or not shape.Edges:
-        raise constraints.ConstraintError(f"{obj.Label}: RegionLoop must be closed edges (got {target.Label})")
+        raise constraints.ConstraintError(f"{obj.Label}: RegionLoop must be closed edges (got {target.Label}): "
+                                          "link the closed edges around the region")
     return shape
 
 

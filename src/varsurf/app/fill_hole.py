@@ -43,7 +43,8 @@ def hole_elements(obj):
     part, subs = base[0], [s for s in base[1] if s]
     shape = getattr(part, "Shape", None)
     if shape is None or shape.isNull():
-        raise errors.SheetError(f"{part.Label} has no shape to fill a hole in")
+        raise errors.SheetError(f"{part.Label} has no shape to fill a hole in: recompute it, or link a solid "
+                                "or shell as Base")
     faces, edges = [], []
     for sub in subs:
         found = _ELEMENT.match(sub)

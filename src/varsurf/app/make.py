@@ -94,7 +94,8 @@ def make_sheet(
     if base is not None:
         base_obj, face_name = references.normalize_base(base)
     elif not curve_links:
-        raise ValueError("a sheet without a base face needs curves")
+        raise ValueError("a sheet without a base face needs curves: give a base face, or the curves it must pass "
+                         "through")
     if doc is None:
         doc = (base_obj if base is not None else curve_links[0][0]).Document
     obj = doc.addObject("Part::FeaturePython", name)
@@ -137,7 +138,7 @@ def make_constraint(
         projection onto the base is the region (instead of the rectangle `region`).
     """
     if kind not in constraints.KINDS:
-        raise ValueError(f"unknown constraint kind {kind!r}: one of {', '.join(constraints.KINDS)}")
+        raise ValueError(f"unknown constraint kind {kind!r}: give one of {', '.join(constraints.KINDS)}")
     doc = sheet.Document
     obj = doc.addObject("App::FeaturePython", name)
     ConstraintFeature(obj)
@@ -174,7 +175,7 @@ def make_solid(sheets, tolerance=None, name: str = "Solid"):
     a shell, a solid when they close. tolerance: sewing tolerance (mm)."""
     sheets = list(sheets)
     if not sheets:
-        raise ValueError("a Solid needs Sheets")
+        raise ValueError("a Solid needs Sheets: give two or more Sheets that share their join curves")
     doc = sheets[0].Document
     obj = doc.addObject("Part::FeaturePython", name)
     SolidFeature(obj)
@@ -192,7 +193,8 @@ def make_fill_hole(part, elements, curves=(), continuity="G1", tolerance=None, n
     that the sheet contains. Its Shape is the whole new part; the part is hidden."""
     elements = [elements] if isinstance(elements, str) else list(elements)
     if not elements:
-        raise ValueError("a FillHole needs the face to replace or the free edges of the hole")
+        raise ValueError("a FillHole needs the face to replace or the free edges of the hole: give \"FaceN\" or "
+                         "the hole's \"EdgeN\" names")
     doc = part.Document
     obj = doc.addObject("Part::FeaturePython", name)
     FillHoleFeature(obj)
@@ -231,10 +233,10 @@ def export_step(objects, path: str) -> str:
     for item in objects:
         shape = item if isinstance(item, Part.Shape) else references.shape_of(item)
         if shape.isNull():
-            raise ValueError("cannot export an empty shape")
+            raise ValueError("cannot export an empty shape: recompute the objects first, or leave out those in error")
         found.append(shape)
     if not found:
-        raise ValueError("nothing to export")
+        raise ValueError("nothing to export: give the objects or shapes to write")
     shape = found[0] if len(found) == 1 else Part.makeCompound(found)
     folder = os.path.dirname(os.path.abspath(path))
     os.makedirs(folder, exist_ok=True)

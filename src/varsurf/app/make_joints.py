@@ -53,7 +53,8 @@ def move_handle(curve, index: int, position) -> None:
     """Move handle ``index`` of a SpaceCurve to ``position`` (recompute to see the sheets follow)."""
     handles = list(curve.Handles)
     if not 0 <= int(index) < len(handles):
-        raise ValueError(f"{curve.Label} has {len(handles)} handles, no handle {index}")
+        raise ValueError(f"{curve.Label} has {len(handles)} handles, no handle {index}: give an index "
+                         f"in 0..{len(handles) - 1}")
     handles[int(index)] = FreeCAD.Vector(position)
     curve.Handles = handles
 
@@ -63,7 +64,7 @@ def make_hinge(solid, sheet_a, sheet_b, curve, angle: float = 180.0, name: str =
     and ``sheet_b`` across ``curve`` = (object, "EdgeN"), an edge both Sheets list."""
     for s in (sheet_a, sheet_b):
         if s not in list(solid.Sheets or []):
-            raise ValueError(f"{s.Label} is not one of {solid.Label}'s Sheets")
+            raise ValueError(f"{s.Label} is not one of {solid.Label}'s Sheets: add it to the Solid first")
     obj_ref, sub = references.edge_ref(curve)
     obj = solid.Document.addObject("App::FeaturePython", name)
     HingeFeature(obj)

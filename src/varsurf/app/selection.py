@@ -179,7 +179,7 @@ def constraint_selection_to_args(kind: str, selection_ex: Sequence):
     and for region kinds optionally closed edges of one object bounding the region.
     """
     if kind not in constraints.KINDS:
-        raise ValueError(f"unknown constraint kind {kind!r}")
+        raise ValueError(f"unknown constraint kind {kind!r}: give one of {', '.join(constraints.KINDS)}")
     hint = selection_hint(kind)
     sheet, picks = _split_selection(selection_ex, hint)
     of = {e: [ref for element, ref in picks if element == e] for e in ("Vertex", "Edge", "Face")}

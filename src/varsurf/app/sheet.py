@@ -284,7 +284,8 @@ def _write_joins(obj, joins):
 def _regions(flat):
     """RefineRegions' numbers in fives: (level, u0, u1, v0, v1)."""
     if len(flat) % 5:
-        raise errors.SheetError(f"RefineRegions needs five numbers a region (level, u0, u1, v0, v1); got {len(flat)}")
+        raise errors.SheetError(f"RefineRegions needs five numbers a region (level, u0, u1, v0, v1); got {len(flat)}: "
+                                "give each region all five")
     return [tuple(flat[k:k + 5]) for k in range(0, len(flat), 5)]
 
 
@@ -380,11 +381,11 @@ class SheetFeature(FeatureProxy):
         if not outcome.refinement_met:
             FreeCAD.Console.PrintWarning(
                 f"VarSurf: {obj.Label}: local refinement reached MaxDepth {obj.MaxDepth} before every "
-                "curve was within the tolerance\n")
+                "curve was within the tolerance: raise MaxDepth, or the Tolerance\n")
         if not outcome.converged:
             FreeCAD.Console.PrintWarning(
                 f"VarSurf: {obj.Label}: the nonlinear solve (repellers, pressure) did not converge "
-                f"in {outcome.iterations} steps; the result is the last step\n"
+                f"in {outcome.iterations} steps; the result is the last step: give the sheet a Stretch, or weaken them\n"
             )
         n = len(outcome.max_deviations)
         obj.Status = (
@@ -400,7 +401,8 @@ class SheetFeature(FeatureProxy):
             obj.Status = obj.Status.replace("OK:", "Warning:", 1) + f"; beyond the tolerance: {', '.join(off)}"
             FreeCAD.Console.PrintWarning(
                 f"VarSurf: {obj.Label}: curves farther than the tolerance {float(value(obj, 'Tolerance')):.3g} mm somewhere: "
-                f"{', '.join(off)} (operators pulling the sheet off its curves, or too few spans: see MaxSpans)\n")
+                f"{', '.join(off)} (operators pull the sheet off its curves, or it has too few spans): raise MaxSpans, "
+                "or weaken the operators\n")
         for corner in outcome.corners:  # reported where it is, not smeared over the sheet
             obj.Status = obj.Status.replace("OK:", "Warning:", 1) + f"; {corner.message()}"
             FreeCAD.Console.PrintWarning(f"VarSurf: {obj.Label}: {corner.message()}\n")

@@ -114,7 +114,7 @@ def _hinge_blame(obj):
     names = [h.Label for h in (obj.Hinges or []) if h.Enabled]
     if not names:
         return ""
-    return (f" (with hinges {', '.join(names)}: the curves meeting a hinged seam at its ends must "
+    return (f" (with hinges {', '.join(names)}: let the curves that meet a hinged seam at its ends "
             "leave it at the hinge's angle)")
 
 

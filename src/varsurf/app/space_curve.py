@@ -53,7 +53,8 @@ def variational_curve(obj):
     handles = space_curve.handles_at(rest, list(obj.HandleParameters), list(obj.Handles))
     for label, value in (("Stretch", obj.Stretch), ("Bend", obj.Bend)):
         if not value >= 0.0 or value == float("inf"):
-            raise errors.SheetError(f"{label} must be finite and >= 0 (got {value})")
+            raise errors.SheetError(f"{label} must be finite and >= 0 (got {value}): set the curve's {label} "
+                                    "to 0 or more")
     return space_curve.VariationalCurve(
         start=space_curve.to_native(nat, rest), handles=handles,
         stretch=float(obj.Stretch), bend=float(obj.Bend), closed=edge.isClosed()), rest

@@ -181,6 +181,16 @@ def _expanded(edges, pieces):
             yield ((key, k) if len(found) > 1 else key), key, piece
 
 
+def _ends_apart(edges) -> float:
+    """How far (mm) an open curve's end is from the nearest other end (its own other end too), at most:
+    what a loop that does not close lacks, in model units."""
+    ends = [v.Point for e in edges if not e.isClosed() for v in e.Vertexes]
+    apart = 0.0
+    for i, p in enumerate(ends):
+        apart = max(apart, min(((p - q).Length for j, q in enumerate(ends) if j != i), default=0.0))
+    return apart
+
+
 def build_solid(sheets: Sequence, tolerance: float) -> AssemblyOutcome:
     """Join sheets along their shared curves into a shell, a solid when it closes.
 
@@ -193,16 +203,18 @@ def build_solid(sheets: Sequence, tolerance: float) -> AssemblyOutcome:
     """
     nat = native()
     if not (tolerance > 0.0 and math.isfinite(tolerance)):
-        raise SheetError(f"the tolerance must be a positive length (got {tolerance})")
+        raise SheetError(f"the tolerance must be a positive length (got {tolerance}): set the Solid's "
+                         "Tolerance above 0 mm")
     if len(sheets) < 1:
-        raise SheetError("a solid needs at least one sheet")
+        raise SheetError("a solid needs at least one sheet: link its Sheets")
     curves, index, gaps, joined, whole = [], {}, {}, [], []
     on_ends = _on_closed_ends(sheets, tolerance)
     for number, entry in enumerate(sheets):
         label, face, edges = entry[0], entry[1], list(entry[2])
         own = list(entry[3]) if len(entry) > 3 else []
         if not edges:
-            raise SheetError(f"{label} shares no curve with the other sheets: nothing bounds it")
+            raise SheetError(f"{label} shares no curve with the other sheets: nothing bounds it; give it "
+                             "a curve of another of the Solid's Sheets, or take it out of the Solid")
         if number in on_ends.sheets:  # a tube between its join curves: its face as it is
             for item, (gap, _which) in zip(edges, on_ends.sheets[number]):
                 gaps[_key(item)] = max(gaps.get(_key(item), 0.0), gap)
@@ -216,8 +228,9 @@ def build_solid(sheets: Sequence, tolerance: float) -> AssemblyOutcome:
         if own and not _closes(nat, surface, edges):
             # the shared curves alone do not close: its own ones on the loop complete it
             edges = edges + _bounding(nat, surface, edges, own)
-        ids, pre_images = [], []
+        ids, pre_images, joined_edges = [], [], []
         for key, join, edge in _expanded(edges, on_ends.pieces):
+            joined_edges.append(edge)
             if key not in index:
                 index[key] = len(curves)
                 curves.append(nat.curve_from_edge_brep(edge.exportBrepToString()))
@@ -227,7 +240,8 @@ def build_solid(sheets: Sequence, tolerance: float) -> AssemblyOutcome:
                 # pass beside the sheet.
                 pre = nat.project_curve(surface, curve, tolerance=tolerance)
             except (nat.InvalidInput, nat.GeometryError) as error:
-                raise SheetError(f"{label} does not reach a join curve: {error}") from error
+                raise SheetError(f"{label} does not reach a join curve: {error}; let the Sheet pass "
+                                 "through every curve it shares with the other Sheets") from error
             if pre.max_distance > tolerance:
                 raise JoinGapError(f"{label} passes {pre.max_distance:.3g} mm from a join curve "
                                    f"(more than the tolerance {tolerance:.3g} mm)")
@@ -237,7 +251,11 @@ def build_solid(sheets: Sequence, tolerance: float) -> AssemblyOutcome:
         try:  # checked here too, so that the message names the sheet
             nat.chain_loop(pre_images, _loop_gap(surface))
         except nat.InvalidInput as error:
-            raise SheetError(f"{label}: its join curves do not close: {error}") from error
+            apart = _ends_apart(joined_edges)
+            where = (f"their ends are up to {apart:.3g} mm apart" if apart > tolerance
+                     else "their ends meet in space but not on the sheet (around a seam?)")
+            raise SheetError(f"{label}: its join curves do not close a loop: {where} ({error}); give the Sheet "
+                             "the curves that close its loop") from error
         joined.append(nat.JoinedSheet(surface=surface, curves=ids, preimages=pre_images))
     try:
         result = nat.join_sheets(curves, joined, tolerance) if joined else None

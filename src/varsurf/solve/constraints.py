@@ -18,6 +18,7 @@ from dataclasses import dataclass, field
 from typing import Dict, List, Optional, Sequence, Tuple
 
 from varsurf.solve import continuity, shapes
+from varsurf.solve.errors import advised
 from varsurf.solve.native import native
 
 #: Kind -> (what it does, unit of its residual).
@@ -56,6 +57,10 @@ SHAPE_KINDS = ("SurfaceAttractor", "CurveAttractor")
 REGION_SAMPLES = 400
 
 
+#: What to do when a curve constraint's curve cannot be placed on the base face.
+CURVE_REMEDY = "move its Curve over the base face, or pick the edge again"
+
+
 class ConstraintError(ValueError):
     """A constraint's own data is unusable; the message starts with its name."""
 
@@ -78,57 +83,62 @@ class ConstraintSpec:
     def validate(self):
         fail = lambda why: ConstraintError(f"{self.name}: {why}")  # noqa: E731
         if self.kind not in KINDS:
-            raise fail(f"unknown kind {self.kind!r} (one of {', '.join(KINDS)})")
+            raise fail(f"unknown kind {self.kind!r}: give one of {', '.join(KINDS)}")
         if not (math.isfinite(self.weight) and self.weight >= 0.0):
-            raise fail(f"weight/strength must be finite and >= 0 (got {self.weight})")
+            raise fail(f"weight/strength must be finite and >= 0 (got {self.weight}): set its Weight to 0 or more")
         if self.kind in POINT_KINDS:
             if self.weight == 0.0:
-                raise fail("a constraint's weight must be > 0")
+                raise fail("a constraint's weight must be > 0: set its Weight above 0, or disable it")
             if self.location is None and self.uv is None:
-                raise fail("needs a location (a vertex) or (u, v)")
+                raise fail("needs a location (a vertex) or (u, v): link a vertex as its Location")
             if self.uv is not None and not all(0.0 <= t <= 1.0 for t in self.uv):
-                raise fail(f"(u, v) must lie in [0, 1] x [0, 1] (got {self.uv})")
+                raise fail(f"(u, v) must lie in [0, 1] x [0, 1] (got {self.uv}): give a place on the sheet")
         if self.kind in REGION_KINDS and self.region_loop is None:
             u0, u1, v0, v1 = self.region
             if not (0.0 <= u0 < u1 <= 1.0 and 0.0 <= v0 < v1 <= 1.0):
-                raise fail(f"the region must satisfy 0 <= u0 < u1 <= 1 and 0 <= v0 < v1 <= 1 (got {self.region})")
+                raise fail(f"the region must satisfy 0 <= u0 < u1 <= 1 and 0 <= v0 < v1 <= 1 (got {self.region}): set "
+                           "its Region inside the sheet, or link a RegionLoop")
         if self.kind == "SurfaceAttractor":
             if not _is_shape(self.reference, "Face"):
-                raise fail("needs a Reference face to pull the region onto")
+                raise fail("needs a Reference face to pull the region onto: link a face (FaceN) as its Reference")
             return
         if self.kind == "G0":
             if not _is_shape(self.edge, "Edge"):
-                raise fail("needs a Curve (an edge) for the sheet to contain")
+                raise fail("needs a Curve (an edge) for the sheet to contain: link an edge (EdgeN) as its Curve")
             if self.weight == 0.0:
-                raise fail("a constraint's weight must be > 0")
+                raise fail("a constraint's weight must be > 0: set its Weight above 0, or disable it")
             return
         if self.kind == "CurveAttractor":
             if not _is_shape(self.edge, "Edge"):
-                raise fail("needs a Curve (an edge) to pull the region onto")
+                raise fail("needs a Curve (an edge) to pull the region onto: link an edge (EdgeN) as its Curve")
             return
         if self.kind in CURVE_KINDS:
             if not _is_shape(self.edge, "Edge"):
-                raise fail("needs a Curve (an edge) along which to set the sheet's normal")
+                raise fail("needs a Curve (an edge) along which to set the sheet's normal: link an edge (EdgeN) as its "
+                           "Curve")
             if self.kind in JOIN_KINDS and not _is_shape(self.reference, "Face"):
-                raise fail("needs a Curve (an edge) and a Reference (the face to join)")
+                raise fail("needs a Curve (an edge) and a Reference (the face to join): link the neighbouring face "
+                           "(FaceN) as its Reference")
             if self.reference is not None and not (_is_shape(self.reference, "Face")
                                                    or _is_shape(self.reference, "Edge")):
-                raise fail("Reference must be a face or a second edge")
+                raise fail("Reference must be a face or a second edge: link one (FaceN or EdgeN) as its Reference")
             if not math.isfinite(self.angle):
-                raise fail(f"Angle must be finite (got {self.angle})")
+                raise fail(f"Angle must be finite (got {self.angle}): set its Angle in degrees")
             if self.weight == 0.0:
-                raise fail("a constraint's weight must be > 0")
+                raise fail("a constraint's weight must be > 0: set its Weight above 0, or disable it")
             return
         needs_vector = self.kind not in ("Point", "PointAttractor", "Repeller", "FrozenRegion")
         vec = self.vector
         if needs_vector and not (all(math.isfinite(c) for c in vec) and math.hypot(*vec) > 0.0):
-            raise fail(f"Vector must be a finite non-zero direction (got {tuple(vec)})")
+            raise fail(f"Vector must be a finite non-zero direction (got {tuple(vec)}): set its Vector")
         if self.kind in ("PointInPlane", "PointOnLine", "PointAttractor", "PlaneAttractor", "LineAttractor",
                          "Repeller"):
             if self.origin is None and self.location is None:
-                raise fail("needs an Origin (or a location)")
+                raise fail("needs an Origin (or a location): set UseOrigin and its Origin, or link a vertex as its "
+                           "Location")
         if self.kind == "Point" and self.location is None and self.origin is None:
-            raise fail("needs a Location vertex to pass through (was it deleted?), or UseOrigin with an Origin")
+            raise fail("needs a Location vertex to pass through (was it deleted?): link a vertex as its Location, "
+                       "or set UseOrigin and its Origin")
 
 
 def _is_shape(shape, kind: str) -> bool:
@@ -203,13 +213,13 @@ def _place_loop(spec: ConstraintSpec, base, nat):
     fail = lambda why: ConstraintError(f"{spec.name}: {why}")  # noqa: E731
     edges = list(spec.region_loop.Edges)
     if not edges:
-        raise fail("the region loop has no edges")
+        raise fail("the region loop has no edges: link the closed edges around the region as its RegionLoop")
     try:
         wires = [Part.Wire(group) for group in Part.sortEdges(edges)]
     except Exception as error:  # OCC refuses edges that do not chain
-        raise fail(f"the region loop's edges do not form a wire ({error})") from error
+        raise fail(f"the region loop's edges do not form a wire ({error}): link edges that join end to end") from error
     if len(wires) != 1 or not wires[0].isClosed():
-        raise fail("the region loop must be one closed chain of edges")
+        raise fail("the region loop must be one closed chain of edges: link edges that close around the region")
     # Per edge, so that corners are kept; each edge is walked in the loop's direction.
     wire = wires[0]
     total = max(wire.Length, 1e-300)
@@ -232,7 +242,8 @@ def _place_loop(spec: ConstraintSpec, base, nat):
     try:  # a loop that crosses itself once projected, or encloses nothing, is refused here
         nat.region_quadrature(base.space, nat.Region(loop=[list(q) for q in loop]))
     except nat.InvalidInput as error:
-        raise fail(f"{error} (projected onto the base)") from error
+        raise fail(f"{error} (projected onto the base): draw the region's loop so that it encloses an area of "
+                   "the face without crossing itself") from error
     return loop
 
 
@@ -243,7 +254,7 @@ def _place_incidence(p: PlacedSpec, base, nat):
         curve = nat.curve_from_edge_brep(s.edge.exportBrepToString())
         pre = nat.project_curve(base, curve)
     except (nat.InvalidInput, nat.GeometryError) as error:
-        raise ConstraintError(f"{s.name}: {error}") from error
+        raise ConstraintError(advised(f"{s.name}: {error}", CURVE_REMEDY)) from error
     p.curve = nat.CurveConstraint(preimage=pre.curve, target=curve, weight=s.weight)
 
 
@@ -264,7 +275,7 @@ def _place_curve(p: PlacedSpec, base, nat):
             normals = nat.normal_field_brep(s.reference.exportBrepToString(), curve,
                                             angle_deg=float(s.angle), max_distance=RIBBON_DISTANCE)
     except (nat.InvalidInput, nat.GeometryError) as error:
-        raise ConstraintError(f"{s.name}: {error}") from error
+        raise ConstraintError(advised(f"{s.name}: {error}", CURVE_REMEDY)) from error
     p.ribbon = nat.RibbonConstraint(preimage=pre.curve, normals=normals, weight=s.weight)
     if s.kind in JOIN_KINDS:
         p.curve = nat.CurveConstraint(preimage=pre.curve, target=curve, weight=1.0)

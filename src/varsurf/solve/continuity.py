@@ -134,7 +134,8 @@ class Corner:
     def message(self) -> str:
         x, y, z = self.point
         return (f"{self.first} and {self.second} meet at ({x:.4g}, {y:.4g}, {z:.4g}), where their faces' "
-                f"tangent planes differ by {self.angle:.3g}°: the sheet cannot be tangent to both there")
+                f"tangent planes differ by {self.angle:.3g}°: the sheet cannot be tangent to both there; join one "
+                "of them G0, or let the faces meet tangentially there")
 
 
 #: Two G2 joins' neighbours whose curvatures (second fundamental forms) differ by more than this

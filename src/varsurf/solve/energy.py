@@ -51,7 +51,8 @@ def energy_weights(nat, stretch, bend, stretch_tensor, bend_tensor, lengths=(1.0
         if tensor is None or len(tensor) == 0:
             continue
         if len(tensor) != 3 or not all(math.isfinite(float(x)) for x in tensor):
-            raise SheetError(f"{label} takes three finite numbers (11, 12, 22), got {list(tensor)}")
+            raise SheetError(f"{label} takes three finite numbers (11, 12, 22), got {list(tensor)}: give "
+                             "three, or none for the isotropic energy")
         m = np.array([[tensor[0], tensor[1]], [tensor[1], tensor[2]]], dtype=float)
         if label == "StretchTensor":
             alpha = m
@@ -63,4 +64,4 @@ def energy_weights(nat, stretch, bend, stretch_tensor, bend_tensor, lengths=(1.0
     try:
         return nat.ThinPlateWeights(alpha=alpha, beta=beta)
     except nat.InvalidInput as error:
-        raise SheetError(f"energy weights: {error}") from error
+        raise SheetError(f"energy weights: {error}; give tensors that are positive semidefinite (or none)") from error

@@ -101,7 +101,8 @@ def fill_hole(shape, replace: Sequence[int] = (), edges: Sequence = (), curves: 
     face across each) or G2 (and has its normal curvature across each: iterated). SheetError
     naming the edge or face at fault."""
     if continuity_kind not in CONTINUITIES:
-        raise SheetError(f"Continuity must be one of {', '.join(CONTINUITIES)} (got {continuity_kind!r})")
+        raise SheetError(f"Continuity must be one of {', '.join(CONTINUITIES)} (got {continuity_kind!r}): "
+                         "pick one of them")
     settings = (settings or SheetSettings()).changed(trim="Loop")
     loop, neighbours, kept = loop_and_neighbours(shape, replace, edges)
     specs = []
@@ -117,13 +118,14 @@ def fill_hole(shape, replace: Sequence[int] = (), edges: Sequence = (), curves: 
     try:
         sewn = nat.sew_faces_brep([f.exportBrepToString() for f in faces], tolerance)
     except (nat.InvalidInput, nat.GeometryError) as error:
-        raise SheetError(f"the filled hole cannot be sewn to the part: {error}") from error
+        raise SheetError(f"the filled hole cannot be sewn to the part: {error}; try a larger Tolerance, or "
+                         "G0 continuity") from error
     # A part that the filled hole closes must come out closed (an open shell with other holes
     # keeps those: it is reported as an open shell).
     closes = _free_edges(_edge_faces(shape)) == (len(loop) if edges else 0)
     if closes and sewn.free_edges:
         raise SheetError(f"the sheet does not close the hole: {sewn.free_edges} edges stay open after sewing "
-                         f"at {tolerance:.3g} mm")
+                         f"at {tolerance:.3g} mm: try a larger Tolerance")
     joins = [continuity.measure(f"hole edge {k + 1}", sheet.shape, e, n if continuity_kind != "G0" else None)
              for k, (e, n) in enumerate(zip(loop, neighbours))]
     return HoleOutcome(shape=shape_from_brep(sewn.brep), sheet=sheet, closed=bool(sewn.closed),

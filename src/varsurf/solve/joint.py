@@ -16,7 +16,7 @@ import re
 from dataclasses import dataclass
 from typing import Dict, List, Sequence
 
-from varsurf.solve.errors import CANCELLED, SheetError
+from varsurf.solve.errors import BOUNDING_REMEDY, CANCELLED, SheetError, advised
 from varsurf.solve.native import build, native
 from varsurf.solve.shapes import part_curve, shape_from_brep, single_face
 from varsurf.solve.space_curve import VariationalCurve
@@ -151,18 +151,21 @@ def solve_joint(sheets: Sequence[JointSheet], variational: Dict[str, Variational
     native_hinges = []
     for h in hinges:
         if not (0.0 < h.angle <= 180.0) or not math.isfinite(h.angle):
-            raise SheetError(f"{h.name}: the angle must be in (0, 180] degrees (got {h.angle})")
+            raise SheetError(f"{h.name}: the angle must be in (0, 180] degrees (got {h.angle}): set the "
+                             "Hinge's Angle (180: smooth)")
         ends = []
         for label in (h.sheet_a, h.sheet_b):
             if label not in labels:
-                raise SheetError(f"{h.name}: {label} is not one of the Solid's sheets")
+                raise SheetError(f"{h.name}: {label} is not one of the Solid's sheets: link two of the "
+                                 "Solid's Sheets as the Hinge's Sheets")
             ends.append(labels.index(label))
         if ends[0] == ends[1]:
-            raise SheetError(f"{h.name}: a hinge needs two different sheets")
+            raise SheetError(f"{h.name}: a hinge needs two different sheets: link the two Sheets that meet at "
+                             "its curve")
         for end in ends:
             if h.key not in sheets[end].keys:
                 raise SheetError(f"{h.name}: {h.key} is not a curve of {labels[end]}: a hinge needs "
-                                 "a curve both sheets share")
+                                 "a curve both sheets share; link one of those as its Curve")
             join = next(j for j in joins if j.sheet == end and j.curve == index[h.key])
             if join.side == 0:
                 raise SheetError(f"{h.name}: {labels[end]}'s curves do not close a loop and the hinge's curve "
@@ -187,7 +190,8 @@ def solve_joint(sheets: Sequence[JointSheet], variational: Dict[str, Variational
     try:
         result = nat.solve_model(model_problem, options)
     except (nat.InvalidInput, nat.ResourceLimit) as error:
-        raise SheetError(_named(str(error), labels, list(index), hinges)) from error
+        raise SheetError(advised(_named(str(error), labels, list(index), hinges),
+                                 "check the Solid's Sheets, Hinges and shared curves")) from error
     except nat.Cancelled as error:
         raise SheetError(CANCELLED) from error
 
@@ -198,8 +202,8 @@ def solve_joint(sheets: Sequence[JointSheet], variational: Dict[str, Variational
         try:  # bounded and oriented like the sheet's base face, as its own result
             brep = trim.face_brep(surface) if trim is not None else nat.face_brep(surface)
         except (nat.InvalidInput, nat.GeometryError) as error:
-            raise SheetError(f"{s.label}: the jointly solved sheet cannot be bounded like its base face: "
-                             f"{error}") from error
+            raise SheetError(advised(f"{s.label}: the jointly solved sheet cannot be bounded like its base "
+                                     f"face: {error}", BOUNDING_REMEDY)) from error
         faces.append(single_face(shape_from_brep(brep)))
     edges = {}
     for key, i in index.items():
@@ -220,7 +224,7 @@ def solve_joint(sheets: Sequence[JointSheet], variational: Dict[str, Variational
         if error > HINGE_FAILURE:  # not a seam a little off, but sheets folded away: build nothing
             raise SheetError(
                 f"{h.name}: the sheets miss the hinge's {h.angle:.4g} degrees by up to {error:.3g} degrees "
-                f"({summary}). The curves meeting the seam at its ends must leave it at the hinge's "
+                f"({summary}): let the curves that meet the seam at its ends leave it at the hinge's "
                 "angle")
     return JointOutcome(faces=faces, curve_edges=edges, join_gaps=list(rep.join_gaps),
                         hinge_angles=angles, summary=summary)

@@ -17,10 +17,11 @@ def hierarchy_options(nat, space, settings):
     options.tolerance = float(tolerance)
     options.automatic = bool(settings.auto_refine)
     if not (isinstance(influence_level, int) and 0 <= influence_level <= max_depth):
-        raise SheetError(f"InfluenceLevel must be an integer in 0..MaxDepth ({max_depth}) (got {influence_level})")
+        raise SheetError(f"InfluenceLevel must be an integer in 0..MaxDepth ({max_depth}) (got {influence_level}): "
+                         "lower it, or raise MaxDepth")
     options.influence_level = influence_level
     if not (isinstance(max_depth, int) and 0 <= max_depth <= 8):
-        raise SheetError(f"MaxDepth must be an integer in 0..8 (got {max_depth})")
+        raise SheetError(f"MaxDepth must be an integer in 0..8 (got {max_depth}): set it in that range")
     options.max_depth = max_depth
     boxes = []
     ua, ub = space.knots_u[0], space.knots_u[-1]
@@ -28,7 +29,8 @@ def hierarchy_options(nat, space, settings):
     for region in settings.refine_regions:
         level, u0, u1, v0, v1 = region
         if not all(math.isfinite(x) for x in (u0, u1, v0, v1)) or not (0 <= u0 < u1 <= 1 and 0 <= v0 < v1 <= 1):
-            raise SheetError(f"a refine region needs 0 <= u0 < u1 <= 1 and 0 <= v0 < v1 <= 1 (got {region})")
+            raise SheetError(f"a refine region needs 0 <= u0 < u1 <= 1 and 0 <= v0 < v1 <= 1 (got {region}): "
+                             "give RefineRegions inside the sheet")
         boxes.append(nat.RefineBox(int(level), ua + (ub - ua) * u0, ua + (ub - ua) * u1,
                                    va + (vb - va) * v0, va + (vb - va) * v1))
     options.manual = boxes

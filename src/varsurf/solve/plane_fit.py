@@ -41,17 +41,18 @@ def plane_face_for_curves(edges: Sequence, spans: int = DEFAULT_MIN_SPANS, margi
     for edge in edges:
         points.extend((p.x, p.y, p.z) for p in edge.discretize(PLANE_FIT_SAMPLES))
     if not points:
-        raise SheetError("a sheet without a base face needs at least one curve")
+        raise SheetError("a sheet without a base face needs at least one curve: link a base face, or curves")
     pts = np.asarray(points, dtype=float)
     if not np.all(np.isfinite(pts)):
-        raise SheetError("the curves have non-finite points")
+        raise SheetError("the curves have non-finite points: redraw them, or remove them from the Curves")
     center = pts.mean(axis=0)
     # Principal axes: the two largest spread directions span the plane, the smallest is its normal.
     _, sing, axes = np.linalg.svd(pts - center, full_matrices=False)
     extent = float(np.ptp(pts, axis=0).max())
     if extent <= 0.0 or sing[1] <= 1e-9 * max(sing[0], 1e-300):
         raise SheetError(
-            "the curves lie on one line: they do not define a surface without a base face"
+            "the curves lie on one line: they do not define a surface without a base face; link a base face, "
+            "or add a curve off that line"
         )
     e1, e2 = _canonical(axes[0]), _canonical(axes[1])
     s, t = (pts - center) @ e1, (pts - center) @ e2

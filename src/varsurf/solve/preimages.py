@@ -5,7 +5,7 @@ curve in the base's parameters), and the refusals that name a curve the sheet ca
 from __future__ import annotations
 
 from varsurf.solve import constraints as constraint_specs
-from varsurf.solve.errors import SheetError
+from varsurf.solve.errors import SheetError, advised
 from varsurf.solve.native import build, native
 
 
@@ -30,14 +30,18 @@ def projection_failure(name, direction, error):
         if "beyond the face" in error:
             return (f"{name} runs beyond the base face seen along {seen} (the Sheet's Projection): {error}; "
                     "move the curve over the face, or project it another way")
-        return f"{name} cannot be projected onto the base face along {seen}: {error}"
+        return (f"{name} cannot be projected onto the base face along {seen}: {error}; set the Sheet's "
+                "Projection to another direction, or to Normal")
     if "crosses the seam of the closed face" in error:  # on the face, but around it
         return f"{name} goes around the closed base face across its seam: {error}"
     if "jumps" in error:
         return (f"{name}'s orthogonal projection onto the base face jumps (the curve lies too far from a curved "
                 f"base for its nearest points to follow it): {error}. Project it along a direction instead: set "
                 "the Sheet's Projection to Direction (or Automatic, for a sketch facing the base)")
-    return (f"{name} runs beyond the base face (it must lie over the face to be projected onto it): {error}")
+    if "along the sheet's normal" in error:  # over the face, but seen edge-on
+        return f"{name} cannot be projected onto the base face: {error}"
+    return (f"{name} runs beyond the base face (it must lie over the face to be projected onto it): {error}; "
+            "shorten the curve to end over the face, or pick a base face that covers it")
 
 
 def _project(nat, base, curve, name, direction, beyond):
@@ -48,7 +52,8 @@ def _project(nat, base, curve, name, direction, beyond):
     except nat.InvalidInput as error:
         raise SheetError(projection_failure(name, direction, str(error))) from error
     except nat.GeometryError as error:
-        raise SheetError(f"{name} cannot be projected onto the base face: {error}") from error
+        raise SheetError(advised(f"{name} cannot be projected onto the base face: {error}",
+                                 "move the curve nearer the face, or pick another base face")) from error
 
 
 def _pieces(nat, base, curve, name, direction, closed, beyond):
@@ -65,7 +70,8 @@ def _pieces(nat, base, curve, name, direction, closed, beyond):
     try:
         pieces = list(nat.split_at_seams(base, curve))
     except (nat.InvalidInput, nat.GeometryError) as error:
-        raise SheetError(f"{name} cannot be cut where it crosses the base face's seam: {error}") from error
+        raise SheetError(advised(f"{name} cannot be cut where it crosses the base face's seam: {error}",
+                                 "split the curve at the seam yourself")) from error
     return [(_project(nat, base, piece, name, direction, beyond), piece) for piece in pieces]
 
 
@@ -115,7 +121,8 @@ def kept_boundary(nat, trim):
     try:
         held = trim.boundary()
     except (nat.InvalidInput, nat.GeometryError) as error:
-        raise SheetError(f"the base face's boundary cannot be kept: {error}") from error
+        raise SheetError(advised(f"the base face's boundary cannot be kept: {error}", "turn FixBoundary off"))\
+            from error
     return [build(nat.CurveConstraint, preimage=b.preimage, target=b.target, weight=1.0) for b in held]
 
 

@@ -115,30 +115,37 @@ class SheetSettings:
     def check(self) -> None:
         for label, value in (("Stretch", self.stretch), ("Bend", self.bend)):
             if not value >= 0.0:  # also rejects NaN
-                raise SheetError(f"{label} must be >= 0 (got {value})")
+                raise SheetError(f"{label} must be a number >= 0 (got {value}): set the Sheet's {label} to 0 or more")
         if self.stretch == 0.0 and self.bend == 0.0 and not self.stretch_tensor and not self.bend_tensor:
             raise SheetError("Stretch and Bend are both 0: the sheet would have no energy to minimize; give Bend (or "
                              "Stretch) a positive weight")
         if not (self.tolerance > 0.0 and math.isfinite(self.tolerance)):
-            raise SheetError(f"Tolerance must be a positive length (got {self.tolerance})")
+            raise SheetError(f"Tolerance must be a positive length (got {self.tolerance}): set a Tolerance above 0 mm, "
+                             "e.g. a thousandth of the model's size")
         if not 1 <= int(self.min_spans) <= int(self.max_spans) <= 512:
             raise SheetError(f"spans must satisfy 1 <= MinSpans <= MaxSpans <= 512 (got {self.min_spans}, "
-                             f"{self.max_spans})")
+                             f"{self.max_spans}): set MinSpans no larger than MaxSpans")
         if not (isinstance(self.degree, int) and 2 <= self.degree <= MAX_DEGREE):
-            raise SheetError(f"Degree must be an integer in 2..{MAX_DEGREE} (got {self.degree})")
+            raise SheetError(f"Degree must be an integer in 2..{MAX_DEGREE} (got {self.degree}): set it to 3 (bicubic) "
+                             "unless you need another")
         if self.solve_mode not in SOLVE_MODES:
-            raise SheetError(f"SolveMode must be one of {', '.join(SOLVE_MODES)} (got {self.solve_mode!r})")
+            raise SheetError(f"SolveMode must be one of {', '.join(SOLVE_MODES)} (got {self.solve_mode!r}): "
+                             "pick one of them")
         if not 0.0 < self.rank_tolerance < 1.0:
-            raise SheetError(f"rank tolerance must be in (0, 1) (got {self.rank_tolerance})")
+            raise SheetError(f"rank tolerance must be in (0, 1) (got {self.rank_tolerance}): give one between 0 and 1, "
+                             f"e.g. the default {DEFAULT_RANK_TOLERANCE:g}")
         if self.trim not in TRIMS:
-            raise SheetError(f"Trim must be one of {', '.join(TRIMS)} (got {self.trim!r})")
+            raise SheetError(f"Trim must be one of {', '.join(TRIMS)} (got {self.trim!r}): pick one of them")
         if self.refinement not in REFINEMENTS:
-            raise SheetError(f"Refinement must be one of {', '.join(REFINEMENTS)} (got {self.refinement!r})")
+            raise SheetError(f"Refinement must be one of {', '.join(REFINEMENTS)} (got {self.refinement!r}): pick one "
+                             "of them")
         if not math.isfinite(self.pressure):
-            raise SheetError(f"Pressure must be finite (got {self.pressure})")
+            raise SheetError(f"Pressure must be finite (got {self.pressure}): set the Sheet's Pressure to a number "
+                             "(0: none)")
         if not (self.time_seconds() > 0.0 and self.memory_bytes() > 0.0):  # NaN too
             raise SheetError(f"the time and memory limits must be positive (got {self.time_seconds()} s, "
-                             f"{self.memory_bytes()} bytes)")
+                             f"{self.memory_bytes()} bytes): set them in VarSurf's preferences (0 MB: "
+                             "automatic)")
 
     def time_seconds(self) -> float:
         return DEFAULT_TIME_LIMIT if self.time_limit is None else float(self.time_limit)

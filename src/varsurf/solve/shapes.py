@@ -34,7 +34,7 @@ def single_face(shape, purpose="the extension's result"):
     """The one face of ``shape``, or SheetError (a ValueError) saying what needed it."""
     faces = getattr(shape, "Faces", None) or []
     if len(faces) != 1:
-        raise SheetError(f"{purpose} needs one face (got {len(faces)})")
+        raise SheetError(f"{purpose} needs one face (got {len(faces)}): give it a single face")
     return faces[0]
 
 

@@ -21,7 +21,7 @@ import numpy
 
 from varsurf.solve import constraints as constraint_specs
 from varsurf.solve import boundary, continuity, energy, local_refinement, plane_fit, preimages, seams, shapes
-from varsurf.solve.errors import CANCELLED, SheetError
+from varsurf.solve.errors import BOUNDING_REMEDY, CANCELLED, SheetError, advised
 from varsurf.solve.native import build, int_of, native
 from varsurf.solve.outcome import SheetOutcome
 from varsurf.solve.settings import DEVIATION_SAMPLES, FIT_TO_TOLERANCE, MAX_DEGREE, SheetSettings
@@ -79,7 +79,7 @@ def _base(nat, face, settings):
         base = nat.surface_from_face_brep(face.exportBrepToString())
         trim = nat.BaseTrim(face.exportBrepToString())  # the face's wires and orientation
     except (nat.InvalidInput, nat.GeometryError) as error:
-        raise SheetError(f"the base face cannot be used: {error}") from error
+        raise SheetError(advised(f"the base face cannot be used: {error}", "pick another face as Base")) from error
     extent = face.BoundBox.DiagonalLength
     if not (math.isfinite(extent) and extent > 0.0) or face.Area < 1e-6 * extent ** 2:
         raise SheetError(f"the base face is degenerate: {face.Area:.3g} mm² over a {extent:.3g} mm extent "
@@ -105,7 +105,8 @@ def _constraints(nat, sheet, constraints):
     except constraint_specs.ConstraintError as error:
         raise SheetError(str(error)) from error
     except (nat.InvalidInput, nat.GeometryError) as error:
-        raise SheetError(f"a constraint's location cannot be placed on the base face: {error}") from error
+        raise SheetError(advised(f"a constraint's location cannot be placed on the base face: {error}",
+                                 "move its Location over the base face")) from error
     preimages.refuse_outside_trim(sheet.trim, [(n, c.preimage) for n, c in zip(sheet.names, sheet.curves)],
                                   placed, sheet.settings.tolerance)
     if sheet.settings.fix_boundary:
@@ -119,7 +120,8 @@ def _rest(nat, rest):
     try:
         return nat.surface_from_face_brep(rest.exportBrepToString())
     except (nat.InvalidInput, nat.GeometryError, AttributeError) as error:
-        raise SheetError(f"the installed rest shape cannot be used: {error}") from error
+        raise SheetError(advised(f"the installed rest shape cannot be used: {error}",
+                                 "install the rest shape again, or set RestShape to Base")) from error
 
 
 def _options(nat, settings, keep_going):
@@ -153,7 +155,7 @@ class _Budget:
         try:
             return solve(*args)
         except (nat.InvalidInput, nat.ResourceLimit) as error:
-            raise SheetError(str(error)) from error
+            raise SheetError(advised(str(error), "check the Sheet's Degree, spans, energy and constraints")) from error
         except nat.Cancelled as error:
             raise SheetError(CANCELLED) from error
 
@@ -308,7 +310,8 @@ def _outcome(nat, sheet, solved, options, started):
     try:
         shape = shapes.single_face(shapes.shape_from_brep(sheet.trim.face_brep(surface)))
     except (nat.InvalidInput, nat.GeometryError) as error:
-        raise SheetError(f"the sheet cannot be bounded like its base face: {error}") from error
+        raise SheetError(advised(f"the sheet cannot be bounded like its base face: {error}",
+                                 BOUNDING_REMEDY)) from error
     if deviations is None:
         deviations = _deviations(nat, surface, sheet.targets)
     placed = sheet.placed

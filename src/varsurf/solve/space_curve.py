@@ -63,14 +63,15 @@ def rest_curve(edge, spans: int = DEFAULT_SPANS):
     closed VariationalCurve. SheetError for an edge that cannot be converted.
     """
     if getattr(edge, "ShapeType", None) != "Edge":
-        raise SheetError("a space curve's base must be an edge")
+        raise SheetError("a space curve's base must be an edge: link an edge (EdgeN) as its Base")
     if not 1 <= int(spans) <= 512:
-        raise SheetError(f"Spans must be in 1..512 (got {spans})")
+        raise SheetError(f"Spans must be in 1..512 (got {spans}): set Spans in that range")
     first, last = edge.FirstParameter, edge.LastParameter
     try:
         curve = edge.Curve.toBSpline(first, last)
     except Exception as error:
-        raise SheetError(f"the base edge cannot be converted to a B-spline: {error}") from error
+        raise SheetError(f"the base edge cannot be converted to a B-spline: {error}; link another edge as "
+                         "its Base") from error
     if curve.isRational():
         points = edge.discretize(Number=max(8 * int(spans), 64))
         curve = shapes.part().BSplineCurve()

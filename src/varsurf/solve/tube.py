@@ -35,7 +35,7 @@ def section_order(labels: Sequence[str], centres: Sequence, extent: float) -> Li
     running so that the first section given comes before the last one given, or SheetError
     naming two sections that are at the same place along it."""
     if len(labels) != len(centres) or len(labels) < 2:
-        raise SheetError(f"a tube needs two or more closed sections (got {len(labels)})")
+        raise SheetError(f"a tube needs two or more closed sections (got {len(labels)}): add sections")
     points = np.array([[float(c[0]), float(c[1]), float(c[2])] for c in centres])
     middle = points.mean(axis=0)
     # The principal direction of the centres: the line the tube runs along.
@@ -175,14 +175,15 @@ def skin(sections, degree: int = 3):
     (degree min(3, sections - 1))."""
     count = len(sections)
     if count < 2:
-        raise SheetError(f"a tube needs two or more sections (got {count})")
+        raise SheetError(f"a tube needs two or more sections (got {count}): add sections")
     u_knots = merged_knots([s[0] for s in sections])
     moved = [on_knots(k, p, u_knots, degree) for k, p, _c in sections]
     rows = np.array([poles for poles, _error in moved])  # sections x nu x 3
     centres = np.array([[float(x) for x in c] for _k, _p, c in sections])
     steps = np.linalg.norm(np.diff(centres, axis=0), axis=1)
     if not np.all(steps > 0.0):
-        raise SheetError("two of the tube's sections have the same centre: they cannot both be passed in order")
+        raise SheetError("two of the tube's sections have the same centre: they cannot both be passed in order; "
+                         "move one along the tube, or leave one out")
     v = np.concatenate([[0.0], np.cumsum(steps)]) / steps.sum()
     q = min(3, count - 1)
     # Averaged interior knots (The NURBS Book, eq. 9.8): the interpolation matrix is regular.
