@@ -231,6 +231,7 @@ def run(result):
     result["workbench"] = Gui.activeWorkbench().name()
     result["command_registered"] = "VarSurf_Sheet" in Gui.listCommands()
     toolbars(result)
+    constraint_icons(result)
     preferences_dialog(result)
 
     import varsurf
@@ -292,6 +293,7 @@ def run(result):
     result["solid_tip_one_sheet"] = [solid_command.getAction()[0].toolTip(), solid_command.getAction()[0].statusTip()]
     Gui.Selection.clearSelection()
     result["icon"] = sheet.ViewObject.Proxy.getIcon()
+    property_names(result, doc, sheet)
 
     # 2b. an error as the user sees it: the Sheet in error, one line in the report view
     sheet.Bend = 0.0  # with Stretch 0 (its default) there is no energy left to minimize
@@ -781,6 +783,98 @@ def every_constraint_command(result, doc, sheet, surface, rail):
     result["constraint_icons"] = {name: Gui.Command.get(name).getInfo().get("pixmap", "")
                                   for name, *_rest in commands.CONSTRAINT_COMMANDS}
     window_shot("toolbars.png")
+
+
+def _icon_pixels(icon, size, mode):
+    """(red, green, blue, alpha) rows of ``icon`` drawn at size x size in QIcon ``mode``."""
+    image = icon.pixmap(size, size, mode).toImage().convertToFormat(QtGui.QImage.Format_ARGB32)
+    return [[QtGui.QColor.fromRgba(image.pixel(x, y)).getRgb() for x in range(image.width())]
+            for y in range(image.height())]
+
+
+def _saturation(pixels):
+    """Mean HSV saturation (0..1) of the pixels that are not transparent."""
+    seen = [p for row in pixels for p in row if p[3] > 64]
+    return sum((max(p[:3]) - min(p[:3])) / max(1, max(p[:3])) for p in seen) / max(1, len(seen))
+
+
+def _difference(a, b):
+    """Mean per-pixel colour difference (0..1, alpha-weighted over white) of two renders."""
+    def on_white(p):
+        a = p[3] / 255.0
+        return [a * c + (1 - a) * 255 for c in p[:3]]
+
+    total = count = 0
+    for row_a, row_b in zip(a, b):
+        for pa, pb in zip(row_a, row_b):
+            total += sum(abs(x - y) for x, y in zip(on_white(pa), on_white(pb))) / 765.0
+            count += 1
+    return total / max(1, count)
+
+
+def constraint_icons(result):
+    """Each constraint kind's icon at the toolbars' icon size: it covers its square (no speck),
+    differs from every other kind's, and greys out when its command is disabled (as FreeCAD's own
+    icons do); a contact sheet of them (normal row above, disabled row below, 4x) is saved."""
+    import varsurf.gui.commands as commands
+
+    window = Gui.getMainWindow()
+    bars = [b for b in window.findChildren(QtGui.QToolBar) if b.windowTitle() == "VarSurf constraints"]
+    size = (bars[0].iconSize() if bars else window.iconSize()).width()
+    icons = {kind: QtGui.QIcon(Gui.Command.get(name).getInfo()["pixmap"])
+             for name, kind, _menu, _tip in commands.CONSTRAINT_COMMANDS}
+    normal = {k: _icon_pixels(i, size, QtGui.QIcon.Normal) for k, i in icons.items()}
+    disabled = {k: _icon_pixels(i, size, QtGui.QIcon.Disabled) for k, i in icons.items()}
+    kinds = list(icons)
+    result["icon_size"] = size
+    result["icon_coverage"] = {k: sum(p[3] > 64 for row in px for p in row) / float(size * size)
+                               for k, px in normal.items()}
+    pairs = [(_difference(normal[a], normal[b]), a, b) for i, a in enumerate(kinds) for b in kinds[i + 1:]]
+    result["icon_closest_pair"] = list(min(pairs))
+    result["icon_saturation"] = {k: [_saturation(normal[k]), _saturation(disabled[k])] for k in kinds}
+    scale = 4
+    sheet = QtGui.QImage(len(kinds) * (size + 4) * scale, 2 * (size + 4) * scale, QtGui.QImage.Format_ARGB32)
+    sheet.fill(QtGui.QColor("white"))
+    painter = QtGui.QPainter(sheet)
+    for column, kind in enumerate(kinds):
+        for row, mode in enumerate((QtGui.QIcon.Normal, QtGui.QIcon.Disabled)):
+            picture = icons[kind].pixmap(size, size, mode).scaled(size * scale, size * scale)
+            painter.drawPixmap(column * (size + 4) * scale, row * (size + 4) * scale, picture)
+    painter.end()
+    sheet.save(os.path.join(OUT, "constraint_icons.png"))
+
+
+def property_names(result, doc, sheet):
+    """With a Sheet selected, the property editor (Combo view, FreeCAD's default width) shows
+    every property name whole: the names the name column cuts short."""
+    Gui.Selection.clearSelection()
+    Gui.Selection.addSelection(doc.Name, sheet.Name)
+    end = time.time() + 1.0  # FreeCAD fills the editor from a timer after the selection
+    while time.time() < end:
+        QtCore.QCoreApplication.processEvents()
+        time.sleep(0.02)
+    window = Gui.getMainWindow()
+    editors = [e for e in window.findChildren(QtGui.QTreeView)
+               if e.metaObject().className() == "Gui::PropertyEditor::PropertyEditor" and e.isVisible()]
+    result["property_editor"] = [[e.viewport().width(), e.columnWidth(0), e.header().length()] for e in editors]
+    cut, names = [], 0
+    for editor in editors:
+        model, metrics = editor.model(), editor.fontMetrics()
+        root = QtCore.QModelIndex()
+        for group in range(model.rowCount(root)):
+            parent = model.index(group, 0, root)
+            editor.expand(parent)
+            for row in range(model.rowCount(parent)):
+                index = model.index(row, 0, parent)
+                text = str(model.data(index))
+                names += 1
+                # the text starts a few pixels into its cell, after the group's indentation
+                if editor.indentation() + metrics.horizontalAdvance(text) + 6 > editor.columnWidth(0):
+                    cut.append(text)
+    result["property_names_shown"] = names
+    result["property_names_cut"] = cut
+    window_shot("window_properties.png")
+    Gui.Selection.clearSelection()
 
 
 def drag_space_curve(result):

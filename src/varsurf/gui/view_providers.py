@@ -11,7 +11,7 @@ from PySide import QtGui
 from PySide.QtCore import QT_TRANSLATE_NOOP
 
 from varsurf.app.persistence import VersionedState
-from varsurf.gui import analysis_overlay, refinement_overlay, resources
+from varsurf.gui import analysis_overlay, property_columns, refinement_overlay, resources
 from varsurf.gui.handles import ConstraintHandles, CurveHandles, is_dragging, refresh_sheet_handles
 
 TYPE = "VarSurf::ViewProviderSheet"
@@ -45,6 +45,7 @@ class _ViewProvider(VersionedState):
     def attach(self, vobj):
         self.ViewObject = vobj
         self.Object = vobj.Object
+        property_columns.install()  # also in documents opened outside the workbench
 
     def getIcon(self):
         return resources.icon(self.ICON)
