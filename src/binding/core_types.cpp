@@ -355,6 +355,9 @@ void bind_core_types(py::module_& m) {
                      "(Cancelled).")
       .def_readwrite("penalty_steps", &SolveOptions::penalty_steps,
                      "Penalty mode: at most this many refinement steps.")
+      .def_readwrite("give_up_early", &SolveOptions::give_up_early,
+                     "Penalty mode: stop the refinement steps once the residual falls too slowly "
+                     "to reach fit_tolerance within penalty_steps (for a caller that refines).")
       .def_readwrite("cluster_limit", &SolveOptions::cluster_limit,
                      "Automatic mode: larger groups of interacting constraints use the penalty "
                      "mode.");

@@ -253,10 +253,12 @@ void bind_occ_bridge(py::module_& m) {
       "surface"_a, "BREP string of a valid face bounded by the sheet's natural boundary.");
 
   m.def("max_deviation", &occ::max_deviation, "surface"_a, "curve"_a, "samples"_a = 200,
-        py::call_guard<py::gil_scoped_release>(),
+        "accept"_a = 0.0, py::call_guard<py::gil_scoped_release>(),
         "Largest distance from the target curve to the whole sheet (boundary included), "
         "independent of the solver: at least `samples` evenly spaced points, more in every knot "
-        "span and where the curve turns, the largest peaks refined between them.");
+        "span and where the curve turns, the largest peaks refined between them. accept > 0: "
+        "samples Newton finds within `accept` of the sheet skip the global search unless they "
+        "could be the largest (the same figure, faster).");
 
   m.def(
       "write_step",

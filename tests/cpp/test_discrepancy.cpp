@@ -229,3 +229,31 @@ TEST(PenaltyMode, SemiDefiniteSystemIsRegularized) {
 }
 
 }  // namespace
+
+// give_up_early stops the refinement steps of a sheet too coarse for its tolerance (a fast wave
+// on 2 spans) long before penalty_steps, still reporting the conflict, and leaves a sheet that
+// meets the tolerance exactly as it was.
+TEST(PenaltyMode, GivesUpEarlyOnlyWhereTheToleranceIsOutOfReach) {
+  for (int spans : {2, 16}) {
+    SheetProblem pb = rest_problem(3, spans, /*fix_boundary=*/false);
+    pb.curves.push_back(curve_on(pb, {0.1, 0.4}, {0.9, 0.6}, 0.03, spans == 2 ? 0.01 : 0.0));
+    pb.rest_poles.resize(0, 3);
+    SolveOptions opt;
+    opt.mode = SolveMode::penalty;
+    opt.fit_tolerance = 1e-4;
+    const SolveResult full = solve_sheet(pb, opt);
+    opt.give_up_early = true;
+    const SolveResult early = solve_sheet(pb, opt);
+    SCOPED_TRACE(spans);
+    if (spans == 2) {
+      EXPECT_EQ(full.report.inner_iterations, opt.penalty_steps);
+      EXPECT_GT(full.report.conflict, opt.fit_tolerance);
+      EXPECT_LT(early.report.inner_iterations, opt.penalty_steps / 4);
+      EXPECT_GT(early.report.conflict, opt.fit_tolerance);
+    } else {
+      EXPECT_EQ(full.report.conflict, 0.0);
+      EXPECT_EQ(early.report.inner_iterations, full.report.inner_iterations);
+      EXPECT_EQ((early.poles - full.poles).cwiseAbs().maxCoeff(), 0.0);
+    }
+  }
+}

@@ -11,6 +11,7 @@
 #include <Eigen/SparseLU>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <string>
 
@@ -23,6 +24,9 @@ namespace varsurf {
 namespace {
 
 using Sparse = Eigen::SparseMatrix<double>;
+
+// Penalty steps before SolveOptions::give_up_early judges the rate: the first ones fall fast.
+constexpr int kWarmUpSteps = 20;
 
 }  // namespace
 
@@ -587,7 +591,7 @@ Eigen::MatrixXd ConstrainedSolve::Impl::solve_penalty(const Eigen::MatrixXd& g,
         far[b] = std::max(far[b], std::sqrt(r2 / sample_weight[static_cast<size_t>(i)]));
     }
     met = true;
-    bool stalled = true;
+    bool stalled = true, hopeless = false;
     worst = 0.0;
     for (size_t b = 0; b < blocks; ++b) {
       const double rms = block_weight[b] > 0.0 ? std::sqrt(sq[b] / block_weight[b]) : 0.0;
@@ -598,9 +602,17 @@ Eigen::MatrixXd ConstrainedSolve::Impl::solve_penalty(const Eigen::MatrixXd& g,
       // Less than 0.1 % progress a step: what is left converges too slowly to wait for (the
       // space cannot hold it, or only in directions the refinement barely reaches).
       if (rms < previous[b] * (1.0 - 1e-3) && rms > 1e-13 * scale) stalled = false;
+      if (opt.give_up_early && !exact && rms > opt.fit_tolerance && it >= kWarmUpSteps &&
+          previous[b] < 1e299) {
+        // At the last step's rate (the iteration converges linearly), the steps still needed.
+        const double rate = rms / previous[b];
+        const double needed = rate < 1.0 ? std::log(opt.fit_tolerance / rms) / std::log(rate)
+                                         : std::numeric_limits<double>::infinity();
+        if (needed > 2.0 * (max_steps - it)) hopeless = true;
+      }
       previous[b] = rms;
     }
-    if (met || (stalled && move <= 1e-12 * scale)) break;
+    if (met || hopeless || (stalled && move <= 1e-12 * scale)) break;
     dk += res;
   }
   it = std::min(it, max_steps);

@@ -426,6 +426,12 @@ double SurfaceInversion::patch_coordinate_v(double v) const {
   return grid_coordinate(parts_->breaks_v, v);
 }
 
+SurfacePoint SurfaceInversion::local(const gp_Pnt& point, const SurfacePoint& start,
+                                     bool& settled) {
+  settled = false;
+  return parts_->descend(point.XYZ(), start.u, start.v, settled);
+}
+
 SurfacePoint SurfaceInversion::closest(const gp_Pnt& point, const SurfacePoint* start) {
   Parts& parts = *parts_;
   const gp_XYZ p = point.XYZ();

@@ -135,6 +135,11 @@ struct SolveOptions {
   // Penalty mode: at most this many refinement steps (beyond, the space is too coarse for the
   // constraints and a refining caller adds detail).
   int penalty_steps = 200;
+  // Penalty mode: stop the refinement steps once the constraints' residual falls too slowly to
+  // reach fit_tolerance within penalty_steps (reported as the conflict): for a caller that adds
+  // detail to a sheet that stays short of the tolerance. Measured: a 19 x 19 sheet ran all 200
+  // steps (206 ms) to stop 17 % short; its 35 x 35 successor met the tolerance in 29.
+  bool give_up_early = false;
   // Called between the steps of iterative solves (penalty refinement, CG, nonlinear and hinge
   // iterations); returning false stops the solve with Cancelled. Empty: never asked.
   std::function<bool()> keep_going;

@@ -36,6 +36,10 @@ class SurfaceInversion {
   // answer along a curve): it only speeds the search up, it does not decide it.
   SurfacePoint closest(const gp_Pnt& point, const SurfacePoint* start = nullptr);
 
+  // A nearest point by Newton from `start` alone (a local minimum of the distance): its distance
+  // bounds the global one from above. `settled` says whether Newton converged.
+  SurfacePoint local(const gp_Pnt& point, const SurfacePoint& start, bool& settled);
+
   // Where (u, v) lies on the patch grid: patch index plus the fraction across it (0 .. patches).
   double patch_coordinate_u(double u) const;
   double patch_coordinate_v(double v) const;
