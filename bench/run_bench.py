@@ -187,16 +187,48 @@ def _fairness(face, n=60):
     return total
 
 
+class _StageClock:
+    """Wall time spent in the native stages of a sheet's recompute: each wrapped function of
+    varsurf._native adds its time to its stage while the clock is installed."""
+
+    STAGES = {"project_curve": "projection", "solve_sheet": "solve", "max_deviation": "measurement"}
+
+    def __init__(self, nat):
+        self.nat, self.seconds, self.saved = nat, {}, {}
+
+    def __enter__(self):
+        for name, stage in self.STAGES.items():
+            original = getattr(self.nat, name)
+            self.saved[name] = original
+
+            def timed(*args, _original=original, _stage=stage, **kwargs):
+                began = time.perf_counter()
+                try:
+                    return _original(*args, **kwargs)
+                finally:
+                    self.seconds[_stage] = self.seconds.get(_stage, 0.0) + time.perf_counter() - began
+            setattr(self.nat, name, timed)
+        return self
+
+    def __exit__(self, *_exc):
+        for name, original in self.saved.items():
+            setattr(self.nat, name, original)
+
+
 def filling_comparison():
     FreeCAD, Part = _freecad()
     V = FreeCAD.Vector
     from varsurf.solve.settings import SheetSettings
     from varsurf.solve.sheet import solve_sheet_on_face
 
+    import varsurf
+    from varsurf.solve.native import native
+
     print("\n## 2. VarSurf against FreeCAD's Surface Filling (GeomPlate), same curves, same run\n")
     print("| case | VarSurf ms | Filling ms | time ratio | VarSurf max dev mm | Filling max dev mm | dev ratio "
           "| VarSurf degree / poles | Filling degree / poles | fairness VarSurf / Filling |")
     print("|---|---|---|---|---|---|---|---|---|---|")
+    features = []  # (case, VarSurf feature recompute s, Filling recompute s, stages)
     # (name, boundary wave amplitude, interior curves, VarSurf tolerance in mm)
     cases = [("flat boundary, 1 interior", 0.0, 1, 0.01), ("wavy boundary, 1 interior", 5.0, 1, 0.01),
              ("wavy boundary, 3 interior", 5.0, 3, 0.01), ("wavy boundary, 6 interior", 5.0, 6, 0.01),
@@ -226,6 +258,17 @@ def filling_comparison():
         if not filling.isValid() or filling.Shape.isNull() or not filling.Shape.Faces:
             print(f"| {name} | {ms(ours_s)} | failed: {filling.getStatusString()} | | | | | | | |")
             continue
+        # The whole feature, as a user recomputes it: a Sheet over the base through the curves.
+        base_obj = doc.addObject("Part::Feature", "Base")
+        base_obj.Shape = base
+        doc.recompute()
+        sheet = varsurf.make_sheet((base_obj, "Face1"), [(o, "Edge1") for o in objs], fix_boundary=False,
+                                   tolerance=tolerance, name="Sheet")
+        with _StageClock(native()) as clock:
+            t = time.perf_counter()
+            doc.recompute()
+            feature_s = time.perf_counter() - t
+        features.append((name, feature_s, fill_s, dict(clock.seconds), sheet.isValid()))
         ff = filling.Shape.Faces[0]
         of = ours.shape
         dev_o, dev_f = _max_distance(of, edges), _max_distance(ff, edges)
@@ -235,9 +278,19 @@ def filling_comparison():
               f"{dev_f / max(dev_o, 1e-300):.0f}x | {so.UDegree}x{so.VDegree} / {so.NbUPoles}x{so.NbVPoles} | "
               f"{getattr(sf, 'UDegree', '?')}x{getattr(sf, 'VDegree', '?')} / "
               f"{getattr(sf, 'NbUPoles', '?')}x{getattr(sf, 'NbVPoles', '?')} | {fair_o:.3g} / {fair_f:.3g} |")
-        for o in [filling] + objs:
+        for o in [sheet, base_obj, filling] + objs:
             doc.removeObject(o.Name)
     FreeCAD.closeDocument(doc.Name)
+    print("\nThe same cases as document recomputes (a Sheet feature against the Filling feature), and where the "
+          "Sheet's time goes (native stages; the rest is Python, face building and FreeCAD):\n")
+    print("| case | Sheet recompute ms | Filling recompute ms | time ratio | projection ms | solve ms "
+          "| measurement ms | rest ms |")
+    print("|---|---|---|---|---|---|---|---|")
+    for name, feature_s, fill_s, stages, valid in features:
+        staged = sum(stages.values())
+        cells = " | ".join(ms(stages.get(s, 0.0)) for s in ("projection", "solve", "measurement"))
+        print(f"| {name}{'' if valid else ' (in error)'} | {ms(feature_s)} | {ms(fill_s)} | "
+              f"{fill_s / feature_s:.1f}x | {cells} | {ms(feature_s - staged)} |")
 
 
 def drag_scene():
