@@ -133,26 +133,30 @@ TEST(MaxDeviation, IsZeroForTheFacesOwnEdgesAndIsolines) {
   }
 }
 
+// A wild face of `degree` (poles scattered at random, rational, non-uniform): it folds over itself.
+TopoDS_Face folded_face(std::mt19937& rng, int degree) {
+  std::uniform_real_distribution<double> spread(-50.0, 50.0), weight(0.2, 5.0);
+  const int nu = degree + 4, nv = degree + 3;
+  TColgp_Array2OfPnt poles(1, nu, 1, nv);
+  TColStd_Array2OfReal weights(1, nu, 1, nv);
+  for (int i = 1; i <= nu; ++i)
+    for (int j = 1; j <= nv; ++j) {
+      poles(i, j) = gp_Pnt(spread(rng), spread(rng), spread(rng));
+      weights(i, j) = weight(rng);
+    }
+  TColStd_Array1OfReal ku(1, 2), kv(1, 2);
+  TColStd_Array1OfInteger mu(1, 2), mv(1, 2);
+  random_knots(rng, nu, degree, 1.0, ku, mu);
+  random_knots(rng, nv, degree, 1.0, kv, mv);
+  return face_of(new Geom_BSplineSurface(poles, weights, ku, kv, mu, mv, degree, degree));
+}
+
 // Wild faces (poles scattered at random, so the surface folds over itself): a face's own edges
 // still measure zero (one Newton start per patch found 2 mm on such a face).
 TEST(MaxDeviation, IsZeroForTheOwnEdgesOfFoldedFaces) {
   std::mt19937 rng(5);
-  std::uniform_real_distribution<double> spread(-50.0, 50.0), weight(0.2, 5.0);
   for (int trial = 0; trial < 36; ++trial) {
-    const int degree = 2 + trial % 6, nu = degree + 4, nv = degree + 3;
-    TColgp_Array2OfPnt poles(1, nu, 1, nv);
-    TColStd_Array2OfReal weights(1, nu, 1, nv);
-    for (int i = 1; i <= nu; ++i)
-      for (int j = 1; j <= nv; ++j) {
-        poles(i, j) = gp_Pnt(spread(rng), spread(rng), spread(rng));
-        weights(i, j) = weight(rng);
-      }
-    TColStd_Array1OfReal ku(1, 2), kv(1, 2);
-    TColStd_Array1OfInteger mu(1, 2), mv(1, 2);
-    random_knots(rng, nu, degree, 1.0, ku, mu);
-    random_knots(rng, nv, degree, 1.0, kv, mv);
-    const TopoDS_Face face =
-        face_of(new Geom_BSplineSurface(poles, weights, ku, kv, mu, mv, degree, degree));
+    const TopoDS_Face face = folded_face(rng, 2 + trial % 6);
     const BSplineSurface sheet = occ::surface_from_face(face);
     for (TopExp_Explorer ex(face, TopAbs_EDGE); ex.More(); ex.Next()) {
       const BSplineCurve edge = occ::curve_from_edge(TopoDS::Edge(ex.Current()));
@@ -216,22 +220,9 @@ TEST(MaxDeviation, AgreesWithOcctsDistanceOnRationalNonUniformFaces) {
 // never understate, since every answer is a point of the sheet.
 TEST(MaxDeviation, AcceptingNewtonsAnswersGivesTheSameFigure) {
   std::mt19937 rng(23);
-  std::uniform_real_distribution<double> spread(-50.0, 50.0), weight(0.2, 5.0), offset(-4.0, 4.0);
+  std::uniform_real_distribution<double> offset(-4.0, 4.0);
   for (int trial = 0; trial < 12; ++trial) {
-    const int degree = 2 + trial % 6, nu = degree + 4, nv = degree + 3;
-    TColgp_Array2OfPnt poles(1, nu, 1, nv);
-    TColStd_Array2OfReal weights(1, nu, 1, nv);
-    for (int i = 1; i <= nu; ++i)
-      for (int j = 1; j <= nv; ++j) {
-        poles(i, j) = gp_Pnt(spread(rng), spread(rng), spread(rng));
-        weights(i, j) = weight(rng);
-      }
-    TColStd_Array1OfReal ku(1, 2), kv(1, 2);
-    TColStd_Array1OfInteger mu(1, 2), mv(1, 2);
-    random_knots(rng, nu, degree, 1.0, ku, mu);
-    random_knots(rng, nv, degree, 1.0, kv, mv);
-    const TopoDS_Face face =
-        face_of(new Geom_BSplineSurface(poles, weights, ku, kv, mu, mv, degree, degree));
+    const TopoDS_Face face = folded_face(rng, 2 + trial % 6);
     const BSplineSurface sheet = occ::surface_from_face(face);
     for (TopExp_Explorer ex(face, TopAbs_EDGE); ex.More(); ex.Next()) {
       const BSplineCurve edge = occ::curve_from_edge(TopoDS::Edge(ex.Current()));
