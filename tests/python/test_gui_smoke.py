@@ -362,6 +362,16 @@ def test_the_sheet_panel_shows_its_results_without_scrolling(smoke):
     assert smoke["task_panel_results_unseen"] == [], smoke["task_panel_results_unseen"]
 
 
+def test_the_deviation_table_shows_every_value_whole(smoke):
+    """Every deviation in the Sheet panel's table is readable whole, unit included, at FreeCAD's
+    default task view width; a name too long for its column gives way and is whole in its tooltip.
+    The Solid's seams and the FillHole's joins (four columns) likewise."""
+    assert smoke["deviation_cells_cut"] == [], smoke["deviation_cells_cut"]
+    assert smoke["solid_cells_cut"] == [], smoke["solid_cells_cut"]
+    assert smoke["fill_hole_cells_cut"] == [], smoke["fill_hole_cells_cut"]
+    assert smoke["fill_hole_g2_cells_cut"] == [], smoke["fill_hole_g2_cells_cut"]
+
+
 def test_the_preferences_page_has_its_icon(smoke):
     assert "VarSurf" in smoke["preference_groups"], smoke["preference_groups"]
     log = (OUT / "freecad.log").read_text()

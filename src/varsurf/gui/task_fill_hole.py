@@ -6,8 +6,8 @@ from __future__ import annotations
 
 from PySide import QtGui
 
+from varsurf.gui import table_fit
 from varsurf.gui.task_base import PropertyTaskPanel
-from varsurf.gui.task_solid import _fill
 
 
 class TaskPanelFillHole(PropertyTaskPanel):
@@ -46,6 +46,6 @@ class TaskPanelFillHole(PropertyTaskPanel):
         angles, jumps = list(obj.JoinAngles), list(obj.JoinCurvatureJumps)
         rows = []
         for k, (name, gap) in enumerate(zip(obj.JoinNames, obj.JoinGaps)):
-            rows.append((name, f"{gap:.3g}", f"{angles[k]:.3g}" if k < len(angles) else "—",
-                         f"{jumps[k]:.3g}" if k < len(jumps) else "—"))
-        _fill(self.joins, rows)
+            rows.append((name, f"{gap:.3g}", f"{angles[k]:.3g}" if k < len(angles) else table_fit.EMPTY,
+                         f"{jumps[k]:.3g}" if k < len(jumps) else table_fit.EMPTY))
+        table_fit.fill(self.joins, rows)

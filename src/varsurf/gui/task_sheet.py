@@ -7,6 +7,7 @@ import FreeCAD as App
 from PySide import QtCore, QtGui
 
 from varsurf.app import make
+from varsurf.gui import table_fit
 from varsurf.gui.task_base import PropertyTaskPanel
 
 TRANSACTION_EDIT = "Edit VarSurf sheet"
@@ -55,11 +56,9 @@ class TaskPanelSheet(PropertyTaskPanel):
         self.rank_label = self.child(QtGui.QLabel, "rankValue")
         self.status_label = self.child(QtGui.QLabel, "statusValue")
 
-        header = self.table.horizontalHeader()
-        header.setSectionResizeMode(0, QtGui.QHeaderView.Stretch)
-        header.setSectionResizeMode(1, QtGui.QHeaderView.ResizeToContents)
         self.table.setSizeAdjustPolicy(QtGui.QAbstractScrollArea.AdjustIgnored)
         self.table.setMinimumWidth(0)
+        table_fit.keep_values_whole(self.table)
 
         validator = QtGui.QDoubleValidator(0.0, 1.0e6, 20, self.tolerance)
         validator.setNotation(QtGui.QDoubleValidator.ScientificNotation)
@@ -113,17 +112,17 @@ class TaskPanelSheet(PropertyTaskPanel):
                  zip(*(getattr(obj, p, []) for p in ("JoinNames", "JoinGaps", "JoinAngles", "JoinCurvatureJumps")))]
         self.table.setRowCount(len(rows))
         for row, (name, text) in enumerate(rows):
-            self.table.setItem(row, 0, QtGui.QTableWidgetItem(name))
+            self.table.setItem(row, 0, table_fit.name_item(name))
             item = QtGui.QTableWidgetItem(text)
             item.setTextAlignment(QtCore.Qt.AlignRight | QtCore.Qt.AlignVCenter)
             self.table.setItem(row, 1, item)
         # As tall as its rows (up to eight; more scroll), so the settings below stay close.
-        # (the horizontal scroll bar counted: the default combo view is narrower than the names)
         rows_shown = self.table.verticalHeader()
         body = min(rows_shown.length(), 8 * rows_shown.defaultSectionSize()) if rows else \
             rows_shown.defaultSectionSize()
         self.table.setFixedHeight(self.table.horizontalHeader().sizeHint().height() + 2 * self.table.frameWidth()
-                                  + body + self.table.horizontalScrollBar().sizeHint().height())
+                                  + body)
+        table_fit.fit_columns(self.table)
         text = f"{obj.PoleCountU} × {obj.PoleCountV}, degree {obj.DegreeU} × {obj.DegreeV}"
         if str(getattr(obj, "Refinement", "Uniform")) == "Local":
             text += f"; local: {obj.RefinementDepth} levels, {obj.DegreesOfFreedom} poles solved"

@@ -4,20 +4,10 @@ gap measured at each, its hinges with the angles reached, and its status."""
 
 from __future__ import annotations
 
-from PySide import QtCore, QtGui
+from PySide import QtGui
 
+from varsurf.gui import table_fit
 from varsurf.gui.task_base import PropertyTaskPanel
-
-
-def _fill(table, rows):
-    table.setRowCount(len(rows))
-    for r, row in enumerate(rows):
-        for c, text in enumerate(row):
-            item = QtGui.QTableWidgetItem(text)
-            if c > 0:
-                item.setTextAlignment(QtCore.Qt.AlignRight | QtCore.Qt.AlignVCenter)
-            table.setItem(r, c, item)
-    table.horizontalHeader().setSectionResizeMode(0, QtGui.QHeaderView.Stretch)
 
 
 class TaskPanelSolid(PropertyTaskPanel):
@@ -54,7 +44,7 @@ class TaskPanelSolid(PropertyTaskPanel):
             found = doc.getObject(name)
             return f"{found.Label}:{sub}" if found is not None and sub else key
 
-        _fill(self.seams, [(label(k), f"{g:.3g}") for k, g in zip(obj.SeamCurves, obj.SeamGaps)])
+        table_fit.fill(self.seams, [(label(k), f"{g:.3g}") for k, g in zip(obj.SeamCurves, obj.SeamGaps)])
         enabled = [h for h in obj.Hinges or [] if h.Enabled]
         rows = []
         for k, h in enumerate(enabled):
@@ -62,4 +52,4 @@ class TaskPanelSolid(PropertyTaskPanel):
             reached = (f"{obj.HingeAngles[2 * k]:.3f}° … {obj.HingeAngles[2 * k + 1]:.3f}°"
                        if len(obj.HingeAngles) >= 2 * k + 2 else "—")
             rows.append((h.Label, f"{angle:g}°", reached))
-        _fill(self.hinges, rows)
+        table_fit.fill(self.hinges, rows)
