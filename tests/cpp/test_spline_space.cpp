@@ -132,3 +132,34 @@ TEST(SplineSpace, RefusesHugePoles) {
   EXPECT_THROW((BSplineSurface{space, poles}.validate()), InvalidInput);
   EXPECT_THROW(SplineSpace::uniform(3, 3, 2147483647, 2), InvalidInput);
 }
+
+// The allocation-free tensor contraction agrees with the basis functions summed one by one, for
+// odd and even degrees on non-uniform knots, every derivative row, and a degree beyond the stack
+// buffers (its work arrays on the heap).
+TEST(SplineSpace, EvaluationEqualsTheSumOverTheBasis) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> coordinate(-50.0, 50.0);
+  for (auto [pu, pv] : {std::pair{3, 3}, std::pair{2, 5}, std::pair{1, 4}, std::pair{17, 2}}) {
+    BSplineSurface s;
+    s.space.degree_u = pu;
+    s.space.degree_v = pv;
+    s.space.knots_u = uniform_clamped_knots(pu, 4, -2.0, 3.0);
+    s.space.knots_v = uniform_clamped_knots(pv, 3, 0.0, 0.7);
+    s.space.knots_u[static_cast<size_t>(pu + 1)] -= 0.4;  // non-uniform
+    s.poles.resize(s.space.size(), 3);
+    for (int k = 0; k < s.poles.size(); ++k) s.poles.data()[k] = coordinate(rng);
+    std::uniform_real_distribution<double> u(-2.0, 3.0), v(0.0, 0.7);
+    for (int trial = 0; trial < 50; ++trial) {
+      const double a = trial == 0 ? 3.0 : u(rng), b = trial == 0 ? 0.0 : v(rng);
+      const Eigen::MatrixXd fast = evaluate_surface(s.space, s.poles, a, b, 2);
+      const BasisSample basis = s.space.basis(a, b, 2);
+      Eigen::MatrixXd sum = Eigen::MatrixXd::Zero(6, 3);
+      for (size_t k = 0; k < basis.index.size(); ++k)
+        sum += basis.values.col(static_cast<Eigen::Index>(k)) * s.poles.row(basis.index[k]);
+      const double scale = 1.0 + sum.cwiseAbs().maxCoeff();
+      EXPECT_LT((fast - sum).cwiseAbs().maxCoeff(), 1e-12 * scale) << pu << " " << pv;
+      EXPECT_LT((evaluate_surface(s.space, s.poles, a, b, 0).row(0) - sum.row(0)).norm(),
+                1e-12 * scale);
+    }
+  }
+}

@@ -25,9 +25,23 @@ BasisSample SplineSpace::basis(double u, double v, int order) const {
   if (order < 0 || order > 2) throw InvalidInput("basis: derivative order must be 0, 1 or 2");
   const int pu = degree_u, pv = degree_v;
   const int su = find_span(knots_u, pu, u), sv = find_span(knots_v, pv, v);
-  Eigen::MatrixXd nu_d(order + 1, pu + 1), nv_d(order + 1, pv + 1);
+  if (pu > kStackDegree || pv > kStackDegree) {
+    Eigen::MatrixXd nu_d(order + 1, pu + 1), nv_d(order + 1, pv + 1);
+    basis_derivatives(knots_u, pu, su, u, order, nu_d);
+    basis_derivatives(knots_v, pv, sv, v, order, nv_d);
+    return tensor_basis(nu_d, nv_d, su, sv, order);
+  }
+  using Basis = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 3, kStackDegree + 1>;
+  Basis nu_d(order + 1, pu + 1), nv_d(order + 1, pv + 1);
   basis_derivatives(knots_u, pu, su, u, order, nu_d);
   basis_derivatives(knots_v, pv, sv, v, order, nv_d);
+  return tensor_basis(nu_d, nv_d, su, sv, order);
+}
+
+template <class Basis>
+BasisSample SplineSpace::tensor_basis(const Basis& nu_d, const Basis& nv_d, int su, int sv,
+                                      int order) const {
+  const int pu = degree_u, pv = degree_v;
 
   // Derivative rows as (order in u, order in v).
   static const int du[6] = {0, 1, 0, 2, 1, 0};
@@ -104,10 +118,41 @@ std::vector<int> boundary_pole_indices(const SplineSpace& space, bool closed_u, 
 
 Eigen::MatrixXd evaluate_surface(const SplineSpace& space, const Eigen::MatrixX3d& poles, double u,
                                  double v, int order) {
-  const BasisSample s = space.basis(u, v, order);
-  Eigen::MatrixXd out = Eigen::MatrixXd::Zero(s.values.rows(), 3);
-  for (size_t k = 0; k < s.index.size(); ++k)
-    out += s.values.col(static_cast<Eigen::Index>(k)) * poles.row(s.index[k]);
+  if (order < 0 || order > 2) throw InvalidInput("basis: derivative order must be 0, 1 or 2");
+  const int pu = space.degree_u, pv = space.degree_v;
+  const int rows = order == 0 ? 1 : (order == 1 ? 3 : 6);
+  // Rational sheets sum the rational basis as the solver's constraint rows do: S = sum R_k P_k
+  // equal to the rows' rounding (the quotient of the homogeneous sums below differs by 1e-15,
+  // and a sphere's sheet then came out 1e-6 degrees apart at its seam and failed OCCT's BOP
+  // self-intersection check at its poles).
+  if (space.rational() || pu > kStackDegree || pv > kStackDegree) {
+    const BasisSample s = space.basis(u, v, order);
+    Eigen::MatrixXd out = Eigen::MatrixXd::Zero(rows, 3);
+    for (size_t k = 0; k < s.index.size(); ++k)
+      out += s.values.col(static_cast<Eigen::Index>(k)) * poles.row(s.index[k]);
+    return out;
+  }
+  // The basis products summed pole by pole in basis()'s order (the same figures to the last
+  // bit), without a BasisSample: every projection, measurement and constraint sample evaluates
+  // here, and its index list and value matrix on the heap cost more than the sum (perf, bicubic
+  // sheets).
+  using Basis = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 3, kStackDegree + 1>;
+  const int su = find_span(space.knots_u, pu, u), sv = find_span(space.knots_v, pv, v);
+  Basis nu(order + 1, pu + 1), nv(order + 1, pv + 1);
+  basis_derivatives(space.knots_u, pu, su, u, order, nu);
+  basis_derivatives(space.knots_v, pv, sv, v, order, nv);
+  static const int du[6] = {0, 1, 0, 2, 1, 0};
+  static const int dv[6] = {0, 0, 1, 0, 1, 2};
+  Eigen::MatrixXd out = Eigen::MatrixXd::Zero(rows, 3);
+  for (int a = 0; a <= pu; ++a) {
+    for (int b = 0; b <= pv; ++b) {
+      const int k = space.index(su - pu + a, sv - pv + b);
+      for (int d = 0; d < rows; ++d) {
+        const double value = nu(du[d], a) * nv(dv[d], b);
+        for (int c = 0; c < 3; ++c) out(d, c) += value * poles(k, c);
+      }
+    }
+  }
   return out;
 }
 

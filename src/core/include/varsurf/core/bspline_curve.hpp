@@ -26,6 +26,10 @@ struct BSplineCurve {
   // Point and derivatives at t: row k is the k-th derivative, k = 0..order (order <= 2).
   Eigen::MatrixXd derivatives(double t, int order) const;
   Eigen::VectorXd evaluate(double t) const;
+
+ private:
+  // derivatives() with heap work arrays: degrees above kStackDegree, more than 3 dimensions.
+  Eigen::MatrixXd derivatives_general(double t, int order) const;
 };
 
 }  // namespace varsurf

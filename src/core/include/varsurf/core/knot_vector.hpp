@@ -30,6 +30,9 @@ void validate_knots(const std::vector<double>& knots, int degree, int pole_count
 // Index of the knot span containing t (t is clamped into the domain).
 int find_span(const std::vector<double>& knots, int degree, double t);
 
+// Degrees up to this evaluate with work arrays on the stack (higher ones on the heap).
+constexpr int kStackDegree = 15;
+
 // Non-zero basis functions and their derivatives at t: out(k, j) is the k-th derivative of
 // N_{span-degree+j}, for k = 0..order, j = 0..degree.
 void basis_derivatives(const std::vector<double>& knots, int degree, int span, double t, int order,

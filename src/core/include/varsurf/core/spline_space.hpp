@@ -40,6 +40,11 @@ struct SplineSpace {
 
   // Uniform bicubic-style space on [0,1]^2 with the given degrees and span counts.
   static SplineSpace uniform(int degree_u, int degree_v, int spans_u, int spans_v);
+
+ private:
+  // basis() from the two directions' basis derivatives at spans su, sv.
+  template <class Basis>
+  BasisSample tensor_basis(const Basis& nu_d, const Basis& nv_d, int su, int sv, int order) const;
 };
 
 // A surface of the space: its poles, size() x 3.
