@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: LGPL-2.1-or-later
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "test_support.hpp"
@@ -132,4 +133,31 @@ TEST(CurveConstraint, RejectsBadCurves) {
   PointConstraint p;
   p.u = NAN;
   EXPECT_THROW(sample_point(sp, p), InvalidInput);
+}
+
+// An exact straight pre-image (a line seen over a flat sheet) lands on the knot lines exactly at
+// evenly spaced samples: each crossing still splits the quadrature, so that every piece is one
+// polynomial (the diagonal crosses the 8-span lines at u = v = 3/8, 1/2, 5/8: four pieces).
+TEST(CurveConstraint, ExactKnotLineHitsSplitTheQuadrature) {
+  const SplineSpace space = SplineSpace::uniform(3, 3, 8, 8);
+  Eigen::VectorXd a(2), b(2), p(3), q(3);
+  a << 0.25, 0.25;
+  b << 0.75, 0.75;
+  p << 25.0, 25.0, 14.0;
+  q << 75.0, 75.0, 14.0;
+  BSplineCurve pre = test::line_curve(a, b);
+  // The same line as one cubic Bezier segment (the degree the solver's sampling expects).
+  pre.degree = 3;
+  pre.knots = {0, 0, 0, 0, 1, 1, 1, 1};
+  pre.poles.resize(4, 2);
+  for (int i = 0; i < 4; ++i) pre.poles.row(i) = (a + (b - a) * (i / 3.0)).transpose();
+  const CurveConstraint c{pre, test::line_curve(p, q), 1.0};
+  const CurveSampling s = curve_sampling(space, c);
+  const int per_piece = (3 + 3) * 3 + 1;
+  ASSERT_EQ(s.t.size(), static_cast<size_t>(4 * per_piece));
+  for (double cut : {0.25, 0.5, 0.75}) {  // no sample straddles a crossing
+    const auto after = std::upper_bound(s.t.begin(), s.t.end(), cut);
+    EXPECT_NE(after, s.t.begin());
+    EXPECT_EQ((after - s.t.begin()) % per_piece, 0) << cut;
+  }
 }

@@ -93,6 +93,25 @@ TEST(RegionQuadrature, RejectsBadLoops) {
   EXPECT_NO_THROW(bad({{0.0, 0.0}, {1.0, 0.0}, {1.0, 1.0 + 1e-12}, {0.0, 1.0}}));  // on the edge
 }
 
+// A pentagon of straight sides sampled at 48 points each (what exact pre-images of sketch lines
+// give): each run is straight up to rounding, a point exactly on a neighbour segment's line and the
+// next a rounding off it; that is no crossing. Sides doubling back along themselves still are.
+TEST(RegionQuadrature, StraightRunsOfALoopDoNotCrossThemselves) {
+  const SplineSpace sp = SplineSpace::uniform(3, 3, 4, 4);
+  for (double turn : {0.0, 0.1, 0.7, 1.3}) {
+    Loop loop;
+    for (int side = 0; side < 5; ++side) {
+      const double a = turn + 2.0 * M_PI * side / 5, b = turn + 2.0 * M_PI * (side + 1) / 5;
+      const Eigen::Vector2d p(0.5 + 0.4 * std::cos(a), 0.5 + 0.4 * std::sin(a));
+      const Eigen::Vector2d q(0.5 + 0.4 * std::cos(b), 0.5 + 0.4 * std::sin(b));
+      for (int k = 0; k < 48; ++k) loop.push_back(p + (q - p) * (k / 48.0));
+    }
+    EXPECT_NO_THROW(check_region(sp, Region(loop), "test")) << turn;
+  }
+  const Loop back = {{0.1, 0.1}, {0.5, 0.1}, {0.9, 0.1}, {0.3, 0.1}, {0.5, 0.8}};
+  EXPECT_THROW(check_region(sp, Region(back), "test"), InvalidInput);
+}
+
 TEST(RegionQuadrature, PolesOfASmallTriangleInsideOneSpan) {
   const SplineSpace sp = SplineSpace::uniform(3, 3, 4, 4);
   // Inside span [0.25, 0.5] x [0.5, 0.75]: the 4 x 4 poles of that span, no more.

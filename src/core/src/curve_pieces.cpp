@@ -25,6 +25,12 @@ void add_knot_crossings(const SplineSpace& space, const BSplineCurve& pre, doubl
   auto crossings = [&](int coord, const std::vector<double>& knots) {
     for (size_t k = 1; k + 1 < knots.size(); ++k) {
       const double line = knots[k];
+      // A sample exactly on the line between samples on either side of it is a crossing there
+      // (an exact pre-image, a straight line's, lands on knot lines at evenly spaced samples; the
+      // sign test below skips zeros). A pre-image along the line crosses nothing.
+      for (int i = 1; i < m; ++i)
+        if (uv(i, coord) == line && (uv(i - 1, coord) - line) * (uv(i + 1, coord) - line) < 0.0)
+          cuts.push_back(a + (b - a) * i / m);
       for (int i = 0; i < m; ++i) {
         double f0 = uv(i, coord) - line, f1 = uv(i + 1, coord) - line;
         if (f0 == 0.0 || f0 * f1 >= 0.0) continue;

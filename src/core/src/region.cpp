@@ -48,7 +48,10 @@ bool on_segment(const Point& a, const Point& b, const Point& c) {  // c collinea
 
 bool segments_meet(const Point& a, const Point& b, const Point& c, const Point& d) {
   const int s1 = side(a, b, c), s2 = side(a, b, d), s3 = side(c, d, a), s4 = side(c, d, b);
-  if (s1 != s2 && s3 != s4) return true;
+  // Strictly on both sides of each other: they cross. (Not s1 != s2: on a straight run of the
+  // loop, one point exactly on the other's line and the next a rounding off it is no crossing;
+  // exact pre-images of straight sketch lines made every such loop "cross itself".)
+  if (s1 * s2 < 0 && s3 * s4 < 0) return true;
   return (s1 == 0 && on_segment(a, b, c)) || (s2 == 0 && on_segment(a, b, d)) ||
          (s3 == 0 && on_segment(c, d, a)) || (s4 == 0 && on_segment(c, d, b));
 }
