@@ -459,3 +459,131 @@ TEST(ProjectCurve, RejectsBadInput) {
 
 }  // namespace
 }  // namespace varsurf
+
+namespace varsurf {
+namespace {
+
+// A tilted plane with a non-uniform, skewed affine parametrization S = a + u b + v c: poles on the
+// affine function of the Greville abscissae (how a sheet from curves alone and every B-spline
+// plane of FreeCAD's are built).
+BSplineSurface affine_sheet(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                            const Eigen::Vector3d& c) {
+  BSplineSurface s;
+  s.space.degree_u = 3;
+  s.space.degree_v = 2;
+  s.space.knots_u = {0, 0, 0, 0, 0.2, 0.45, 1, 1, 1, 1};
+  s.space.knots_v = {-1, -1, -1, 0.3, 2, 2, 2};
+  s.poles.resize(s.space.size(), 3);
+  for (int i = 0; i < s.space.nu(); ++i) {
+    for (int j = 0; j < s.space.nv(); ++j) {
+      double gu = 0.0, gv = 0.0;
+      for (int k = 1; k <= 3; ++k) gu += s.space.knots_u[static_cast<size_t>(i + k)] / 3.0;
+      for (int k = 1; k <= 2; ++k) gv += s.space.knots_v[static_cast<size_t>(j + k)] / 2.0;
+      s.poles.row(s.space.index(i, j)) = (a + gu * b + gv * c).transpose();
+    }
+  }
+  return s;
+}
+
+// A rational quadratic arc (a quarter circle of radius r about `centre` in the xy plane, lifted
+// by `lift` along z at its middle pole).
+BSplineCurve arc(const Eigen::Vector3d& centre, double r, double lift) {
+  BSplineCurve c;
+  c.degree = 2;
+  c.knots = {0.5, 0.5, 0.5, 2, 2, 2};
+  c.poles.resize(3, 3);
+  c.poles.row(0) = (centre + Eigen::Vector3d(r, 0, 0)).transpose();
+  c.poles.row(1) = (centre + Eigen::Vector3d(r, r, lift)).transpose();
+  c.poles.row(2) = (centre + Eigen::Vector3d(0, r, 0)).transpose();
+  c.weights.resize(3);
+  c.weights << 1.0, std::sqrt(0.5), 1.0;
+  return c;
+}
+
+const Eigen::Vector3d kA(3.0, -2.0, 1.0), kB(40.0, 5.0, 4.0), kC(-6.0, 15.0, 2.0);
+
+TEST(AffinePreImage, IsTheTargetMappedPoleByPoleAndMeetsItAlongTheNormal) {
+  const BSplineSurface sheet = affine_sheet(kA, kB, kC);
+  const Eigen::Vector3d n = kB.cross(kC).normalized();
+  const BSplineCurve target = arc(kA + 0.5 * kB + 0.4 * kC + 3.0 * n, 8.0, 2.5);
+  const occ::PreImage pre = occ::project_curve(sheet, target);
+  // Exact: the target's breakpoints only (no fit, no refinement), still rational, raised to the
+  // degree the solver's sampling takes (3) with one more multiplicity at each knot.
+  EXPECT_EQ(pre.curve.degree, 3);
+  EXPECT_TRUE(pre.curve.rational());
+  EXPECT_EQ(pre.curve.knots, std::vector<double>({0.5, 0.5, 0.5, 0.5, 2, 2, 2, 2}));
+  EXPECT_LT(pre.fit_error, 1e-12);
+  double height = 0.0;
+  for (int k = 0; k <= 400; ++k) {
+    const double t = 0.5 + 1.5 * k / 400.0;
+    const Eigen::Vector3d p = target.evaluate(t);
+    const Eigen::Vector2d uv = pre.curve.evaluate(t);
+    const Eigen::Vector3d foot = sheet.evaluate(uv(0), uv(1));
+    EXPECT_LT((p - foot).cross(n).norm(), 1e-12 * 50.0) << t;  // straight above the foot
+    height = std::max(height, std::abs(n.dot(p - kA)));
+  }
+  // The largest distance over the samples the general projection would take (64 here): the
+  // height of one of them, within the sampling of the densely sampled peak.
+  EXPECT_LE(pre.max_distance, height + 1e-12);
+  EXPECT_GT(pre.max_distance, (1.0 - 1e-3) * height);
+}
+
+TEST(AffinePreImage, FollowsAGivenDirection) {
+  const BSplineSurface sheet = affine_sheet(kA, kB, kC);
+  const Eigen::Vector3d n = kB.cross(kC).normalized();
+  const Eigen::Vector3d d = (n + 0.4 * kB.normalized()).normalized();
+  occ::ProjectionOptions options;
+  options.direction = d;
+  const BSplineCurve target = arc(kA + 0.4 * kB + 0.3 * kC + 2.0 * n, 6.0, -1.5);
+  const occ::PreImage pre = occ::project_curve(sheet, target, options);
+  EXPECT_EQ(pre.curve.pole_count(), 4);  // the arc's one span, raised to degree 3
+  for (int k = 0; k <= 100; ++k) {
+    const double t = 0.5 + 1.5 * k / 100.0;
+    const Eigen::Vector2d uv = pre.curve.evaluate(t);
+    const Eigen::Vector3d along =
+        Eigen::Vector3d(target.evaluate(t)) - sheet.evaluate(uv(0), uv(1));
+    EXPECT_LT(along.cross(d).norm(), 1e-12 * 50.0) << t;
+  }
+}
+
+// A pole moved by 1e-9 of the sheet's size makes the sheet not affine: the general projection
+// (sampling, Newton, fit) runs, and its pre-image agrees with the exact one of the flat sheet.
+TEST(AffinePreImage, AgreesWithTheGeneralProjection) {
+  const BSplineSurface flat = affine_sheet(kA, kB, kC);
+  BSplineSurface bent = flat;
+  bent.poles(bent.space.index(2, 1), 2) += 4e-8;
+  const Eigen::Vector3d n = kB.cross(kC).normalized();
+  const BSplineCurve target = arc(kA + 0.45 * kB + 0.5 * kC + 1.0 * n, 9.0, 3.0);
+  const occ::PreImage exact = occ::project_curve(flat, target);
+  const occ::PreImage general = occ::project_curve(bent, target);
+  EXPECT_GT(general.curve.pole_count(), 4);  // fitted: knot-line crossings, refinement
+  double worst = 0.0;
+  for (int k = 0; k <= 400; ++k) {
+    const double t = 0.5 + 1.5 * k / 400.0;
+    worst = std::max(worst, (exact.curve.evaluate(t) - general.curve.evaluate(t)).norm());
+  }
+  EXPECT_LT(worst, 1e-7);
+  // Each the largest over its samples (the general one refines where it fits): within 1e-4.
+  EXPECT_NEAR(exact.max_distance, general.max_distance, 1e-4 * general.max_distance);
+}
+
+// Targets the exact map cannot take go to the general projection and its messages: one leaving
+// the face, one along the normal.
+TEST(AffinePreImage, LeavesTheRefusalsToTheGeneralProjection) {
+  const BSplineSurface sheet = affine_sheet(kA, kB, kC);
+  const Eigen::Vector3d n = kB.cross(kC).normalized();
+  const BSplineCurve beyond = arc(kA + 0.9 * kB + 0.5 * kC, 20.0, 0.0);
+  EXPECT_THROW(occ::project_curve(sheet, beyond), InvalidInput);
+  const Eigen::Vector3d p = kA + 0.5 * kB + 0.5 * kC;
+  const BSplineCurve up = test::line_curve(p, p + 10.0 * n);
+  try {
+    occ::project_curve(sheet, up);
+    FAIL() << "no exception";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("along the sheet's normal"), std::string::npos)
+        << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace varsurf

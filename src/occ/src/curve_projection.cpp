@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "affine_pre_image.hpp"
 #include "varsurf/core/curve_fit.hpp"
 #include "varsurf/core/errors.hpp"
 #include "varsurf/core/knot_vector.hpp"
@@ -469,17 +470,21 @@ PreImage project_curve(const BSplineSurface& base, const BSplineCurve& target,
                          ? options.samples
                          : std::max(options.min_samples, options.samples_per_span * spans);
   const int per_span = std::max(degree + 1, (wanted + spans - 1) / spans);
+  std::vector<double> ts;
+  for (int s = 0; s < spans; ++s) {
+    for (int i = 0; i < per_span; ++i)
+      ts.push_back(target_breaks[s] + (target_breaks[s + 1] - target_breaks[s]) * i / per_span);
+  }
+  ts.push_back(t1);
   const SheetDomain domain(base);
+  if (std::optional<PreImage> exact =
+          affine_pre_image(base, domain, target, options.direction, ts, degree))
+    return *exact;
   std::optional<LineFoot> along;
   if (!options.direction.isZero(0.0)) along.emplace(base, options.direction);
   Projector projector(base, domain, target, options.tolerance, along ? &*along : nullptr);
   Samples samples(projector, domain);
-  for (int s = 0; s < spans; ++s) {
-    for (int i = 0; i < per_span; ++i) {
-      samples.add(target_breaks[s] + (target_breaks[s + 1] - target_breaks[s]) * i / per_span);
-    }
-  }
-  samples.add(t1);
+  for (double t : ts) samples.add(t);
 
   // A target along the sheet's normal projects to (nearly) one point: no pre-image can carry it.
   double target_length = 0.0, image_length = 0.0;
