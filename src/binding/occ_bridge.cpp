@@ -259,6 +259,9 @@ void bind_occ_bridge(py::module_& m) {
         "span and where the curve turns, the largest peaks refined between them. accept > 0: "
         "samples Newton finds within `accept` of the sheet skip the global search unless they "
         "could be the largest (the same figure, faster).");
+  m.def("max_deviations", &occ::max_deviations, "surface"_a, "curves"_a, "samples"_a = 200,
+        "accept"_a = 0.0, py::call_guard<py::gil_scoped_release>(),
+        "max_deviation of each curve from one sheet (the sheet's search structure built once).");
 
   m.def(
       "write_step",

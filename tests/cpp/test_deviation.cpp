@@ -379,6 +379,40 @@ TEST(MaxDeviation, CurveAtAKnownOffsetFromAPlane) {
   EXPECT_LT(occ::max_deviation(sheet, test::line_curve(a, b), 51), 1e-9);
 }
 
+// One search structure for all the curves of a sheet gives each curve's own figure, to the last
+// bit, with Newton's answers accepted or not; the known offsets are met.
+TEST(MaxDeviation, AllCurvesOfASheetAtOnceGiveEachOnesFigure) {
+  std::mt19937 rng(5);
+  const Handle(Geom_BSplineSurface) geom = random_surface(rng, 3, 8, 7);
+  const BSplineSurface sheet = occ::surface_from_face(face_of(geom));
+  std::vector<BSplineCurve> curves;
+  for (TopExp_Explorer ex(face_of(geom), TopAbs_EDGE); ex.More(); ex.Next())
+    curves.push_back(occ::curve_from_edge(TopoDS::Edge(ex.Current())));
+  double u0, u1, v0, v1;
+  geom->Bounds(u0, u1, v0, v1);
+  for (double lift : {0.5, 2.0}) {
+    std::vector<gp_Pnt> points;
+    for (int i = 0; i <= 30; ++i) {
+      gp_Pnt p;
+      gp_Vec du, dv;
+      const double s = i / 30.0;
+      geom->D1(u0 + (u1 - u0) * (0.2 + 0.6 * s), v0 + (v1 - v0) * (0.3 + 0.3 * s * s), p, du, dv);
+      points.push_back(p.Translated(du.Crossed(dv).Normalized() * lift * std::sin(M_PI * s)));
+    }
+    curves.push_back(occ::from_geom(interpolate(points)));
+  }
+  for (double accept : {0.0, 0.01}) {
+    const std::vector<double> all = occ::max_deviations(sheet, curves, 200, accept);
+    ASSERT_EQ(all.size(), curves.size());
+    for (size_t k = 0; k < curves.size(); ++k)
+      EXPECT_EQ(all[k], occ::max_deviation(sheet, curves[k], 200, accept)) << k;
+    EXPECT_LT(*std::max_element(all.begin(), all.end() - 2), 1e-9);  // the face's own edges
+    EXPECT_NEAR(all[all.size() - 2], 0.5, 1e-3);  // lifted along the normal at its middle
+    EXPECT_NEAR(all.back(), 2.0, 2e-2);
+  }
+  EXPECT_THROW(occ::max_deviations(sheet, {curves[0], BSplineCurve{}}, 200, 0.0), InvalidInput);
+}
+
 TEST(MaxDeviation, RejectsBadInput) {
   const BSplineSurface sheet = test::plane_sheet(10.0);
   Eigen::VectorXd a(3), b(3);

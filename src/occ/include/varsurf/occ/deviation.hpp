@@ -3,6 +3,8 @@
 // pre-image: the true point-to-surface distance over the whole bounded sheet.
 #pragma once
 
+#include <vector>
+
 #include "varsurf/core/bspline_curve.hpp"
 #include "varsurf/core/spline_space.hpp"
 
@@ -23,5 +25,10 @@ namespace varsurf::occ {
 // overstate (never understate) the distance.
 double max_deviation(const BSplineSurface& surface, const BSplineCurve& target, int samples = 200,
                      double accept = 0.0);
+
+// max_deviation of each target from one sheet, sharing the sheet's search structure.
+std::vector<double> max_deviations(const BSplineSurface& surface,
+                                   const std::vector<BSplineCurve>& targets, int samples = 200,
+                                   double accept = 0.0);
 
 }  // namespace varsurf::occ
