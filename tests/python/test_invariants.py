@@ -38,8 +38,11 @@ from varsurf.solve.sheet import solve_sheet_on_face
 
 #: The result is the base face to this fraction of its size.
 ON_BASE = 1e-9
-#: Two solves of one scene agree to ON_BASE x size + SAME x tolerance.
-SAME = 1e-3
+#: Two solves of one scene agree to ON_BASE x size + SAME x tolerance. (1e-3 held on an AMD EPYC;
+#: on an Intel Xeon with OpenBLAS's AVX-512 kernels the same commit's rigidly moved B-spline
+#: scene differed by 1.07e-3 of the tolerance when its test ran after others in the same process,
+#: by less alone or with the AVX2 kernels: rounding that depends on the process's state.)
+SAME = 2e-3
 #: A sampled point whose first distance candidate is within this fraction of the bound needs no
 #: further search (generated_scenes.distance); the measured figure stays an upper bound.
 SHORT_CUT = 0.1
