@@ -104,6 +104,13 @@ def du_qin():
 # 2. against Surface Filling
 
 
+# Benchmark 2's cases: (name, boundary wave amplitude, interior curves, VarSurf tolerance in mm)
+FILLING_CASES = [("flat boundary, 1 interior", 0.0, 1, 0.01), ("wavy boundary, 1 interior", 5.0, 1, 0.01),
+                 ("wavy boundary, 3 interior", 5.0, 3, 0.01), ("wavy boundary, 6 interior", 5.0, 6, 0.01),
+                 ("wavy boundary, 3 interior, tolerance 1e-3", 5.0, 3, 0.001),
+                 ("wavy boundary, 6 interior, tolerance 1e-3", 5.0, 6, 0.001)]
+
+
 def _freecad():
     if FREECAD_LIB not in sys.path:
         sys.path.append(FREECAD_LIB)
@@ -191,7 +198,7 @@ class _StageClock:
     """Wall time spent in the native stages of a sheet's recompute: each wrapped function of
     varsurf._native adds its time to its stage while the clock is installed."""
 
-    STAGES = {"project_curve": "projection", "solve_sheet": "solve", "max_deviation": "measurement"}
+    STAGES = {"project_curve": "projection", "solve_sheet": "solve", "max_deviations": "measurement"}
 
     def __init__(self, nat):
         self.nat, self.seconds, self.saved = nat, {}, {}
@@ -229,13 +236,8 @@ def filling_comparison():
           "| VarSurf degree / poles | Filling degree / poles | fairness VarSurf / Filling |")
     print("|---|---|---|---|---|---|---|---|---|---|")
     features = []  # (case, VarSurf feature recompute s, Filling recompute s, stages)
-    # (name, boundary wave amplitude, interior curves, VarSurf tolerance in mm)
-    cases = [("flat boundary, 1 interior", 0.0, 1, 0.01), ("wavy boundary, 1 interior", 5.0, 1, 0.01),
-             ("wavy boundary, 3 interior", 5.0, 3, 0.01), ("wavy boundary, 6 interior", 5.0, 6, 0.01),
-             ("wavy boundary, 3 interior, tolerance 1e-3", 5.0, 3, 0.001),
-             ("wavy boundary, 6 interior, tolerance 1e-3", 5.0, 6, 0.001)]
     doc = FreeCAD.newDocument("Bench")
-    for name, amplitude, interior, tolerance in cases:
+    for name, amplitude, interior, tolerance in FILLING_CASES:
         boundary, inner = _case_curves(Part, V, amplitude, interior)
         edges = boundary + inner
         base = _flat_square(Part, V)
