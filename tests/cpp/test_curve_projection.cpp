@@ -473,15 +473,7 @@ BSplineSurface affine_sheet(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
   s.space.degree_v = 2;
   s.space.knots_u = {0, 0, 0, 0, 0.2, 0.45, 1, 1, 1, 1};
   s.space.knots_v = {-1, -1, -1, 0.3, 2, 2, 2};
-  s.poles.resize(s.space.size(), 3);
-  for (int i = 0; i < s.space.nu(); ++i) {
-    for (int j = 0; j < s.space.nv(); ++j) {
-      double gu = 0.0, gv = 0.0;
-      for (int k = 1; k <= 3; ++k) gu += s.space.knots_u[static_cast<size_t>(i + k)] / 3.0;
-      for (int k = 1; k <= 2; ++k) gv += s.space.knots_v[static_cast<size_t>(j + k)] / 2.0;
-      s.poles.row(s.space.index(i, j)) = (a + gu * b + gv * c).transpose();
-    }
-  }
+  s.poles = test::fit_poles(s.space, [&](double u, double v) { return a + u * b + v * c; });
   return s;
 }
 

@@ -13,16 +13,7 @@
 
 namespace varsurf::test {
 
-inline std::vector<double> greville(const std::vector<double>& knots, int degree) {
-  const int n = static_cast<int>(knots.size()) - degree - 1;
-  std::vector<double> g(static_cast<size_t>(n));
-  for (int i = 0; i < n; ++i) {
-    double s = 0.0;
-    for (int k = 1; k <= degree; ++k) s += knots[static_cast<size_t>(i + k)];
-    g[static_cast<size_t>(i)] = s / degree;
-  }
-  return g;
-}
+using varsurf::greville;
 
 // Poles of the surface interpolating f at the Greville grid: exact when f lies in the space.
 inline Eigen::MatrixX3d fit_poles(const SplineSpace& space,

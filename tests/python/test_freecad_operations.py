@@ -94,7 +94,7 @@ def _valid_but_c0(shape):
     return True
 
 
-def _corner_fault_only(shape):
+def _pcurve_fault_only(shape):
     """The BOP check finds C0 geometry and curves off their surfaces, nothing else."""
     try:
         shape.check(True)
@@ -155,14 +155,11 @@ def test_the_seams_take_a_fillet(example):
     # OCCT's fillet along the pillow's closed rim (three edges in a chain) is one B-spline surface
     # that is only C0 where the edges meet.
     if not _valid_but_c0(filleted):
-        # Where three fillets of the smooth box meet, OCCT 7.6's corner blend leaves one edge's
-        # pcurve off its 3D curve (BOPAlgo_InvalidCurveOnSurface) on some machines and not on
-        # others at the same commit (an Intel Xeon: yes; an AMD EPYC: no): that is OCCT's corner,
-        # not the seams. Then every seam filleted on its own must be clean, and the whole fillet
-        # valid, a solid FreeCAD keeps working on (below).
-        assert name == "smooth box" and filleted.isValid() and _corner_fault_only(filleted), name
-        for edge in edges:
-            assert _valid_but_c0(shape.makeFillet(radius, [edge])), (name, edge.Length)
+        # On some machines (an Intel Xeon: yes; an AMD EPYC: no, at the same commit) OCCT 7.6's
+        # fillet of the smooth box's seams leaves pcurves off their 3D curves
+        # (BOPAlgo_InvalidCurveOnSurface), a single seam's too; the fillet is still a valid solid
+        # that FreeCAD keeps working on (below). Any other fault, or on another example, fails.
+        assert name == "smooth box" and filleted.isValid() and _pcurve_fault_only(filleted), name
     # And it is a solid FreeCAD keeps working on: a half-space through its middle.
     half = _half_space(filleted.BoundBox.Center, V(0.3, 0.2, 0.9).normalize())
     assert filleted.common(half).isValid() and filleted.cut(half).isValid()

@@ -177,6 +177,17 @@ void basis_derivatives(const std::vector<double>& knots, int p, int span, double
   }
 }
 
+std::vector<double> greville(const std::vector<double>& knots, int degree) {
+  const int n = static_cast<int>(knots.size()) - degree - 1;
+  std::vector<double> g(static_cast<size_t>(std::max(n, 0)));
+  for (int i = 0; i < n; ++i) {
+    double s = 0.0;
+    for (int k = 1; k <= degree; ++k) s += knots[static_cast<size_t>(i + k)];
+    g[static_cast<size_t>(i)] = s / degree;
+  }
+  return g;
+}
+
 std::vector<double> breakpoints(const std::vector<double>& k, int degree) {
   std::vector<double> b;
   for (size_t i = static_cast<size_t>(degree); i + static_cast<size_t>(degree) < k.size(); ++i) {

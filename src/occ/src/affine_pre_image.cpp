@@ -7,23 +7,12 @@
 #include <algorithm>
 #include <cmath>
 
+#include "varsurf/core/knot_vector.hpp"
 #include "varsurf/occ/geom_convert.hpp"
 
 namespace varsurf::occ {
 
 namespace {
-
-// Greville abscissae: where a B-spline with poles on an affine function of them reproduces it.
-std::vector<double> greville(const std::vector<double>& knots, int degree) {
-  const int n = static_cast<int>(knots.size()) - degree - 1;
-  std::vector<double> out(static_cast<size_t>(n));
-  for (int i = 0; i < n; ++i) {
-    double sum = 0.0;
-    for (int k = 1; k <= degree; ++k) sum += knots[static_cast<size_t>(i + k)];
-    out[static_cast<size_t>(i)] = sum / degree;
-  }
-  return out;
-}
 
 struct Affine {
   Eigen::Vector3d a, b, c;  // S(u, v) = a + u b + v c

@@ -38,6 +38,10 @@ constexpr int kStackDegree = 15;
 void basis_derivatives(const std::vector<double>& knots, int degree, int span, double t, int order,
                        Eigen::Ref<Eigen::MatrixXd> out);
 
+// Greville abscissae (knot averages) of the poles: where a spline whose poles lie on an affine
+// function of them reproduces that function.
+std::vector<double> greville(const std::vector<double>& knots, int degree);
+
 // Distinct knot values (span breakpoints) of a clamped vector, domain ends included.
 std::vector<double> breakpoints(const std::vector<double>& knots, int degree);
 
