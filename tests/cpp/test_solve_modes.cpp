@@ -458,6 +458,49 @@ TEST(PreparedSheet, AddedAndRemovedConstraintsEqualAFreshSolve) {
   }
 }
 
+TEST(PreparedSheet, DraggingOneCurveThenAnotherEqualsFreshSolves) {
+  // Updates keep the curves' samples between calls and re-evaluate only targets that moved:
+  // curve A dragged, then curve B (A stays where it was dragged), then A back to where it was
+  // prepared, a refused update, B again; each equals a fresh solve. Every direction is
+  // fitted (no fit tolerance: nothing is held or truncated at preparation) and directions weaker
+  // than 1e-5 of the strongest are dropped, so that only rounding separates the two.
+  for (bool coupled : {false, true}) {
+    for (SolveMode mode : {SolveMode::penalty, SolveMode::exact}) {
+      // The penalty mode fits to convergence only well-conditioned constraints quickly.
+      SheetProblem pb = mode == SolveMode::penalty ? well_posed_problem(10) : curve_problem(10);
+      CurveConstraint second;  // an iso line
+      second.preimage = test::line_curve(Eigen::Vector2d(0.85, 0.6), Eigen::Vector2d(0.85, 0.95));
+      second.target =
+          test::line_curve(Eigen::Vector3d(0.85, 0.6, 0.0), Eigen::Vector3d(0.85, 0.95, 0.05));
+      pb.curves.push_back(second);
+      if (coupled) pb.normals.push_back(tilted_normal());
+      SolveOptions options = with_mode(mode);
+      options.rank_tolerance = 1e-5;
+      options.fit_tolerance = 0.0;
+      PreparedSheet prepared(pb, options);
+      SheetProblem moved = pb;
+      const auto expect_fresh = [&](const char* step) {
+        const SolveResult updated = prepared.update(moved);
+        EXPECT_LT((updated.poles - solve_sheet(moved, options).poles).cwiseAbs().maxCoeff(), 1e-10)
+            << step << " " << to_string(mode) << " coupled " << coupled;
+        EXPECT_GT((updated.poles - prepared.result().poles).cwiseAbs().maxCoeff(), 1e-4) << step;
+      };
+      // Rigid moves: the same arc-length weights, so updates rather than changes.
+      moved.curves[0].target.poles.col(2).array() += 0.04;
+      expect_fresh("A dragged");
+      moved.curves[1].target.poles.col(2).array() -= 0.03;
+      expect_fresh("B dragged");
+      moved.curves[0].target.poles = pb.curves[0].target.poles;
+      expect_fresh("A back");
+      SheetProblem replaced = moved;
+      replaced.points[0].u += 0.05;  // re-placed, not moved: refused
+      EXPECT_THROW(prepared.update(replaced), InvalidInput);
+      moved.curves[1].target.poles.col(1).array() += 0.01;
+      expect_fresh("B dragged again");
+    }
+  }
+}
+
 TEST(PreparedSheet, RefusesChangesBeyondTargets) {
   SheetProblem pb = curve_problem(6);
   PreparedSheet prepared(pb);

@@ -151,7 +151,10 @@ struct ConstrainedSolve::Impl {
   void factor_kkt(const std::vector<Eigen::Triplet<double>>& qt);
   // false if the penalty matrix is not numerically positive definite at this eps.
   bool factor_penalty(double scale);
-  Eigen::MatrixXd samples_rhs(const std::vector<ConstraintSamples>& blocks) const;
+  // The samples' right-hand sides with fixed columns moved over (and the rest shape taken off
+  // with minus_shift, for blocks not yet shifted).
+  Eigen::MatrixXd samples_rhs(const std::vector<ConstraintSamples>& blocks,
+                              bool minus_shift = false) const;
   Eigen::MatrixXd solve_cg(const Eigen::MatrixXd& g, const Eigen::MatrixXd& b,
                            SolveReport& rep) const;
 };
@@ -452,9 +455,12 @@ const Eigen::MatrixXd& ConstrainedSolve::reduced_rhs() const {
 }
 
 Eigen::MatrixXd ConstrainedSolve::reduced_rhs(const std::vector<ConstraintSamples>& moved) const {
+  // Sampled modes take the rest shape off row by row: a shifted copy of every block was a fifth
+  // of a 64 x 64 drag update over a face.
+  if (impl_->mode == SolveMode::penalty || impl_->krylov)
+    return impl_->samples_rhs(moved, impl_->shift.size() > 0);
   const std::vector<ConstraintSamples> shifted = impl_->shifted(moved);
   const std::vector<ConstraintSamples>& blocks = impl_->shift.size() ? shifted : moved;
-  if (impl_->mode == SolveMode::penalty || impl_->krylov) return impl_->samples_rhs(blocks);
   return varsurf::reduced_rhs(impl_->red, blocks, impl_->free_index, impl_->x0);
 }
 
@@ -508,16 +514,23 @@ void ConstrainedSolve::Impl::setup_samples(const std::vector<ConstraintSamples>&
       sample_offset.row(i) = -res.row(i);
 }
 
-Eigen::MatrixXd ConstrainedSolve::Impl::samples_rhs(
-    const std::vector<ConstraintSamples>& blocks) const {
+Eigen::MatrixXd ConstrainedSolve::Impl::samples_rhs(const std::vector<ConstraintSamples>& blocks,
+                                                    bool minus_shift) const {
   Eigen::MatrixXd out(static_cast<Eigen::Index>(sample_block.size()), width);
   Eigen::Index row = 0;
   for (const ConstraintSamples& block : blocks)
     for (int k = 0; k < block.rows(); ++k, ++row) {
       if (row >= out.rows()) throw InvalidInput("the moved constraints have more samples");
+      if (block.rhs.cols() != width) throw InvalidInput("constraint samples of mixed widths");
       Eigen::RowVectorXd rhs = block.rhs.row(k);
       const auto& idx = block.index[static_cast<size_t>(k)];
       const Eigen::VectorXd& c = block.coeff[static_cast<size_t>(k)];
+      if (minus_shift)  // as shifted() does, in the same order
+        for (size_t j = 0; j < idx.size(); ++j) {
+          if (idx[j] < 0 || idx[j] >= shift.rows())
+            throw InvalidInput("constraint sample index out of range");
+          rhs -= c(static_cast<Eigen::Index>(j)) * shift.row(idx[j]);
+        }
       for (size_t j = 0; j < idx.size(); ++j)
         if (free_index[static_cast<size_t>(idx[j])] < 0)
           rhs -= c(static_cast<Eigen::Index>(j)) * x0.row(idx[j]);
@@ -686,11 +699,17 @@ Eigen::MatrixXd ConstrainedSolve::Impl::solve_cg(const Eigen::MatrixXd& g, const
     if (r > 0) x += a.transpose() * (b.col(c) - a * x);
     auto apply = [&](const Eigen::VectorXd& v) { return Eigen::VectorXd(q_ff * v + eps * v); };
     const Eigen::VectorXd rhs = g.col(c) + eps * x0_free.col(c);
-    Eigen::VectorXd res = project(rhs - apply(x));
+    const Eigen::VectorXd qx = apply(x);
+    Eigen::VectorXd res = project(rhs - qx);
     Eigen::VectorXd z = project(inv_diag.cwiseProduct(res));
     Eigen::VectorXd p = z;
     double rz = res.dot(z);
-    const double stop = opt.cg_tolerance * std::max(res.norm(), 1e-300);
+    // A projected residual at the rounding level of the terms it is made of is converged: when
+    // the constraints leave (almost) no freedom it is all rounding, and stepping along it
+    // (alpha = rounding / rounding) threw a fully pinned sheet 0.3 off.
+    const double rounding =
+        64.0 * std::numeric_limits<double>::epsilon() * (rhs.norm() + qx.norm());
+    const double stop = std::max(opt.cg_tolerance * res.norm(), std::max(rounding, 1e-300));
     int it = 0;
     while (it < max_it && res.norm() > stop) {
       if (it % 16 == 0) check_keep_going(opt);

@@ -6,9 +6,11 @@
 #include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <numeric>
 #include <unordered_map>
 
+#include "dense_lapack.hpp"
 #include "varsurf/core/errors.hpp"
 
 namespace varsurf {
@@ -57,8 +59,11 @@ Eigen::RowVectorXd free_rhs(const ConstraintSamples& block, int r,
 struct Cluster {
   std::vector<int> cols;         // free unknowns, ascending
   std::vector<int> sample_rows;  // global ids
-  Eigen::MatrixXd to_core;       // Q_1^T (n x m) if the cluster was compressed, else empty
-  Eigen::MatrixXd u, v;          // thin SVD factors of the core matrix
+  // The core's data from the cluster's sample data: Q_1^T d through `compress` (a tall cluster
+  // compressed by QR), or `to_core` d (two-stage clusters), or d itself when both are empty.
+  std::shared_ptr<const ThinQ> compress;
+  Eigen::MatrixXd to_core;
+  Eigen::MatrixXd u, v;  // thin SVD factors of the core matrix
   Eigen::VectorXd s;
   Eigen::MatrixXd beta;  // U^T core rhs
   Eigen::MatrixXd gain;  // U^T core start residual
@@ -70,41 +75,62 @@ struct Cluster {
   bool held = false;  // met by the start: kept rows hold the start's values
 };
 
+// The cluster's core map as a matrix (core rows x m sample rows).
+Eigen::MatrixXd core_map(const Cluster& cl, Eigen::Index m) {
+  if (cl.compress) return cl.compress->transpose();
+  return cl.to_core.size() ? cl.to_core : Eigen::MatrixXd(Eigen::MatrixXd::Identity(m, m));
+}
+
 // The SVD of a cluster's rows `b` (data `d`, the free columns' start values `start`, weights
-// per row) and how many of its directions are kept. `to_core` maps the cluster's whole sample
-// data to these rows' data (empty: they are the cluster's rows as given); a tall system is
-// compressed by QR first (same solution set; the SVD then works on an n x n matrix).
+// per row) and how many of its directions are kept. A tall system is compressed by QR first
+// (same solution set; the SVD then works on an n x n matrix).
 bool analyse(Cluster& cl, const Eigen::MatrixXd& b, const Eigen::MatrixXd& d,
              const Eigen::MatrixXd& start, const Eigen::VectorXd& row_weight, bool exact,
-             const Eigen::MatrixXd& to_core, const ReductionOptions& opt, double& conflict) {
+             const ReductionOptions& opt, double& conflict) {
   const Eigen::Index m = b.rows(), n = b.cols();
   cl.exact = exact;
   cl.weight = row_weight.sum();
-  cl.to_core = to_core;
+  cl.compress.reset();
+  cl.to_core.resize(0, 0);
   // The start shape's residual decides how many directions to fit: a homogeneous constraint
   // (a normal, rhs 0) is far from met by a start that violates it, not already met.
   const Eigen::MatrixXd d_start = d - b * start;
   Eigen::MatrixXd core = b, core_rhs = d, core_start = d_start;
+  if (!b.allFinite()) throw InvalidInput("constraint values are not finite");
   if (m > n) {
-    Eigen::HouseholderQR<Eigen::MatrixXd> qr(b);
-    core = qr.matrixQR().topRows(n).triangularView<Eigen::Upper>();
-    const Eigen::MatrixXd q1t = (qr.householderQ() * Eigen::MatrixXd::Identity(m, n)).transpose();
-    core_rhs = q1t * d;
-    core_start = q1t * d_start;
-    cl.to_core = to_core.size() ? Eigen::MatrixXd(q1t * to_core) : q1t;
+    auto q = std::make_shared<ThinQ>();
+    Eigen::MatrixXd r;
+    if (thin_qr(b, *q, r)) {
+      core = std::move(r);
+      core_rhs = q->apply_transpose(d);
+      core_start = q->apply_transpose(d_start);
+      cl.compress = std::move(q);
+    } else {  // LAPACK refused: Eigen's own, with an explicit Q_1^T
+      Eigen::HouseholderQR<Eigen::MatrixXd> qr(b);
+      core = qr.matrixQR().topRows(n).triangularView<Eigen::Upper>();
+      cl.to_core = (qr.householderQ() * Eigen::MatrixXd::Identity(m, n)).transpose();
+      core_rhs = cl.to_core * d;
+      core_start = cl.to_core * d_start;
+    }
   }
-  if (cl.to_core.size() == 0) cl.to_core = Eigen::MatrixXd::Identity(m, m);
   // No direction at all (rows of zeros): nothing kept, and a two-stage reduction goes on with
   // an empty first stage.
   cl.u = Eigen::MatrixXd::Zero(core.rows(), 0);
   cl.v = Eigen::MatrixXd::Zero(n, 0);
   cl.s.resize(0);
-  Eigen::BDCSVD<Eigen::MatrixXd> svd(core, Eigen::ComputeThinU | Eigen::ComputeThinV);
-  if (svd.singularValues().size() == 0 || !(svd.singularValues()(0) > 0.0)) return false;
-  cl.s = svd.singularValues();
-  if (!cl.s.allFinite()) throw InvalidInput("constraint values are not finite");
-  cl.u = svd.matrixU();
-  cl.v = svd.matrixV();
+  Eigen::MatrixXd u, v;
+  Eigen::VectorXd s;
+  if (!thin_svd(core, u, s, v)) {  // LAPACK's divide and conquer did not converge: Eigen's
+    Eigen::BDCSVD<Eigen::MatrixXd> svd(core, Eigen::ComputeThinU | Eigen::ComputeThinV);
+    u = svd.matrixU();
+    s = svd.singularValues();
+    v = svd.matrixV();
+  }
+  if (s.size() == 0 || !(s(0) > 0.0)) return false;
+  if (!s.allFinite()) throw InvalidInput("constraint values are not finite");
+  cl.s = std::move(s);
+  cl.u = std::move(u);
+  cl.v = std::move(v);
   cl.beta = cl.u.transpose() * core_rhs;
   cl.gain = cl.u.transpose() * core_start;
   while (cl.numeric_rank < cl.s.size() && cl.s(cl.numeric_rank) > opt.rank_tolerance * cl.s(0))
@@ -232,7 +258,7 @@ ReducedConstraints reduce_constraints(const std::vector<ConstraintSamples>& bloc
     const Eigen::Index hard = std::count(exact.begin(), exact.end(), true);
     // Without a fit tolerance every direction of the fitted rows is fitted anyway: one stage.
     if (hard == 0 || hard == m || !(opt.fit_tolerance > 0.0)) {
-      if (analyse(cl, bm, d, start, row_weight, hard > 0, Eigen::MatrixXd(), opt, out.conflict))
+      if (analyse(cl, bm, d, start, row_weight, hard > 0, opt, out.conflict))
         clusters.push_back(std::move(cl));
       continue;
     }
@@ -242,27 +268,31 @@ ReducedConstraints reduce_constraints(const std::vector<ConstraintSamples>& bloc
     // exact would fit every direction of the curves' data, noise below the tolerance included.
     Cluster first = cl, second = cl;
     const Eigen::Index soft = m - hard;
-    analyse(first, bm.topRows(hard), d.topRows(hard), start, row_weight.head(hard), true,
-            Eigen::MatrixXd(), opt, out.conflict);
+    analyse(first, bm.topRows(hard), d.topRows(hard), start, row_weight.head(hard), true, opt,
+            out.conflict);
+    const Eigen::MatrixXd first_core = core_map(first, hard);
     const Eigen::MatrixXd ve = first.v.leftCols(first.rank);
     // x = ve c + P y with c = T d_exact, T = S^-1 U^T (core of the exact rows' data).
     const Eigen::MatrixXd to_c = first.s.head(first.rank).cwiseInverse().asDiagonal() *
-                                 first.u.leftCols(first.rank).transpose() * first.to_core;
+                                 first.u.leftCols(first.rank).transpose() * first_core;
     const Eigen::MatrixXd soft_b = bm.bottomRows(soft);
     const Eigen::MatrixXd soft_ve = soft_b * ve;
     // The fitted rows act where the exact ones leave the poles free; their data, less what c
     // already does there: d_soft - B_soft ve c.
     const Eigen::MatrixXd projected = soft_b - soft_ve * ve.transpose();
     analyse(second, projected, d.bottomRows(soft) - soft_ve * (to_c * d.topRows(hard)), start,
-            row_weight.tail(soft), false, Eigen::MatrixXd(), opt, out.conflict);
+            row_weight.tail(soft), false, opt, out.conflict);
     // Both stages' maps from the whole cluster's data (exact rows first), for a drag's moved
     // data: never an m x m matrix (thousands of curve samples).
-    Eigen::MatrixXd first_map = Eigen::MatrixXd::Zero(first.to_core.rows(), m);
-    first_map.leftCols(hard) = first.to_core;
+    const Eigen::MatrixXd second_core = core_map(second, soft);
+    Eigen::MatrixXd first_map = Eigen::MatrixXd::Zero(first_core.rows(), m);
+    first_map.leftCols(hard) = first_core;
+    first.compress.reset();
     first.to_core = std::move(first_map);
-    Eigen::MatrixXd second_map(second.to_core.rows(), m);
-    second_map.leftCols(hard) = -(second.to_core * soft_ve) * to_c;
-    second_map.rightCols(soft) = second.to_core;
+    Eigen::MatrixXd second_map(second_core.rows(), m);
+    second_map.leftCols(hard) = -(second_core * soft_ve) * to_c;
+    second_map.rightCols(soft) = second_core;
+    second.compress.reset();
     second.to_core = std::move(second_map);
     clusters.push_back(std::move(first));
     clusters.push_back(std::move(second));
@@ -333,8 +363,9 @@ ReducedConstraints reduce_constraints(const std::vector<ConstraintSamples>& bloc
     ReducedConstraints::ClusterMap map;
     map.sample_rows = cl.sample_rows;
     map.first_row = rank_total;
-    const Eigen::MatrixXd ut = cl.u.leftCols(rank).transpose();
-    map.transform = cl.s.head(rank).cwiseInverse().asDiagonal() * ut * cl.to_core;
+    map.left = cl.s.head(rank).cwiseInverse().asDiagonal() * cl.u.leftCols(rank).transpose();
+    map.compress = cl.compress;
+    map.right = cl.to_core;
     if (cl.held) {
       map.offset = -(cl.gain.topRows(rank).array().colwise() / cl.s.head(rank).array()).matrix();
       ++out.held;
@@ -389,7 +420,10 @@ Eigen::MatrixXd reduced_rhs(const ReducedConstraints& red,
       d.row(static_cast<Eigen::Index>(i)) =
           free_rhs(*where[g].first, where[g].second, free_index, fixed);
     }
-    out.middleRows(map.first_row, map.transform.rows()) = map.transform * d;
+    const Eigen::MatrixXd core = map.compress       ? map.compress->apply_transpose(d)
+                                 : map.right.size() ? Eigen::MatrixXd(map.right * d)
+                                                    : d;
+    out.middleRows(map.first_row, map.left.rows()) = map.left * core;
     if (map.offset.size()) out.middleRows(map.first_row, map.offset.rows()) += map.offset;
   }
   return out;

@@ -4,8 +4,10 @@
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <memory>
 #include <vector>
 
+#include "dense_lapack.hpp"
 #include "varsurf/core/constraints.hpp"
 #include "varsurf/core/lcurve.hpp"
 
@@ -40,12 +42,19 @@ struct ReducedConstraints {
   int clusters = 0;
   double conflict = 0.0;  // largest RMS residual that no pole choice removes, over clusters
   LCurve lcurve;          // with Truncation::lcurve
-  // rhs rows [first_row, first_row + transform.rows()) = transform * (right-hand sides of the
+  // rhs rows [first_row, first_row + left.rows()) = transform * (right-hand sides of the
   // cluster's sample rows, fixed columns moved over) + offset: what a drag recomputes.
   struct ClusterMap {
     std::vector<int> sample_rows;  // global sample row ids (blocks concatenated)
-    Eigen::MatrixXd transform;     // kept rows x sample rows
-    Eigen::MatrixXd offset;        // kept rows x width, or empty for none
+    // transform = left * right (kept rows x sample rows), kept as its factors: forming the
+    // product cost a 280 x 394 x 2912 GEMM (a fifth of a 500-pole TSVD) where applying them to
+    // the samples' data costs a few matrix-vector products.
+    Eigen::MatrixXd left;  // kept rows x core rows: S^-1 U^T
+    // right: Q_1^T of a cluster compressed by QR (kept as reflectors), else an explicit matrix
+    // (core rows x sample rows), else the identity (both empty).
+    std::shared_ptr<const ThinQ> compress;
+    Eigen::MatrixXd right;
+    Eigen::MatrixXd offset;  // kept rows x width, or empty for none
     int first_row = 0;
   };
   int held = 0;  // clusters the start already met: held where the start has them

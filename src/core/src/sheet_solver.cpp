@@ -437,6 +437,13 @@ struct PreparedSheet::State {
   // evaluations of the target, not of the sheet's basis.
   std::vector<CurveSampling> curve_samplings;
   std::vector<ConstraintSamples> curve_blocks;
+  // A second copy of curve_blocks that update() moves into its constraint list and back, each
+  // block with the target its right-hand sides were computed for: copying every curve's samples
+  // per drag update (and freeing them) was a quarter of a 64 x 64 update. Rebuilt from
+  // curve_blocks whenever it was not given back (an exception, a coupled solve, a change()).
+  std::vector<ConstraintSamples> lent_blocks;
+  std::vector<Eigen::MatrixXd> lent_targets;
+  bool lent_ready = false;
   std::unique_ptr<ConstrainedSolve> solver;
   SolveResult result;
 };
@@ -570,14 +577,24 @@ SolveResult PreparedSheet::update(const SheetProblem& moved) {
     if (!same_curve_shape(c.preimage, was.preimage) || c.preimage.poles != was.preimage.poles ||
         !same_curve_shape(c.target, was.target) || c.weight != was.weight || c.exact != was.exact)
       throw InvalidInput("update: a curve's pre-image, knots or weight changed: use change()");
-    ConstraintSamples block = st.curve_blocks[i];  // same rows; new right-hand sides
+    ConstraintSamples block = std::move(st.lent_blocks[i]);  // same rows; new right-hand sides
+    // A target that did not move keeps its right-hand sides (most curves, while one is dragged:
+    // re-evaluating them was a sixth of a 64 x 64 drag update).
+    if (c.target.poles == st.lent_targets[i]) return block;
     std::vector<bool> kept;
     curve_rhs(c, st.curve_samplings[i], block.rhs, block.weight, kept);
     if (block.weight.size() != block.index.size())
       throw InvalidInput("update: a curve's samples changed: use change()");
+    st.lent_targets[i] = c.target.poles;
     return block;
   };
-  const std::vector<ConstraintSamples> blocks =
+  if (!st.lent_ready) {
+    st.lent_blocks = st.curve_blocks;
+    st.lent_targets.clear();
+    for (const CurveConstraint& c : pb.curves) st.lent_targets.push_back(c.target.poles);
+  }
+  st.lent_ready = false;  // until the blocks are given back below
+  std::vector<ConstraintSamples> blocks =
       sample_constraints(moved, out.report.coupled, moved_curve);
   // sample_constraints puts the points first, then the curves.
   if (!same_samples(blocks, st.assembled.quad.blocks, moved.points.size(),
@@ -586,6 +603,11 @@ SolveResult PreparedSheet::update(const SheetProblem& moved) {
         "update: constraints were added, removed or re-placed (not only moved): use change()");
   const Eigen::MatrixXd b = st.solver->reduced_rhs(blocks);
   const Eigen::MatrixXd x = st.solver->solve(st.assembled.quad.f, b, out.report);
+  if (!out.report.coupled) {  // coupled solves copied the curves' rows (to_coupled)
+    for (size_t i = 0; i < moved.curves.size(); ++i)
+      st.lent_blocks[i] = std::move(blocks[moved.points.size() + i]);
+    st.lent_ready = true;
+  }
   out.poles = to_poles(x, out.report.coupled);
   out.report.assemble_seconds = out.report.reduce_seconds = out.report.factor_seconds = 0.0;
   out.report.total_seconds = seconds_since(start);
@@ -628,6 +650,7 @@ SolveResult PreparedSheet::change(const SheetProblem& changed) {
   st.problem = changed;
   st.curve_samplings = std::move(samplings);
   st.curve_blocks = std::move(curve_blocks);
+  st.lent_ready = false;
   st.result.poles = to_poles(x, rep.coupled);
   rep.total_seconds = seconds_since(start);
   st.result.report = rep;
