@@ -146,6 +146,12 @@ void bind_occ_bridge(py::module_& m) {
           "sheet"_a,
           "BREP of the sheet's face bounded and oriented like the base face (its natural face "
           "when the base is natural).")
+      .def(
+          "face_binary",
+          [](const occ::BaseTrim& t, const BSplineSurface& sheet) {
+            return py::bytes(occ::write_brep_binary(t.face(sheet)));
+          },
+          "sheet"_a, "face_brep as binary BREP (bytes), for Part.Shape.importBinary.")
       .def("boundary", &occ::BaseTrim::boundary,
            "The base face's edges off its parameter rectangle, as pre-images and targets: what "
            "keeps a trimmed boundary in place (empty for a natural face).")
@@ -251,6 +257,12 @@ void bind_occ_bridge(py::module_& m) {
       "face_brep",
       [](const BSplineSurface& surface) { return occ::write_brep(occ::make_face(surface)); },
       "surface"_a, "BREP string of a valid face bounded by the sheet's natural boundary.");
+  m.def(
+      "face_binary",
+      [](const BSplineSurface& surface) {
+        return py::bytes(occ::write_brep_binary(occ::make_face(surface)));
+      },
+      "surface"_a, "face_brep as binary BREP (bytes), for Part.Shape.importBinary.");
 
   m.def("max_deviation", &occ::max_deviation, "surface"_a, "curve"_a, "samples"_a = 200,
         "accept"_a = 0.0, py::call_guard<py::gil_scoped_release>(),

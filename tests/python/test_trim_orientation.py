@@ -256,3 +256,21 @@ def test_solid_joins_sheets_on_trimmed_faces(doc):
     for face, sheet in ((top, sheets[0]), (bottom, sheets[1])):
         assert farthest(inside_points(face, 30, 3), sheet.Shape) <= 1e-6
         assert face.Area < sheet.Shape.Area  # trimmed to the rim, inside the disc
+
+
+@pytest.mark.parametrize("scene", list(SCENES))
+def test_the_result_crosses_as_binary_brep_unchanged(scene, native):
+    """A sheet's face comes back from the extension as binary BREP (read by Part's importBinary):
+    the same face, orientation and trim included, as the BREP text path gives, to the last bit of
+    its written text. The base is also tried reversed."""
+    from varsurf.solve.shapes import shape_from_binary, shape_from_brep
+
+    for base in (SCENES[scene](), SCENES[scene]().reversed()):
+        text = base.exportBrepToString()
+        trim = native.BaseTrim(text)
+        surface = native.surface_from_face_brep(solve_sheet_on_face(base, [], rest="base").shape.exportBrepToString())
+        by_text = shape_from_brep(trim.face_brep(surface))
+        by_binary = shape_from_binary(trim.face_binary(surface))
+        assert by_binary.Orientation == by_text.Orientation == base.Orientation
+        assert by_binary.exportBrepToString() == by_text.exportBrepToString()
+        assert by_binary.isValid()

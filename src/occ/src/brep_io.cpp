@@ -2,6 +2,8 @@
 #include "varsurf/occ/brep_io.hpp"
 
 #include <BRepTools.hxx>
+#include <BinTools.hxx>
+#include <BinTools_ShapeSet.hxx>
 #include <BRep_Builder.hxx>
 
 #include <locale>
@@ -77,6 +79,45 @@ std::string write_brep(const TopoDS_Shape& shape) {
   });
   if (!out) throw GeometryError("writing BREP: stream error");
   return out.str();
+}
+
+// FreeCAD's own binary layout (TopoShape::exportBinary / importBinary in 0.20): OCCT's shape
+// set, then the root as three integers (its index, its location's index, its orientation).
+// BinTools::Write ends the set with the root in another encoding, which importBinary read as an
+// empty shape.
+std::string write_brep_binary(const TopoDS_Shape& shape) {
+  if (shape.IsNull()) throw InvalidInput("cannot write a null shape as BREP");
+  std::ostringstream out(std::ios::out | std::ios::binary);
+  guarded("writing binary BREP", [&] {
+    BinTools_ShapeSet set;
+    const Standard_Integer index = set.Add(shape);  // the set keeps shapes without location
+    set.Write(out);
+    BinTools::PutInteger(out, index);
+    BinTools::PutInteger(out, set.Locations().Index(shape.Location()));
+    BinTools::PutInteger(out, static_cast<Standard_Integer>(shape.Orientation()));
+  });
+  if (!out) throw GeometryError("writing binary BREP: stream error");
+  return out.str();
+}
+
+TopoDS_Shape read_brep_binary(const std::string& data) {
+  if (data.empty()) throw InvalidInput("binary BREP data is empty");
+  std::istringstream in(data, std::ios::in | std::ios::binary);
+  TopoDS_Shape shape;
+  guarded("reading binary BREP", [&] {
+    BinTools_ShapeSet set;
+    set.Read(in);
+    Standard_Integer index = 0, location = 0, orientation = 0;
+    BinTools::GetInteger(in, index);
+    BinTools::GetInteger(in, location);
+    BinTools::GetInteger(in, orientation);
+    if (!in || index <= 0 || index > set.NbShapes() || orientation < 0 || orientation > 3) return;
+    shape = set.Shape(index);
+    shape.Location(set.Locations().Location(location));
+    shape.Orientation(static_cast<TopAbs_Orientation>(orientation));
+  });
+  if (shape.IsNull()) throw GeometryError("reading binary BREP: the data holds no shape");
+  return shape;
 }
 
 }  // namespace varsurf::occ

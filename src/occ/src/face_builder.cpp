@@ -7,6 +7,7 @@
 
 #include <string>
 
+#include "collapsed_sides.hpp"
 #include "varsurf/occ/geom_convert.hpp"
 #include "varsurf/occ/occ_error.hpp"
 
@@ -35,6 +36,7 @@ const char* face_error(BRepBuilderAPI_FaceError e) {
 TopoDS_Face make_face(const BSplineSurface& surface) {
   const Handle(Geom_BSplineSurface) geom = to_geom(surface);
   return guarded("building a face", [&] {
+    collapse_degenerate_sides(geom, Precision::Confusion());
     BRepBuilderAPI_MakeFace maker(geom, Precision::Confusion());
     if (!maker.IsDone())
       throw GeometryError(std::string("building a face failed: ") + face_error(maker.Error()));

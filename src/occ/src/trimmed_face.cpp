@@ -43,6 +43,7 @@
 #include <string>
 #include <vector>
 
+#include "collapsed_sides.hpp"
 #include "varsurf/core/errors.hpp"
 #include "varsurf/occ/face_builder.hpp"
 #include "varsurf/occ/geom_convert.hpp"
@@ -249,7 +250,10 @@ TopoDS_Face BaseTrim::face(const BSplineSurface& sheet) const {
     out.Orientation(orientation_);
     return out;
   }
-  return guarded("bounding the sheet by its base face's boundary", [&] { return bounded(geom); });
+  return guarded("bounding the sheet by its base face's boundary", [&] {
+    collapse_degenerate_sides(geom, Precision::Confusion());
+    return bounded(geom);
+  });
 }
 
 namespace {

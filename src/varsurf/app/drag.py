@@ -24,7 +24,7 @@ from varsurf.app import space_curve as space_curve_feature
 from varsurf.app.macro import exec_line, ref
 from varsurf.solve.errors import SheetError
 from varsurf.solve.native import build, native
-from varsurf.solve.shapes import shape_from_brep, single_face
+from varsurf.solve.shapes import shape_from_binary, single_face
 
 TRANSACTION = "Drag VarSurf point"
 #: A target this far (relative to the sheet's size) from the prepared one is not this constraint.
@@ -151,11 +151,11 @@ class PointDrag:
         surface = build(nat.BSplineSurface, space=self.space, poles=self.last.poles)
         if update_shape:
             try:  # bounded and oriented like the base face, as the Sheet's own result
-                brep = self.trim.face_brep(surface) if self.trim is not None else nat.face_brep(surface)
+                data = self.trim.face_binary(surface) if self.trim is not None else nat.face_binary(surface)
             except (nat.InvalidInput, nat.GeometryError) as error:
                 raise DragError(f"{self.sheet.Label}: the dragged sheet cannot be bounded like its base "
                                 f"face: {error}") from error
-            self.sheet.Shape = single_face(shape_from_brep(brep))
+            self.sheet.Shape = single_face(shape_from_binary(data))
         self.moves += 1
         self.seconds += time.perf_counter() - began
         return surface

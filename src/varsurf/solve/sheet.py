@@ -322,7 +322,7 @@ def _outcome(nat, sheet, solved, options, started):
     space, result, problem, local, deviations = solved
     surface = build(nat.BSplineSurface, space=space, poles=result.poles)
     try:
-        shape = shapes.single_face(shapes.shape_from_brep(sheet.trim.face_brep(surface)))
+        shape = shapes.single_face(shapes.shape_from_binary(sheet.trim.face_binary(surface)))
     except (nat.InvalidInput, nat.GeometryError) as error:
         raise SheetError(advised(f"the sheet cannot be bounded like its base face: {error}",
                                  BOUNDING_REMEDY)) from error
