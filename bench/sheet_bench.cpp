@@ -225,9 +225,11 @@ int mb() {
       const double best = best_of_three(pb, opt, res);
       std::printf(
           "{\"case\": \"mb\", \"name\": \"%s\", \"poles\": %d, \"rows\": %d, \"mode\": \"%s\", "
-          "\"seconds\": %.6f, \"corner\": %d, \"directions\": %zu, \"max_dev\": %.3g}\n",
+          "\"seconds\": %.6f, \"assemble\": %.6f, \"reduce\": %.6f, \"factor\": %.6f, "
+          "\"solve\": %.6f, \"corner\": %d, \"directions\": %zu, \"max_dev\": %.3g}\n",
           cs.name, pb.space.size(), res.report.constraint_samples, to_string(mode), best,
-          res.report.lcurve.corner, res.report.lcurve.k.size(),
+          res.report.assemble_seconds, res.report.reduce_seconds, res.report.factor_seconds,
+          res.report.solve_seconds, res.report.lcurve.corner, res.report.lcurve.k.size(),
           max_parametric_deviation(pb, res.poles));
     }
   }
