@@ -2,9 +2,9 @@
 #include "varsurf/occ/brep_io.hpp"
 
 #include <BRepTools.hxx>
+#include <BRep_Builder.hxx>
 #include <BinTools.hxx>
 #include <BinTools_ShapeSet.hxx>
-#include <BRep_Builder.hxx>
 
 #include <locale>
 #include <sstream>
