@@ -155,6 +155,16 @@ struct ConstrainedSolve::Impl {
   // with minus_shift, for blocks not yet shifted).
   Eigen::MatrixXd samples_rhs(const std::vector<ConstraintSamples>& blocks,
                               bool minus_shift = false) const;
+  // rhs -= the rest shape's value of sample row r of `block` (shifted() and samples_rhs).
+  void take_off_shift(const ConstraintSamples& block, int r, Eigen::RowVectorXd& rhs) const {
+    const auto& idx = block.index[static_cast<size_t>(r)];
+    const Eigen::VectorXd& c = block.coeff[static_cast<size_t>(r)];
+    for (size_t k = 0; k < idx.size(); ++k) {
+      if (idx[k] < 0 || idx[k] >= shift.rows())
+        throw InvalidInput("constraint sample index out of range");
+      rhs -= c(static_cast<Eigen::Index>(k)) * shift.row(idx[k]);
+    }
+  }
   Eigen::MatrixXd solve_cg(const Eigen::MatrixXd& g, const Eigen::MatrixXd& b,
                            SolveReport& rep) const;
 };
@@ -330,14 +340,10 @@ std::vector<ConstraintSamples> ConstrainedSolve::Impl::shifted(
   std::vector<ConstraintSamples> out = blocks;
   for (ConstraintSamples& block : out)
     for (int r = 0; r < block.rows(); ++r) {
-      const auto& idx = block.index[static_cast<size_t>(r)];
-      const Eigen::VectorXd& c = block.coeff[static_cast<size_t>(r)];
       if (block.rhs.cols() != width) throw InvalidInput("constraint samples of mixed widths");
-      for (size_t k = 0; k < idx.size(); ++k) {
-        if (idx[k] < 0 || idx[k] >= shift.rows())
-          throw InvalidInput("constraint sample index out of range");
-        block.rhs.row(r) -= c(static_cast<Eigen::Index>(k)) * shift.row(idx[k]);
-      }
+      Eigen::RowVectorXd rhs = block.rhs.row(r);
+      take_off_shift(block, r, rhs);
+      block.rhs.row(r) = rhs;
     }
   return out;
 }
@@ -525,12 +531,7 @@ Eigen::MatrixXd ConstrainedSolve::Impl::samples_rhs(const std::vector<Constraint
       Eigen::RowVectorXd rhs = block.rhs.row(k);
       const auto& idx = block.index[static_cast<size_t>(k)];
       const Eigen::VectorXd& c = block.coeff[static_cast<size_t>(k)];
-      if (minus_shift)  // as shifted() does, in the same order
-        for (size_t j = 0; j < idx.size(); ++j) {
-          if (idx[j] < 0 || idx[j] >= shift.rows())
-            throw InvalidInput("constraint sample index out of range");
-          rhs -= c(static_cast<Eigen::Index>(j)) * shift.row(idx[j]);
-        }
+      if (minus_shift) take_off_shift(block, k, rhs);
       for (size_t j = 0; j < idx.size(); ++j)
         if (free_index[static_cast<size_t>(idx[j])] < 0)
           rhs -= c(static_cast<Eigen::Index>(j)) * x0.row(idx[j]);
