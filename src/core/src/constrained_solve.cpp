@@ -4,6 +4,8 @@
 #include <Eigen/SparseCholesky>
 #ifdef VARSURF_HAVE_CHOLMOD
 #include <Eigen/CholmodSupport>
+
+#include "serial_openmp.hpp"
 #endif
 #ifdef VARSURF_HAVE_SPQR
 #include <Eigen/SPQRSupport>
@@ -76,9 +78,10 @@ struct ConstrainedSolve::Impl {
   double mu2 = 0.0;
   Eigen::SimplicialLDLT<Sparse> ldlt;
 #ifdef VARSURF_HAVE_CHOLMOD
-  // CHOLMOD beyond 2000 unknowns (measured with OpenBLAS: at 64 x 64 poles the same factor time
-  // as SimplicialLDLT and a drag update of 3.5 ms against 4.5 ms; at 128 x 128 a factor of 0.17 s
-  // against 0.30 s); below that its BLAS calls cost more than they save.
+  // CHOLMOD beyond 500 unknowns, on one OpenMP thread (measured on benchmark 3's sheets, factor
+  // and drag update against SimplicialLDLT: 24 x 24 poles 4.1 / 0.65 ms against 4.9 / 0.71 ms,
+  // 45 x 45 13 / 1.2 ms against 19 / 1.8 ms, 64 x 64 30 / 2.2 ms against 52 / 3.8 ms); at
+  // 16 x 16 the two are even.
   Eigen::CholmodDecomposition<Sparse> cholmod;
   bool use_cholmod = false;
 #endif
@@ -432,9 +435,17 @@ bool ConstrainedSolve::Impl::factor_penalty(double scale) {
   }
 #ifdef VARSURF_HAVE_CHOLMOD
   // A failed CHOLMOD factorization must not be used by the solve (LDLT takes over below).
-  use_cholmod = n > 2000;
+  use_cholmod = n > 500;
   if (use_cholmod) {
-    cholmod.compute(m_pen);
+    // AMD alone: CHOLMOD's default also tries METIS when AMD's fill is large, which at 256 x 256
+    // poles took 0.82 s of a 1.3 s analysis and factorization, for a factor with 8 % fewer
+    // entries.
+    cholmod.cholmod().nmethods = 1;
+    cholmod.cholmod().method[0].ordering = CHOLMOD_AMD;
+    {
+      const SerialOpenMp one_thread;
+      cholmod.compute(m_pen);
+    }
     if (cholmod.info() == Eigen::Success) {
       // CHOLMOD checks only the pivots' signs: a factor that cannot reproduce a known solution
       // (rounding beyond the regularization) is refused too.
