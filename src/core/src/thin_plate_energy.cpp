@@ -4,7 +4,6 @@
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
-#include <unordered_map>
 #include <vector>
 
 #include "varsurf/core/errors.hpp"
@@ -33,6 +32,111 @@ void ThinPlateWeights::validate() const {
     throw InvalidInput("energy is zero: give a positive stretch or bend weight");
 }
 
+namespace {
+
+// One direction's Gram matrices of basis derivatives, gram[a][b](i, i2) = int N_i^(a) N_i2^(b),
+// stored as bands: column i2 - i + degree of row i (entries further apart are zero).
+struct DirectionGram {
+  int degree = 0;
+  Eigen::MatrixXd gram[3][3];
+  double at(int a, int b, int i, int i2) const { return gram[a][b](i, i2 - i + degree); }
+};
+
+DirectionGram direction_gram(const std::vector<double>& knots, int degree, int order) {
+  DirectionGram out;
+  out.degree = degree;
+  const int n = static_cast<int>(knots.size()) - degree - 1;
+  for (int a = 0; a <= order; ++a)
+    for (int b = 0; b <= order; ++b) out.gram[a][b] = Eigen::MatrixXd::Zero(n, 2 * degree + 1);
+  // Products of two degree-p derivatives are polynomials of degree <= 2p per span: p + 1 points
+  // integrate them exactly.
+  const GaussRule& g = gauss_legendre(degree + 1);
+  const std::vector<double> br = breakpoints(knots, degree);
+  Eigen::MatrixXd d(order + 1, degree + 1);
+  for (size_t s = 0; s + 1 < br.size(); ++s) {
+    const double h = 0.5 * (br[s + 1] - br[s]);
+    const int span = find_span(knots, degree, br[s] + h);
+    for (size_t q = 0; q < g.nodes.size(); ++q) {
+      basis_derivatives(knots, degree, span, br[s] + h * (g.nodes[q] + 1.0), order, d);
+      const double wq = g.weights[q] * h;
+      for (int a = 0; a <= order; ++a)
+        for (int b = 0; b <= order; ++b)
+          for (int k = 0; k <= degree; ++k)
+            for (int k2 = 0; k2 <= degree; ++k2)
+              out.gram[a][b](span - degree + k, k2 - k + degree) += wq * d(a, k) * d(b, k2);
+    }
+  }
+  return out;
+}
+
+// A polynomial space's energy is a sum of Kronecker products of the two directions' Gram
+// matrices (each term a derivative pair that separates into u and v factors): no 2D quadrature.
+// Measured at 64 x 64 bicubic poles: 1.5 ms against 21 ms for the span-by-span quadrature with
+// its local matrices cached per knot pattern.
+Eigen::SparseMatrix<double> assemble_separable(const SplineSpace& space, const ThinPlateWeights& w,
+                                               bool bends) {
+  const int order = bends ? 2 : 1;
+  const DirectionGram gu = direction_gram(space.knots_u, space.degree_u, order);
+  const DirectionGram gv = direction_gram(space.knots_v, space.degree_v, order);
+  // Terms coef * int D^(au, av) phi_k D^(bu, bv) phi_l: the gradient's alpha and the Hessian's
+  // beta, the mixed second derivative counted twice as in sum_ij beta_ij (D_i D_j w)^2.
+  struct Term {
+    double coef;
+    int au, bu, av, bv;
+  };
+  std::vector<Term> terms;
+  const int grad[2][2] = {{1, 0}, {0, 1}};  // (u order, v order) of w_u and w_v
+  for (int a = 0; a < 2; ++a)
+    for (int b = 0; b < 2; ++b)
+      if (w.alpha(a, b) != 0.0)
+        terms.push_back({w.alpha(a, b), grad[a][0], grad[b][0], grad[a][1], grad[b][1]});
+  if (bends) {
+    const double hess[3] = {w.beta(0, 0), w.beta(0, 1) + w.beta(1, 0), w.beta(1, 1)};
+    const int order_u[3] = {2, 1, 0};
+    for (int m = 0; m < 3; ++m)
+      if (hess[m] != 0.0)
+        terms.push_back({hess[m], order_u[m], order_u[m], 2 - order_u[m], 2 - order_u[m]});
+  }
+  const int nu = space.nu(), nv = space.nv(), pu = space.degree_u, pv = space.degree_v;
+  const int n = space.size();
+  // Written straight into the matrix's compressed storage: a copy of a 256 x 256 sheet's 3.2 M
+  // entries (and the pages it touches for the first time) cost as much as computing them.
+  auto width = [](int i, int p, int count) {
+    return std::min(count - 1, i + p) - std::max(0, i - p) + 1;
+  };
+  long long total = 0;
+  for (int i = 0; i < nu; ++i) total += static_cast<long long>(width(i, pu, nu));
+  long long total_v = 0;
+  for (int j = 0; j < nv; ++j) total_v += static_cast<long long>(width(j, pv, nv));
+  Eigen::SparseMatrix<double> h(n, n);
+  h.resizeNonZeros(static_cast<Eigen::Index>(total * total_v));
+  int* outer = h.outerIndexPtr();
+  int* inner = h.innerIndexPtr();
+  double* values = h.valuePtr();
+  // Column (i, j), row (i2, j2): sum over terms of coef * U(i2, i) * V(j2, j).
+  std::vector<double> ufac(terms.size());
+  int k = 0;
+  outer[0] = 0;
+  for (int i = 0; i < nu; ++i)
+    for (int j = 0; j < nv; ++j) {
+      for (int i2 = std::max(0, i - pu); i2 <= std::min(nu - 1, i + pu); ++i2) {
+        for (size_t t = 0; t < terms.size(); ++t)
+          ufac[t] = terms[t].coef * gu.at(terms[t].au, terms[t].bu, i2, i);
+        for (int j2 = std::max(0, j - pv); j2 <= std::min(nv - 1, j + pv); ++j2) {
+          double sum = 0.0;
+          for (size_t t = 0; t < terms.size(); ++t)
+            sum += ufac[t] * gv.at(terms[t].av, terms[t].bv, j2, j);
+          inner[k] = space.index(i2, j2);
+          values[k++] = sum;
+        }
+      }
+      outer[space.index(i, j) + 1] = k;
+    }
+  return h;
+}
+
+}  // namespace
+
 Eigen::SparseMatrix<double> assemble_thin_plate(const SplineSpace& space,
                                                 const ThinPlateWeights& w) {
   space.validate();
@@ -40,11 +144,12 @@ Eigen::SparseMatrix<double> assemble_thin_plate(const SplineSpace& space,
   const bool bends = !w.beta.isZero(0.0);
   if (bends && (space.degree_u < 2 || space.degree_v < 2))
     throw InvalidInput("a bending energy needs degree 2 or more in both directions");
+  if (!space.rational()) return assemble_separable(space, w, bends);
 
-  // Products of two degree-p derivatives are polynomials of degree <= 2p per span: p + 1 points
-  // integrate them exactly. Rational bases are not polynomial; two extra points keep the error
-  // far below the solver's tolerances for the weight ratios CAD data uses.
-  const int extra = space.rational() ? 2 : 0;
+  // Rational bases are not polynomial: two points beyond the p + 1 that integrate a polynomial
+  // space exactly keep the error far below the solver's tolerances for the weight ratios CAD data
+  // uses.
+  const int extra = 2;
   const GaussRule& gu = gauss_legendre(space.degree_u + 1 + extra);
   const GaussRule& gv = gauss_legendre(space.degree_v + 1 + extra);
   const std::vector<double> bu = breakpoints(space.knots_u, space.degree_u);
@@ -55,33 +160,15 @@ Eigen::SparseMatrix<double> assemble_thin_plate(const SplineSpace& space,
   // The mixed term appears twice in sum_ij beta_ij (D_i D_j w)^2.
   const Eigen::Vector3d hess_w(w.beta(0, 0), w.beta(0, 1) + w.beta(1, 0), w.beta(1, 1));
 
-  // Spans whose surrounding knots have the same spacing (every interior span of a uniform
-  // space) have the same local matrix: it is computed once per pattern, which made assembling a
-  // 64 x 64 sheet several times faster. Rational spaces are computed span by span.
-  struct Direction {
-    std::vector<int> first;    // first non-zero basis function of each span
-    std::vector<int> pattern;  // span pattern id
+  // First non-zero basis function of each span.
+  auto firsts = [](const std::vector<double>& knots, int degree, const std::vector<double>& br) {
+    std::vector<int> first;
+    for (size_t a = 0; a + 1 < br.size(); ++a)
+      first.push_back(find_span(knots, degree, 0.5 * (br[a] + br[a + 1])) - degree);
+    return first;
   };
-  auto classify = [&](const std::vector<double>& knots, int degree, const std::vector<double>& br) {
-    Direction d;
-    std::vector<std::vector<double>> seen;
-    for (size_t a = 0; a + 1 < br.size(); ++a) {
-      const int span = find_span(knots, degree, 0.5 * (br[a] + br[a + 1]));
-      d.first.push_back(span - degree);
-      std::vector<double> key;
-      for (int k = span - degree; k <= span + degree + 1; ++k)
-        key.push_back(knots[static_cast<size_t>(k)] - knots[static_cast<size_t>(span)]);
-      size_t id = 0;
-      while (id < seen.size() && seen[id] != key) ++id;
-      if (id == seen.size()) seen.push_back(key);
-      d.pattern.push_back(space.rational() ? static_cast<int>(a) : static_cast<int>(id));
-    }
-    return d;
-  };
-  const Direction du = classify(space.knots_u, space.degree_u, bu);
-  const Direction dv = classify(space.knots_v, space.degree_v, bv);
-  const int pattern_v = 1 + *std::max_element(dv.pattern.begin(), dv.pattern.end());
-  std::unordered_map<long, Eigen::MatrixXd> cache;
+  const std::vector<int> first_u = firsts(space.knots_u, space.degree_u, bu);
+  const std::vector<int> first_v = firsts(space.knots_v, space.degree_v, bv);
 
   // H's pattern is known: pole (i, j) couples with the poles within degree_u and degree_v of it.
   // Values are added in place (measured: 3x faster than collecting ~1M triplets at 64 x 64).
@@ -109,32 +196,26 @@ Eigen::SparseMatrix<double> assemble_thin_plate(const SplineSpace& space,
     const double u0 = bu[a], hu = 0.5 * (bu[a + 1] - bu[a]);
     for (size_t b = 0; b + 1 < bv.size(); ++b) {
       const double v0 = bv[b], hv = 0.5 * (bv[b + 1] - bv[b]);
-      const long key = static_cast<long>(du.pattern[a]) * pattern_v + dv.pattern[b];
-      auto found = cache.find(key);
-      if (found == cache.end()) {
-        Eigen::MatrixXd local = Eigen::MatrixXd::Zero(count, count);
-        for (size_t i = 0; i < gu.nodes.size(); ++i) {
-          const double u = u0 + hu * (gu.nodes[i] + 1.0);
-          for (size_t j = 0; j < gv.nodes.size(); ++j) {
-            const double v = v0 + hv * (gv.nodes[j] + 1.0);
-            const double dA = gu.weights[i] * gv.weights[j] * hu * hv;
-            const BasisSample s = space.basis(u, v, order);
-            const auto grad = s.values.middleRows(1, 2);
-            local.noalias() += dA * (grad.transpose() * w.alpha * grad);
-            if (bends) {
-              const auto hess = s.values.middleRows(3, 3);
-              local.noalias() += dA * (hess.transpose() * hess_w.asDiagonal() * hess);
-            }
+      Eigen::MatrixXd local = Eigen::MatrixXd::Zero(count, count);
+      for (size_t i = 0; i < gu.nodes.size(); ++i) {
+        const double u = u0 + hu * (gu.nodes[i] + 1.0);
+        for (size_t j = 0; j < gv.nodes.size(); ++j) {
+          const double v = v0 + hv * (gv.nodes[j] + 1.0);
+          const double dA = gu.weights[i] * gv.weights[j] * hu * hv;
+          const BasisSample s = space.basis(u, v, order);
+          const auto grad = s.values.middleRows(1, 2);
+          local.noalias() += dA * (grad.transpose() * w.alpha * grad);
+          if (bends) {
+            const auto hess = s.values.middleRows(3, 3);
+            local.noalias() += dA * (hess.transpose() * hess_w.asDiagonal() * hess);
           }
         }
-        found = cache.emplace(key, std::move(local)).first;
       }
       // The span's basis functions: poles (first_u + i, first_v + j), in BasisSample's order.
       int k = 0;
       for (int i = 0; i <= space.degree_u; ++i)
         for (int j = 0; j <= space.degree_v; ++j)
-          index[static_cast<size_t>(k++)] = space.index(du.first[a] + i, dv.first[b] + j);
-      const Eigen::MatrixXd& local = found->second;
+          index[static_cast<size_t>(k++)] = space.index(first_u[a] + i, first_v[b] + j);
       for (int c = 0; c < count; ++c)
         for (int r = 0; r < count; ++r)
           values[position(index[static_cast<size_t>(r)], index[static_cast<size_t>(c)])] +=
