@@ -118,7 +118,11 @@ void curve_rhs(const CurveConstraint& c, const CurveSampling& s, Eigen::MatrixXd
 }
 
 ConstraintSamples sample_curve(const SplineSpace& space, const CurveConstraint& c) {
-  const CurveSampling s = curve_sampling(space, c);
+  return sample_curve(space, c, curve_sampling(space, c));
+}
+
+ConstraintSamples sample_curve(const SplineSpace& space, const CurveConstraint& c,
+                               const CurveSampling& s) {
   ConstraintSamples out;
   std::vector<bool> kept;
   curve_rhs(c, s, out.rhs, out.weight, kept);

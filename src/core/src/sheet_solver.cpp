@@ -459,7 +459,7 @@ PreparedSheet::PreparedSheet(const SheetProblem& pb, const SolveOptions& opt) : 
   auto t = Clock::now();
   st.assembled = assemble(pb, opt, rep, [&](size_t, const CurveConstraint& c) {
     st.curve_samplings.push_back(curve_sampling(pb.space, c));
-    st.curve_blocks.push_back(sample_curve(pb.space, c));
+    st.curve_blocks.push_back(sample_curve(pb.space, c, st.curve_samplings.back()));
     return st.curve_blocks.back();
   });
   rep.assemble_seconds = seconds_since(t);
@@ -639,7 +639,7 @@ SolveResult PreparedSheet::change(const SheetProblem& changed) {
         return curve_blocks.back();
       }
     samplings.push_back(curve_sampling(changed.space, c));
-    curve_blocks.push_back(sample_curve(changed.space, c));
+    curve_blocks.push_back(sample_curve(changed.space, c, samplings.back()));
     return curve_blocks.back();
   };
   rep.coupled = st.result.report.coupled;

@@ -69,6 +69,10 @@ CurveSampling curve_sampling(const SplineSpace& space, const CurveConstraint& c)
 void curve_rhs(const CurveConstraint& c, const CurveSampling& sampling, Eigen::MatrixXd& rhs,
                std::vector<double>& weights, std::vector<bool>& kept);
 
+// sample_curve at a sampling already made (curve_sampling of the same space and constraint).
+ConstraintSamples sample_curve(const SplineSpace& space, const CurveConstraint& c,
+                               const CurveSampling& sampling);
+
 // Largest |w(c(t)) - D(t)| over `samples` parameters evenly spaced on the curve: the incidence
 // error as the solver sees it (through the pre-image).
 double incidence_error(const SplineSpace& space, const Eigen::MatrixX3d& poles,
