@@ -140,10 +140,22 @@ int scaling(int poles, int interior, SolveMode mode, bool qr) {
   opt.mode = mode;
   opt.penalty_qr = qr;
   opt.fit_tolerance = 0.0025;  // what a Sheet uses at its default tolerance (0.01 mm / 4)
-  const double t0 = now();
+  // The first solve in a fresh process also pays for touching its memory for the first time;
+  // FreeCAD's is warm after its first recompute. Both are printed: "first", and "full" as the
+  // fastest of three (its stages are that solve's).
+  double t0 = now();
   PreparedSheet prepared(pb, opt);
-  const double full = now() - t0;
-  const SolveReport r = prepared.result().report;  // a copy: change() below replaces it
+  const double first = now() - t0;
+  double full = first;
+  SolveReport r = prepared.result().report;  // a copy: change() below replaces it
+  for (int rep = 0; rep < 2; ++rep) {
+    t0 = now();
+    PreparedSheet again(pb, opt);
+    if (now() - t0 < full) {
+      full = now() - t0;
+      r = again.result().report;
+    }
+  }
   // Drag: one interior curve (or a boundary curve) moved up 2 mm, same pre-image.
   SheetProblem moved = pb;
   const size_t which = pb.curves.size() > 4 ? 4 : 0;
@@ -171,12 +183,13 @@ int scaling(int poles, int interior, SolveMode mode, bool qr) {
       "{\"case\": \"scaling\", \"poles\": %d, \"interior\": %d, \"unknowns\": %d, "
       "\"mode\": \"%s%s\", \"assemble\": %.6f, \"reduce\": %.6f, \"factor\": %.6f, \"solve\": "
       "%.6f, "
-      "\"full\": %.6f, \"drag\": %.6f, \"change\": %.6f, \"rank\": %d, \"inner\": %d, "
+      "\"full\": %.6f, \"first\": %.6f, \"drag\": %.6f, \"change\": %.6f, \"rank\": %d, \"inner\": "
+      "%d, "
       "\"peak_mib\": %.1f, "
       "\"max_dev\": %.3g}\n",
       poles, interior, r.unknowns, to_string(r.mode), qr ? " (QR)" : "", r.assemble_seconds,
-      r.reduce_seconds, r.factor_seconds, r.solve_seconds, full, drag, change, r.constraint_rank,
-      r.inner_iterations, peak_mib(), max_dev);
+      r.reduce_seconds, r.factor_seconds, r.solve_seconds, full, first, drag, change,
+      r.constraint_rank, r.inner_iterations, peak_mib(), max_dev);
   return 0;
 }
 
