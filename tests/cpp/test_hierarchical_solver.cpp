@@ -102,6 +102,38 @@ TEST(HierarchicalSolver, RefinesWhereTheCurveIsOffUntilItIsMet) {
   EXPECT_LT((p - Eigen::Vector3d(0.3, 0.7, 0.03)).norm(), 1e-9);
 }
 
+TEST(HierarchicalSolver, SeparableAndCoupledSystemsGiveTheSameSheet) {
+  // Curves and points couple no coordinates: the hierarchical system is solved once for x, y and
+  // z on one factorization; forced into one coupled 3n system it must give the same sheet. A
+  // normal constraint couples them, and is then met.
+  SheetProblem pb = wave_problem(1);
+  pb.points.push_back({0.3, 0.7, Eigen::Vector3d(0.3, 0.7, 0.03)});
+  HierarchicalOptions ho;
+  ho.tolerance = 1e-5;
+  ho.max_depth = 5;
+  const HierarchicalResult separable = solve_hierarchical(pb, ho, exact_options());
+  SolveOptions forced = exact_options();
+  forced.force_coupled = true;
+  const HierarchicalResult coupled = solve_hierarchical(pb, ho, forced);
+  EXPECT_FALSE(separable.report.solve.coupled);
+  EXPECT_TRUE(coupled.report.solve.coupled);
+  EXPECT_EQ(coupled.report.solve.unknowns, 3 * separable.report.solve.unknowns);
+  ASSERT_EQ(separable.report.dofs, coupled.report.dofs);
+  EXPECT_LT((separable.poles - coupled.poles).cwiseAbs().maxCoeff(), 1e-9);
+
+  NormalConstraint n;
+  n.u = 0.6;
+  n.v = 0.3;
+  n.normal = Eigen::Vector3d(0.2, -0.1, 1.0).normalized();
+  pb.normals.push_back(n);
+  const HierarchicalResult tilted = solve_hierarchical(pb, ho, exact_options());
+  EXPECT_TRUE(tilted.report.solve.coupled);
+  const Eigen::MatrixXd d = evaluate_surface(tilted.space, tilted.poles, n.u, n.v, 1);
+  const Eigen::Vector3d normal =
+      Eigen::Vector3d(d.row(1).transpose()).cross(Eigen::Vector3d(d.row(2).transpose()));
+  EXPECT_LT(normal.normalized().cross(n.normal).norm(), 1e-8);
+}
+
 TEST(HierarchicalSolver, ACurvedPreimageIsMetToo) {
   // A quarter-circle pre-image (not along any knot line) carrying a wave, two crossing curves'
   // worth of detail on a 2 x 2-span sheet.

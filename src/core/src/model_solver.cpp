@@ -282,7 +282,7 @@ Joint assemble_joint(const ModelProblem& pb, const SolveOptions& opt) {
             {jn.preimage, pb.curves[static_cast<size_t>(jn.curve)].start, jn.weight, jn.exact});
     Quadratic qs;
     try {
-      qs = coupled_sheet_quadratic(sheet, opt, /*fold_rest=*/false);
+      qs = sheet_quadratic(sheet, opt, /*fold_rest=*/false, /*force_coupled=*/true);
     } catch (const InvalidInput& e) {
       throw InvalidInput(label("sheet", s) + ": " + e.what());
     }

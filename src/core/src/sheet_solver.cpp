@@ -390,10 +390,11 @@ Eigen::MatrixXd iterate_curvature(const SheetProblem& pb, const SolveOptions& op
 
 }  // namespace
 
-Quadratic coupled_sheet_quadratic(const SheetProblem& pb, const SolveOptions& opt, bool fold_rest) {
+Quadratic sheet_quadratic(const SheetProblem& pb, const SolveOptions& opt, bool fold_rest,
+                          bool force_coupled) {
   validate_problem(pb, opt);
   SolveOptions coupled = opt;
-  coupled.force_coupled = true;
+  coupled.force_coupled = opt.force_coupled || force_coupled;
   SolveReport rep;
   if (!pb.curvatures.empty())
     throw InvalidInput(

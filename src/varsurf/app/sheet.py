@@ -58,7 +58,7 @@ _PROPERTIES = [
     ("RefinementDepth", "App::PropertyInteger", "Result", "Local refinement: the levels reached above the base", True),
     ("RefinedSpans", "App::PropertyFloatList", "Result", "Local refinement: every refined span, five numbers each: level, u0, u1, v0, v1 (the sheet's parameters)", True),
     ("DegreesOfFreedom", "App::PropertyInteger", "Result", "Poles the solve had (Local: the hierarchical sheet's; the exported sheet has PoleCountU x PoleCountV)", True),
-    ("SolveModeUsed", "App::PropertyString", "Result", "The solve mode used and why, and how many unknowns it solved (Local: the x, y and z of the free poles, solved together)", True),
+    ("SolveModeUsed", "App::PropertyString", "Result", "The solve mode used and why, and how many unknowns it solved (Local: the free poles, or their x, y and z when a constraint couples them)", True),
     ("LCurveResiduals", "App::PropertyFloatList", "Result", "TSVD/MTSVD: constraint residual norm per truncation k (the L-curve's x)", True),
     ("LCurveNorms", "App::PropertyFloatList", "Result", "TSVD/MTSVD: solution change norm per truncation k (the L-curve's y)", True),
     ("LCurveCorner", "App::PropertyInteger", "Result", "TSVD/MTSVD: the truncation k chosen at the L-curve's corner", True),

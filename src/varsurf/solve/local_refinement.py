@@ -38,12 +38,15 @@ def hierarchy_options(nat, space, settings):
 
 
 def mode_used(report, local) -> str:
-    """The solve's mode and why; a hierarchical solve also says what its unknowns count: the x,
-    y and z of its free poles in one coupled system, not its poles (DegreesOfFreedom)."""
+    """The solve's mode and why; a hierarchical solve also says what its unknowns count: its free
+    poles (x, y and z solved on one shared factorization), or their x, y and z in one coupled
+    system when a constraint couples them; not its poles (DegreesOfFreedom)."""
     reason = str(report.mode_reason)
     if local is None:
         return reason
     unknowns = int(report.unknowns)
     levels = int(local.depth) + 1
-    return (f"{reason}; locally refined: {int(local.dofs)} poles on {levels} level{'' if levels == 1 else 's'}, "
-            f"{unknowns // 3} of them free, their x, y and z solved together ({unknowns} unknowns)")
+    head = f"{reason}; locally refined: {int(local.dofs)} poles on {levels} level{'' if levels == 1 else 's'}, "
+    if report.coupled:
+        return head + f"{unknowns // 3} of them free, their x, y and z solved together ({unknowns} unknowns)"
+    return head + f"{unknowns} of them free, x, y and z solved on one factorization ({unknowns} unknowns)"
