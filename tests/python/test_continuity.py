@@ -120,3 +120,70 @@ def test_two_g1_joins_meeting_where_their_faces_disagree_are_a_corner():
     assert continuity.incompatible_corners([("A", along_x, flat_x), ("B", along_y, flat_y)], 1e-6) == []
     apart = Part.LineSegment(V(0, 5, 0), V(0, 30, 0)).toShape()
     assert continuity.incompatible_corners([("A", along_x, face_x), ("B", apart, face_y)], 1e-6) == []
+
+
+def _wave_pair(tilt):
+    """Two bicubic faces sharing their v = 0 boundary curve exactly (same first pole row) and
+    leaving it at different slopes and bends: a seam with a real angle and curvature jump."""
+    nu, nv = 7, 5
+    knots_u, knots_v = [0.0, 0.25, 0.5, 0.75, 1.0], [0.0, 0.5, 1.0]
+    mults_u, mults_v = [4, 1, 1, 1, 4], [4, 1, 4]
+
+    def surface(tilt):
+        poles = [[V(60.0 * i / (nu - 1), 40.0 * j / (nv - 1),
+                    3.0 * math.sin(i) * math.cos(0.7 * j) + tilt * j * (1.0 + 0.2 * i)) for j in range(nv)]
+                 for i in range(nu)]
+        s = Part.BSplineSurface()
+        s.buildFromPolesMultsKnots(poles, mults_u, mults_v, knots_u, knots_v, False, False, 3, 3)
+        return s
+
+    sheet, neighbour = surface(0.0), surface(tilt)
+    return sheet.toShape(), neighbour.toShape(), sheet.vIso(0.0).toShape()
+
+
+class _CountingSurface:
+    """A Part surface whose global projections (parameter) are counted."""
+
+    def __init__(self, surface):
+        self._surface = surface
+        self.global_calls = 0
+
+    def parameter(self, point):
+        self.global_calls += 1
+        return self._surface.parameter(point)
+
+    def __getattr__(self, name):
+        return getattr(self._surface, name)
+
+
+class _Face:
+    def __init__(self, face):
+        self.Surface = _CountingSurface(face.Surface)
+        self.BoundBox = face.BoundBox
+
+
+@pytest.mark.parametrize("tilt", [-4.0, 2.5])
+def test_feet_seeded_along_the_edge_measure_what_the_global_projection_measures(tilt):
+    """Each foot starts from the previous point's by Newton's method; it must measure the same
+    gap, angle and curvature jump as OCCT's global projection of every point, while only the
+    first point of each face is projected globally."""
+    sheet, neighbour, edge = _wave_pair(tilt)
+    size = 80.0
+    reference = continuity.measure("seam", sheet, edge, neighbour, size=size, seeded=False)
+    counted_sheet, counted_neighbour = _Face(sheet), _Face(neighbour)
+    seeded = continuity.measure("seam", counted_sheet, edge, counted_neighbour, size=size)
+    assert reference.angle > 3.0 and reference.curvature_jump > 10.0
+    assert seeded.samples == reference.samples >= 200
+    assert seeded.gap == pytest.approx(reference.gap, abs=1e-9)
+    assert seeded.angle == pytest.approx(reference.angle, abs=1e-7)
+    assert seeded.curvature_jump == pytest.approx(reference.curvature_jump, rel=1e-7)
+    assert counted_sheet.Surface.global_calls == 1 and counted_neighbour.Surface.global_calls == 1
+
+
+def test_a_foot_beyond_the_reach_is_projected_globally():
+    """The parallel plane 0.3 away: every neighbour foot is farther than the seeded reach, so each
+    is OCCT's (a local minimum found by Newton is not trusted to be the nearest point there)."""
+    neighbour = _Face(_strip(0.0, z=0.3))
+    join = continuity.measure("step", _sheet(), _edge(), neighbour, size=60.0)
+    assert join.gap == pytest.approx(0.3, abs=1e-9)
+    assert neighbour.Surface.global_calls == join.samples

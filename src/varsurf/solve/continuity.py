@@ -33,11 +33,53 @@ class Join:
     samples: int = 0
 
 
-def _foot(face, point):
+#: A seeded foot is taken when it is this close to the point, relative to the faces' size: then
+#: no other point of a face can be nearer by more than that (only a surface folding back within
+#: it could), and the measure is that of the global projection. Farther feet (a gap, an offset
+#: neighbour) go to OCCT's global projection.
+SEEDED_REACH = 1e-6
+
+
+def _newton_foot(surface, point, u, v, bounds, reach):
+    """(u, v) of the surface's closest point to ``point`` by Newton's method on the squared
+    distance from (u, v), or None unless it converges, within the surface's bounds, to a point
+    within ``reach`` of ``point``.
+
+    Why: OCCT's global projection (Surface.parameter) takes about 1.6 ms on a bicubic B-spline
+    face; it was 3.2 s of a 4.8 s five-sided G1 hole fill (2 000 feet along the joined edges).
+    Consecutive points along an edge have feet close to each other's, where Newton converges in
+    two or three steps."""
+    u0, u1, v0, v1 = bounds
+    scale_u, scale_v = max(u1 - u0, 1e-300), max(v1 - v0, 1e-300)
+    for _ in range(16):
+        r = surface.value(u, v) - point
+        su, sv = surface.getDN(u, v, 1, 0), surface.getDN(u, v, 0, 1)
+        g1, g2 = su.dot(r), sv.dot(r)
+        a = su.dot(su) + surface.getDN(u, v, 2, 0).dot(r)
+        b = su.dot(sv) + surface.getDN(u, v, 1, 1).dot(r)
+        c = sv.dot(sv) + surface.getDN(u, v, 0, 2).dot(r)
+        det = a * c - b * b
+        if not (a > 0.0 and det > 0.0):  # not a minimum of the distance here
+            return None
+        # Steps are kept inside the bounds (a foot on the boundary is reached along it).
+        next_u = min(max(u - (c * g1 - b * g2) / det, u0), u1)
+        next_v = min(max(v - (a * g2 - b * g1) / det, v0), v1)
+        du, dv = next_u - u, next_v - v
+        u, v = next_u, next_v
+        if abs(du) <= 1e-13 * scale_u and abs(dv) <= 1e-13 * scale_v:
+            break
+    else:
+        return None
+    return (u, v) if (surface.value(u, v) - point).Length <= reach else None
+
+
+def _foot(face, point, seed=None, reach=0.0):
     """(u, v) of the face's surface point nearest ``point``, its position and its unit normal
-    (the surface's own normal, so that curvatures keep their sign)."""
+    (the surface's own normal, so that curvatures keep their sign). ``seed``: the (u, v) of a
+    nearby point's foot, from which Newton's method is tried first."""
     surface = face.Surface
-    u, v = surface.parameter(point)
+    found = _newton_foot(surface, point, seed[0], seed[1], surface.bounds(), reach) if seed else None
+    u, v = found if found else surface.parameter(point)
     return u, v, surface.value(u, v), surface.normal(u, v)
 
 
@@ -53,22 +95,29 @@ def normal_curvature(surface, u, v, direction) -> float:
     return (k_max * a * a + k_min * b * b) / norm
 
 
-def measure(name: str, sheet, edge, neighbour=None, samples: int = SAMPLES, size: Optional[float] = None) -> Join:
-    """The Join of ``sheet`` (a face) to ``neighbour`` (a face, or None) along ``edge``."""
+def measure(name: str, sheet, edge, neighbour=None, samples: int = SAMPLES, size: Optional[float] = None,
+            seeded: bool = True) -> Join:
+    """The Join of ``sheet`` (a face) to ``neighbour`` (a face, or None) along ``edge``. With
+    ``seeded`` each foot starts from the previous point's (see SEEDED_REACH); without, every
+    foot is OCCT's global projection (the same figures, slower)."""
     if size is None:
         box = sheet.BoundBox
         if neighbour is not None:
             box.add(neighbour.BoundBox)
         size = box.DiagonalLength
     floor = 1.0 / size if size > 0.0 else 0.0
+    reach = SEEDED_REACH * size if seeded else 0.0
     gap = angle = jump = 0.0
     points = edge.discretize(Number=max(int(samples), 2))
+    on_sheet_seed = on_neighbour_seed = None
     for p in points:
-        u, v, on_sheet, n_sheet = _foot(sheet, p)
+        u, v, on_sheet, n_sheet = _foot(sheet, p, on_sheet_seed, reach)
+        on_sheet_seed = (u, v) if seeded else None
         if neighbour is None:
             gap = max(gap, (on_sheet - p).Length)
             continue
-        s, t, on_neighbour, n_neighbour = _foot(neighbour, p)
+        s, t, on_neighbour, n_neighbour = _foot(neighbour, p, on_neighbour_seed, reach)
+        on_neighbour_seed = (s, t) if seeded else None
         gap = max(gap, (on_sheet - on_neighbour).Length)
         cosine = min(1.0, abs(n_sheet.dot(n_neighbour)))
         angle = max(angle, math.degrees(math.acos(cosine)))
