@@ -187,3 +187,23 @@ def test_a_foot_beyond_the_reach_is_projected_globally():
     join = continuity.measure("step", _sheet(), _edge(), neighbour, size=60.0)
     assert join.gap == pytest.approx(0.3, abs=1e-9)
     assert neighbour.Surface.global_calls == join.samples
+
+
+@pytest.mark.parametrize("iso", ["boundary", "interior", "slanted"])
+def test_feet_along_a_curve_are_the_global_projections(iso):
+    """parameters_along (the neighbour's fields along a G2 curve) finds the same (u, v) as OCCT's
+    global projection of every point, projecting only the first globally."""
+    sheet, _neighbour, boundary = _wave_pair(-4.0)
+    surface = sheet.Surface
+    if iso == "boundary":
+        points = boundary.discretize(Number=201)
+    elif iso == "interior":
+        points = surface.uIso(0.37).toShape().discretize(Number=201)
+    else:  # a curve across the knot lines, on the surface
+        points = [surface.value(0.05 + 0.9 * k / 200, 0.1 + 0.7 * (k / 200) ** 2) for k in range(201)]
+    counted = _CountingSurface(surface)
+    feet = continuity.parameters_along(counted, points, continuity.SEEDED_REACH * 80.0)
+    assert counted.global_calls == 1
+    for p, (u, v) in zip(points, feet):
+        gu, gv = surface.parameter(p)
+        assert (u, v) == pytest.approx((gu, gv), abs=1e-9)

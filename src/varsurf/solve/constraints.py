@@ -289,17 +289,20 @@ def _place_curve(p: PlacedSpec, base, nat):
 CURVATURE_SAMPLES = 201
 
 
-def curvature_fields(curve, face, nat):
+def curvature_fields(curve, face, nat, seeded: bool = True):
     """The neighbour ``face``'s unit normal and second fundamental form along ``curve`` (a native
-    3D BSplineCurve on its boundary), as piecewise-linear native fields over the curve's range."""
+    3D BSplineCurve on its boundary), as piecewise-linear native fields over the curve's range.
+    With ``seeded`` the feet on the face are found from each other's (continuity.parameters_along:
+    OCCT's global projection of all 201 points took 0.3 s of a five-sided G2 fill)."""
     t0, t1 = curve.first(), curve.last()
     ts = [t0 + (t1 - t0) * i / (CURVATURE_SAMPLES - 1) for i in range(CURVATURE_SAMPLES)]
     surface = face.Surface
-    Vector = type(face.BoundBox.Center)
+    box = face.BoundBox
+    Vector = type(box.Center)
+    points = [Vector(*[float(x) for x in curve.evaluate(t)]) for t in ts]
+    reach = continuity.SEEDED_REACH * box.DiagonalLength if seeded else 0.0
     normals, shapes_ = [], []
-    for t in ts:
-        p = [float(x) for x in curve.evaluate(t)]
-        u, v = surface.parameter(Vector(*p))
+    for u, v in continuity.parameters_along(surface, points, reach):
         n, k = continuity.shape_operator(surface, u, v)
         normals.append([n.x, n.y, n.z])
         shapes_.append(list(k))

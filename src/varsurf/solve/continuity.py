@@ -73,6 +73,19 @@ def _newton_foot(surface, point, u, v, bounds, reach):
     return (u, v) if (surface.value(u, v) - point).Length <= reach else None
 
 
+def parameters_along(surface, points, reach: float):
+    """(u, v) of the surface's point nearest each of ``points`` (consecutive points along a curve
+    on or near it): each foot seeded from the previous one's (see _newton_foot), OCCT's global
+    projection for the first and for any farther than ``reach``."""
+    bounds = surface.bounds()
+    feet, seed = [], None
+    for p in points:
+        found = _newton_foot(surface, p, seed[0], seed[1], bounds, reach) if seed and reach > 0.0 else None
+        seed = found if found else surface.parameter(p)
+        feet.append(seed)
+    return feet
+
+
 def _foot(face, point, seed=None, reach=0.0):
     """(u, v) of the face's surface point nearest ``point``, its position and its unit normal
     (the surface's own normal, so that curvatures keep their sign). ``seed``: the (u, v) of a
