@@ -50,6 +50,20 @@ SolveOptions exact_options() {
   return o;
 }
 
+// Welch & Witkin Figure 3's scene: one bicubic span, the wave curve and a point on the sheet.
+SheetProblem figure3_problem() {
+  SheetProblem pb = wave_problem(1);
+  pb.points.push_back({0.3, 0.7, Eigen::Vector3d(0.3, 0.7, 0.03)});
+  return pb;
+}
+
+HierarchicalOptions refine_to(double tolerance, int max_depth) {
+  HierarchicalOptions ho;
+  ho.tolerance = tolerance;
+  ho.max_depth = max_depth;
+  return ho;
+}
+
 }  // namespace
 
 TEST(HierarchicalSolver, UnrefinedEqualsTheUniformSolve) {
@@ -81,12 +95,8 @@ TEST(HierarchicalSolver, RefiningEverySpanEqualsTheHalvedUniformSpace) {
 TEST(HierarchicalSolver, RefinesWhereTheCurveIsOffUntilItIsMet) {
   // Welch & Witkin Figure 3: one bicubic span, a point and a curve constraint; the curve cannot
   // be met until the spans under it are refined, and only those are.
-  SheetProblem pb = wave_problem(1);
-  pb.points.push_back({0.3, 0.7, Eigen::Vector3d(0.3, 0.7, 0.03)});
-  HierarchicalOptions ho;
-  ho.tolerance = 2e-6;
-  ho.max_depth = 8;
-  const HierarchicalResult r = solve_hierarchical(pb, ho, exact_options());
+  const HierarchicalResult r =
+      solve_hierarchical(figure3_problem(), refine_to(2e-6, 8), exact_options());
   const HierarchicalReport& rep = r.report;
   ASSERT_TRUE(rep.met) << rep.round_error.back();
   EXPECT_LE(rep.max_deviation[0], 2e-6);
@@ -106,11 +116,8 @@ TEST(HierarchicalSolver, SeparableAndCoupledSystemsGiveTheSameSheet) {
   // Curves and points couple no coordinates: the hierarchical system is solved once for x, y and
   // z on one factorization; forced into one coupled 3n system it must give the same sheet. A
   // normal constraint couples them, and is then met.
-  SheetProblem pb = wave_problem(1);
-  pb.points.push_back({0.3, 0.7, Eigen::Vector3d(0.3, 0.7, 0.03)});
-  HierarchicalOptions ho;
-  ho.tolerance = 1e-5;
-  ho.max_depth = 5;
+  SheetProblem pb = figure3_problem();
+  const HierarchicalOptions ho = refine_to(1e-5, 5);
   const HierarchicalResult separable = solve_hierarchical(pb, ho, exact_options());
   SolveOptions forced = exact_options();
   forced.force_coupled = true;
