@@ -5,8 +5,9 @@
 
 namespace varsurf {
 
-// No active level: every parallel region runs on the thread that opens it. The setting is the
-// process's, so it is put back when the guard ends (FreeCAD's other OpenMP users keep theirs).
+// No active level: every parallel region opened by this thread runs on it alone. The setting
+// belongs to the calling thread (libgomp keeps it per thread; the guard's test checks that), and
+// is put back when the guard ends, so FreeCAD's other OpenMP users keep theirs.
 SerialOpenMp::SerialOpenMp() : saved_levels_(omp_get_max_active_levels()) {
   omp_set_max_active_levels(0);
 }
