@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: LGPL-2.1-or-later
 #include "binding.hpp"
+#include "varsurf/core/heap_policy.hpp"
 
 PYBIND11_MODULE(_native, m) {
   m.doc() =
@@ -7,6 +8,7 @@ PYBIND11_MODULE(_native, m) {
       "bridge. Shapes cross the boundary as BREP strings (Part.Shape.exportBrepToString / "
       "importBrepFromString).";
   m.attr("__version__") = "0.1.0";
+  varsurf::keep_freed_heap();
   varsurf::binding::bind_errors(m);
   varsurf::binding::bind_operators(m);
   varsurf::binding::bind_core_types(m);

@@ -495,19 +495,50 @@ Eigen::MatrixXd ConstrainedSolve::reduced_rhs(const std::vector<ConstraintSample
 }
 
 void ConstrainedSolve::Impl::setup_samples(const std::vector<ConstraintSamples>& blocks) {
-  std::vector<Eigen::Triplet<double>> trip;
-  int row = 0;
+  // B is written row by row straight into compressed storage and transposed once into column
+  // storage: through triplets it took 14 ms of a 36 ms solve of 13 300 samples (benchmark 2).
+  size_t rows = 0, entries = 0;
+  for (const ConstraintSamples& block : blocks) {
+    rows += static_cast<size_t>(block.rows());
+    for (const auto& idx : block.index) entries += idx.size();
+  }
+  Eigen::SparseMatrix<double, Eigen::RowMajor> by_row(static_cast<Eigen::Index>(rows), n);
+  by_row.resizeNonZeros(static_cast<Eigen::Index>(entries));
+  int* outer = by_row.outerIndexPtr();
+  int* inner = by_row.innerIndexPtr();
+  double* values = by_row.valuePtr();
+  sample_block.reserve(rows);
+  sample_weight.reserve(rows);
+  int row = 0, kept = 0;
+  outer[0] = 0;
+  std::vector<std::pair<int, double>> entry;
   for (size_t bi = 0; bi < blocks.size(); ++bi) {
     const ConstraintSamples& block = blocks[bi];
     double weight = 0.0;
     for (int k = 0; k < block.rows(); ++k, ++row) {
       const auto& idx = block.index[static_cast<size_t>(k)];
       const Eigen::VectorXd& c = block.coeff[static_cast<size_t>(k)];
+      entry.clear();
       for (size_t j = 0; j < idx.size(); ++j) {
         const int f = free_index[static_cast<size_t>(idx[j])];
         if (f >= 0 && c(static_cast<Eigen::Index>(j)) != 0.0)
-          trip.emplace_back(row, f, c(static_cast<Eigen::Index>(j)));
+          entry.emplace_back(f, c(static_cast<Eigen::Index>(j)));
       }
+      // Columns ascending, a pole named twice summed (as triplets would be).
+      if (!std::is_sorted(entry.begin(), entry.end(),
+                          [](const auto& a, const auto& b) { return a.first < b.first; }))
+        std::sort(entry.begin(), entry.end(),
+                  [](const auto& a, const auto& b) { return a.first < b.first; });
+      const int start = kept;
+      for (const auto& [col, value] : entry) {
+        if (kept > start && inner[kept - 1] == col) {
+          values[kept - 1] += value;
+          continue;
+        }
+        inner[kept] = col;
+        values[kept++] = value;
+      }
+      outer[row + 1] = kept;
       // A row on fixed poles only still counts in its constraint's residual.
       sample_block.push_back(static_cast<int>(bi));
       sample_weight.push_back(block.weight[static_cast<size_t>(k)]);
@@ -516,8 +547,8 @@ void ConstrainedSolve::Impl::setup_samples(const std::vector<ConstraintSamples>&
     block_weight.push_back(weight);
     block_exact.push_back(block.exact);
   }
-  samples.resize(row, n);
-  samples.setFromTriplets(trip.begin(), trip.end());
+  by_row.resizeNonZeros(kept);
+  samples = by_row;
   sample_rhs = samples_rhs(blocks);
   if (!start_is_minimum || !(opt.fit_tolerance > 0.0) || row == 0) return;
   // Constraints the start meets as the refinement would judge them met (RMS within
@@ -548,11 +579,12 @@ Eigen::MatrixXd ConstrainedSolve::Impl::samples_rhs(const std::vector<Constraint
                                                     bool minus_shift) const {
   Eigen::MatrixXd out(static_cast<Eigen::Index>(sample_block.size()), width);
   Eigen::Index row = 0;
+  Eigen::RowVectorXd rhs(width);
   for (const ConstraintSamples& block : blocks)
     for (int k = 0; k < block.rows(); ++k, ++row) {
       if (row >= out.rows()) throw InvalidInput("the moved constraints have more samples");
       if (block.rhs.cols() != width) throw InvalidInput("constraint samples of mixed widths");
-      Eigen::RowVectorXd rhs = block.rhs.row(k);
+      rhs = block.rhs.row(k);  // into storage made once: a row allocated per sample cost more
       const auto& idx = block.index[static_cast<size_t>(k)];
       const Eigen::VectorXd& c = block.coeff[static_cast<size_t>(k)];
       if (minus_shift) take_off_shift(block, k, rhs);
