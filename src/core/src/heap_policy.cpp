@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: LGPL-2.1-or-later
 #include "varsurf/core/heap_policy.hpp"
 
+#include <cstdlib>  // defines __GLIBC__ on glibc; the test below must not depend on other headers
+
 #if defined(__GLIBC__)
 #include <malloc.h>
 #endif
