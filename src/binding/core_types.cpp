@@ -355,6 +355,9 @@ void bind_core_types(py::module_& m) {
                      "(Cancelled).")
       .def_readwrite("penalty_steps", &SolveOptions::penalty_steps,
                      "Penalty mode: at most this many refinement steps.")
+      .def_readwrite("max_weight_gain", &SolveOptions::max_weight_gain,
+                     "Penalty mode: a slow refinement restarts on a heavier weight, up to this "
+                     "multiple of penalty_weight (1: never).")
       .def_readwrite("give_up_early", &SolveOptions::give_up_early,
                      "Penalty mode: stop the refinement steps once the residual falls too slowly "
                      "to reach fit_tolerance within penalty_steps (for a caller that refines).")

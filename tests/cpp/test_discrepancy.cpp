@@ -246,7 +246,9 @@ TEST(PenaltyMode, GivesUpEarlyOnlyWhereTheToleranceIsOutOfReach) {
     const SolveResult early = solve_sheet(pb, opt);
     SCOPED_TRACE(spans);
     if (spans == 2) {
-      EXPECT_EQ(full.report.inner_iterations, opt.penalty_steps);
+      // All the configured weight's steps, after a few on a raised weight that missed too.
+      EXPECT_GE(full.report.inner_iterations, opt.penalty_steps);
+      EXPECT_LE(full.report.inner_iterations, opt.penalty_steps + 15);
       EXPECT_GT(full.report.conflict, opt.fit_tolerance);
       EXPECT_LT(early.report.inner_iterations, opt.penalty_steps / 4);
       EXPECT_GT(early.report.conflict, opt.fit_tolerance);

@@ -97,6 +97,7 @@ SolveOptions options(FuzzedDataProvider& in) {
   o.fit_tolerance = in.ConsumeBool() ? 0.0 : number(in, 0.0, 0.1);
   o.max_iterations = in.ConsumeIntegralInRange<int>(0, 8);  // bounded work per input
   o.penalty_steps = in.ConsumeIntegralInRange<int>(0, 30);
+  o.max_weight_gain = in.ConsumeBool() ? 1.0 : number(in, 0.5, 1e4);
   o.max_unknowns = 20000;
   if (in.ConsumeIntegralInRange<int>(0, 9) == 0) o.time_limit = 1e-9;    // times out at once
   if (in.ConsumeIntegralInRange<int>(0, 9) == 0) o.memory_limit = 1024;  // far too little

@@ -262,7 +262,7 @@ def hostile_options():
     out = []
     for name in ("rank_tolerance", "fit_tolerance", "regularization", "step_limit", "nonlinear_tolerance",
                  "penalty_weight", "cg_tolerance", "max_fit_factor", "time_limit", "memory_limit",
-                 "keep_tolerance"):
+                 "keep_tolerance", "max_weight_gain"):
         for x in (NAN, -1.0, 0.0, INF, 1e-300):
             o = nat.SolveOptions()
             try:

@@ -29,6 +29,17 @@ using Sparse = Eigen::SparseMatrix<double>;
 
 // Penalty steps before SolveOptions::give_up_early judges the rate: the first ones fall fast.
 constexpr int kWarmUpSteps = 20;
+// The penalty refinement restarts on a heavier weight when the slowest constraint still needs
+// more than kStepBudget steps at its rate, chosen to make that rate kTargetRate (at most
+// SolveOptions::max_weight_gain times the configured weight). Benchmark 2's sheets at 1e-3 (3 and
+// 6 interior curves), with a gain of up to 30: 193 and 61 steps became 13 and 7 with the bending
+// energy -0.1 % and +1.2 %; up to 100 saved two more steps for +1.5 %, and continuing the
+// refinement on the raised weight instead of restarting it (the method of multipliers with a
+// growing penalty) threw the 6-curve sheet off (energy x 300) through a sample the sheet cannot
+// reach.
+constexpr double kStepBudget = 8.0;
+constexpr double kTargetRate = 0.5;
+constexpr size_t kRateSpan = 4;
 
 }  // namespace
 
@@ -74,16 +85,21 @@ struct ConstrainedSolve::Impl {
   // exact, mtsvd
   Sparse kkt;
   Eigen::SparseLU<Sparse, Eigen::COLAMDOrdering<int>> lu;
-  // penalty: the raw samples (no reduction), one sparse Cholesky of Q + mu^2 B^T B
-  double mu2 = 0.0;
-  Eigen::SimplicialLDLT<Sparse> ldlt;
+  // penalty: the raw samples (no reduction), one sparse Cholesky of Q + mu^2 B^T B. A solve
+  // that converges slowly raises mu^2 and refactors (same pattern, numeric only); the raised
+  // weight and its factor stay for the next solves (drags), hence mutable.
+  Sparse btb;
+  mutable double mu2 = 0.0;
+  mutable double first_mu2 = 0.0;     // mu^2 before any raise
+  mutable double heaviest_mu2 = 0.0;  // the largest mu^2 a raise may reach
+  mutable Eigen::SimplicialLDLT<Sparse> ldlt;
 #ifdef VARSURF_HAVE_CHOLMOD
   // CHOLMOD beyond 500 unknowns, on one OpenMP thread (measured on benchmark 3's sheets, factor
   // and drag update against SimplicialLDLT: 24 x 24 poles 4.1 / 0.65 ms against 4.9 / 0.71 ms,
   // 45 x 45 13 / 1.2 ms against 19 / 1.8 ms, 64 x 64 30 / 2.2 ms against 52 / 3.8 ms); at
   // 16 x 16 the two are even.
-  Eigen::CholmodDecomposition<Sparse> cholmod;
-  bool use_cholmod = false;
+  mutable Eigen::CholmodDecomposition<Sparse> cholmod;
+  mutable bool use_cholmod = false;
 #endif
 #ifdef VARSURF_HAVE_SPQR
   // penalty_qr: W&W's eq. 10 as written, the stacked system (mu B; S) factored by SuiteSparseQR,
@@ -147,6 +163,17 @@ struct ConstrainedSolve::Impl {
                             SolveReport& rep) const;
   Eigen::MatrixXd solve_penalty(const Eigen::MatrixXd& g, const Eigen::MatrixXd& d,
                                 SolveReport& rep) const;
+  // One run of the penalty refinement from data d_k (may_raise: it may restart on a heavier
+  // weight).
+  struct Refined {
+    Eigen::MatrixXd x, dk;
+    bool met = true;            // every constraint done (exact ones converged)
+    bool tolerance_met = true;  // every toleranced constraint within it
+    double worst = 0.0;         // the largest block RMS
+    int steps = 0;
+  };
+  Refined refine(const Eigen::MatrixXd& g, const Eigen::MatrixXd& d, Eigen::MatrixXd dk,
+                 bool may_raise) const;
   void setup_samples(const std::vector<ConstraintSamples>& blocks);
   // The blocks' right-hand sides relative to the rest shape (empty without one).
   std::vector<ConstraintSamples> shifted(const std::vector<ConstraintSamples>& blocks) const;
@@ -154,6 +181,12 @@ struct ConstrainedSolve::Impl {
   void factor_kkt();
   // false if the penalty matrix is not numerically positive definite at this eps.
   bool factor_penalty(double scale);
+  // Raises mu^2 (and refactors) so that a mode converging at `rate` a step converges at
+  // kTargetRate; false if it keeps the weight (no room left, or the factorization failed).
+  bool raise_weight(double rate) const;
+  // Factors Q + weight B^T B + eps I (analyze: also its ordering, and the choice of CHOLMOD);
+  // false if it is not numerically positive definite.
+  bool factor_numeric(double weight, bool analyze) const;
   // The samples' right-hand sides with fixed columns moved over (and the rest shape taken off
   // with minus_shift, for blocks not yet shifted).
   Eigen::MatrixXd samples_rhs(const std::vector<ConstraintSamples>& blocks,
@@ -304,6 +337,8 @@ ConstrainedSolve::ConstrainedSolve(const Quadratic& pb, const SolveOptions& opt,
     if (!(opt.penalty_weight > 0.0) || !std::isfinite(opt.penalty_weight))
       throw InvalidInput("penalty weight must be a positive number");
     if (opt.penalty_steps < 1) throw InvalidInput("penalty steps must be at least 1");
+    if (!(opt.max_weight_gain >= 1.0) || !std::isfinite(opt.max_weight_gain))
+      throw InvalidInput("the penalty weight's largest gain must be finite and at least 1");
     // Rounding can leave the penalty matrix of a badly scaled energy (high degree, thin faces)
     // short of positive definite by more than the regularization: a larger pull toward the
     // previous iterate (the refinement is a proximal iteration, so it biases nothing) restores
@@ -412,13 +447,11 @@ bool ConstrainedSolve::Impl::factor_penalty(double scale) {
   // f + mu^2 B^T d keep the sparsity of Q (each sample row touches one span's poles), so a
   // sparse Cholesky replaces W&W's sparse QR of the stacked system, which would need a square
   // root of the energy. mu^2 is relative to the energy's and the samples' scales.
-  const Sparse btb = Sparse(samples.transpose()) * samples;
+  btb = Sparse(samples.transpose()) * samples;
   double btb_mean = 0.0;
   for (int i = 0; i < n; ++i) btb_mean += btb.coeff(i, i);
   btb_mean /= n;
   mu2 = opt.penalty_weight * scale / (btb_mean > 0.0 ? btb_mean : 1.0);
-  Sparse m_pen = q_ff + Sparse(mu2 * btb);
-  for (int i = 0; i < n; ++i) m_pen.coeffRef(i, i) += eps;
   if (opt.penalty_qr) {
 #ifdef VARSURF_HAVE_SPQR
     Sparse q_eps = q_ff;
@@ -446,18 +479,51 @@ bool ConstrainedSolve::Impl::factor_penalty(double scale) {
     throw InvalidInput("penalty_qr needs SuiteSparseQR, which this build does not have");
 #endif
   }
+  first_mu2 = mu2;
+  heaviest_mu2 = opt.max_weight_gain * mu2;
+  return factor_numeric(mu2, true);
+}
+
+bool ConstrainedSolve::Impl::raise_weight(double rate) const {
+#ifdef VARSURF_HAVE_SPQR
+  if (use_qr) return false;
+#endif
+  if (!(rate < 1.0)) return false;  // not converging: a heavier weight cannot reach the tolerance
+  // Each step multiplies a mode's residual by 1 / (1 + mu^2 s^2) (iterated Tikhonov, s its
+  // singular value against the energy): the gain in mu^2 that turns `rate` into kTargetRate.
+  const double room = heaviest_mu2 / mu2;
+  const double gain = std::min((1.0 / kTargetRate - 1.0) / (1.0 / rate - 1.0), room);
+  if (!(gain >= 2.0)) return false;
+  const double next = mu2 * gain;
+  if (!factor_numeric(next, false)) {
+    if (!factor_numeric(mu2, false))
+      throw SolveFailure("the penalty system could not be refactored");
+    heaviest_mu2 = mu2;  // no further raises
+    return false;
+  }
+  mu2 = next;
+  return true;
+}
+
+bool ConstrainedSolve::Impl::factor_numeric(double weight, bool analyze) const {
+  Sparse m_pen = q_ff + Sparse(weight * btb);
+  for (int i = 0; i < n; ++i) m_pen.coeffRef(i, i) += eps;
 #ifdef VARSURF_HAVE_CHOLMOD
   // A failed CHOLMOD factorization must not be used by the solve (LDLT takes over below).
-  use_cholmod = n > 500;
+  if (analyze) use_cholmod = n > 500;
   if (use_cholmod) {
-    // AMD alone: CHOLMOD's default also tries METIS when AMD's fill is large, which at 256 x 256
-    // poles took 0.82 s of a 1.3 s analysis and factorization, for a factor with 8 % fewer
-    // entries.
-    cholmod.cholmod().nmethods = 1;
-    cholmod.cholmod().method[0].ordering = CHOLMOD_AMD;
     {
       const SerialOpenMp one_thread;
-      cholmod.compute(m_pen);
+      if (analyze) {
+        // AMD alone: CHOLMOD's default also tries METIS when AMD's fill is large, which at
+        // 256 x 256 poles took 0.82 s of a 1.3 s analysis and factorization, for a factor with
+        // 8 % fewer entries.
+        cholmod.cholmod().nmethods = 1;
+        cholmod.cholmod().method[0].ordering = CHOLMOD_AMD;
+        cholmod.compute(m_pen);
+      } else {
+        cholmod.factorize(m_pen);
+      }
     }
     if (cholmod.info() == Eigen::Success) {
       // CHOLMOD checks only the pivots' signs: a factor that cannot reproduce a known solution
@@ -466,13 +532,17 @@ bool ConstrainedSolve::Impl::factor_penalty(double scale) {
       const Eigen::VectorXd back = cholmod.solve(Eigen::VectorXd(m_pen * ones));
       if (back.allFinite() && (back - ones).cwiseAbs().maxCoeff() <= 1e-2) return true;
     }
+    if (!analyze) return false;
     use_cholmod = false;
   }
 #endif
   // LDL^T "succeeds" on an indefinite matrix (negative pivots). Each pivot of Q + mu^2 B^T B +
   // eps I is at least its smallest eigenvalue, eps: smaller ones are rounding beyond it (without
   // a regularization, pivots at rounding level mean a singular system).
-  ldlt.compute(m_pen);
+  if (analyze)
+    ldlt.compute(m_pen);
+  else
+    ldlt.factorize(m_pen);
   if (ldlt.info() != Eigen::Success || !ldlt.vectorD().allFinite()) return false;
   const double smallest = ldlt.vectorD().minCoeff();
   return smallest > (eps > 0.0 ? 0.5 * eps : 1e-13 * ldlt.vectorD().cwiseAbs().maxCoeff());
@@ -621,6 +691,34 @@ Eigen::MatrixXd ConstrainedSolve::Impl::solve_kkt(const Eigen::MatrixXd& g,
 Eigen::MatrixXd ConstrainedSolve::Impl::solve_penalty(const Eigen::MatrixXd& g,
                                                       const Eigen::MatrixXd& d,
                                                       SolveReport& rep) const {
+  Eigen::MatrixXd dk = d;
+  if (bregman_offset.rows() == samples.rows() && bregman_offset.cols() == width)
+    dk += bregman_offset;
+  Refined out = refine(g, d, dk, opt.max_weight_gain > 1.0);
+  if (!out.tolerance_met && mu2 != first_mu2) {
+    // A raised weight that still misses the tolerance presses harder on what the sheet cannot
+    // hold, and roughens it: such a sheet is refined on the configured weight, as W&W's is.
+    // It stays there for the later solves (drags) too, which would otherwise each try again.
+    heaviest_mu2 = first_mu2;
+    if (factor_numeric(first_mu2, false)) {
+      mu2 = first_mu2;
+      const int spent = out.steps;
+      out = refine(g, d, d, false);
+      out.steps += spent;
+    } else if (!factor_numeric(mu2, false)) {
+      throw SolveFailure("the penalty system could not be refactored");
+    }
+  }
+  bregman_offset = out.dk - d;
+  rep.inner_iterations = out.steps;
+  rep.conflict = out.met || out.worst <= opt.fit_tolerance ? 0.0 : out.worst;
+  return out.x;
+}
+
+ConstrainedSolve::Impl::Refined ConstrainedSolve::Impl::refine(const Eigen::MatrixXd& g,
+                                                               const Eigen::MatrixXd& d,
+                                                               Eigen::MatrixXd dk,
+                                                               bool may_raise) const {
   // W&W's refinement of the penalty solution, on its one factorization: each step solves
   // (Q + mu^2 B^T B) x = f + mu^2 B^T d_k and adds the constraint residual to the data,
   // d_k+1 = d_k + (d - B x) (a Bregman iteration: for consistent constraints it converges to the
@@ -628,15 +726,15 @@ Eigen::MatrixXd ConstrainedSolve::Impl::solve_penalty(const Eigen::MatrixXd& g,
   // the discrepancy principle; exact constraints: once converged), or when the residual stops
   // falling: what is left is what the space cannot hold, reported as the conflict.
   const Eigen::Index rows = samples.rows();
-  Eigen::MatrixXd dk = d;
-  if (bregman_offset.rows() == rows && bregman_offset.cols() == width) dk += bregman_offset;
-  Eigen::MatrixXd x = x0_free, center = x0_free;
+  Refined out;
+  Eigen::MatrixXd& x = out.x;
+  x = x0_free;
+  Eigen::MatrixXd center = x0_free;
   const double scale =
       std::max({1.0, rows ? d.cwiseAbs().maxCoeff() : 0.0, x0_free.cwiseAbs().maxCoeff()});
   const size_t blocks = block_weight.size();
-  std::vector<double> previous(blocks, 1e300);
-  double worst = 0.0;
-  bool met = true;
+  std::vector<double> previous(blocks, 1e300), previous_excess(blocks, 1e300);
+  std::vector<double> excess_history;  // the largest excess of each step since the last restart
   int it = 0;
   const int max_steps =
       opt.penalty_steps;  // beyond, the space is too coarse: the caller refines it
@@ -660,15 +758,37 @@ Eigen::MatrixXd ConstrainedSolve::Impl::solve_penalty(const Eigen::MatrixXd& g,
       if (sample_weight[static_cast<size_t>(i)] > 0.0)
         far[b] = std::max(far[b], std::sqrt(r2 / sample_weight[static_cast<size_t>(i)]));
     }
-    met = true;
+    out.met = out.tolerance_met = true;
     bool stalled = true, hopeless = false;
-    worst = 0.0;
+    out.worst = 0.0;
+    // The slowest unmet block's rate, and the steps it still needs at that rate.
+    double slow_rate = 0.0, slow_needed = 0.0, largest_excess = 0.0;
     for (size_t b = 0; b < blocks; ++b) {
       const double rms = block_weight[b] > 0.0 ? std::sqrt(sq[b] / block_weight[b]) : 0.0;
-      worst = std::max(worst, rms);
+      out.worst = std::max(out.worst, rms);
       const bool exact = block_exact[b] || opt.fit_tolerance == 0.0;
-      if (exact || rms > opt.fit_tolerance || far[b] > opt.max_fit_factor * opt.fit_tolerance)
-        met = false;
+      const bool within =
+          rms <= opt.fit_tolerance && far[b] <= opt.max_fit_factor * opt.fit_tolerance;
+      if (exact || !within) out.met = false;
+      if (!exact && !within) out.tolerance_met = false;
+      if (!exact) {
+        // How far the block is from its tolerance (1: just met), by RMS and by its farthest
+        // sample.
+        const double excess = std::max(
+            rms / opt.fit_tolerance,
+            opt.max_fit_factor > 0.0 ? far[b] / (opt.max_fit_factor * opt.fit_tolerance) : 0.0);
+        if (excess > 1.0 && previous_excess[b] < 1e299) {
+          const double rate = excess / previous_excess[b];
+          const double needed = rate < 1.0 ? std::log(excess) / -std::log(rate)
+                                           : std::numeric_limits<double>::infinity();
+          if (needed > slow_needed) {
+            slow_needed = needed;
+            slow_rate = rate;
+          }
+        }
+        previous_excess[b] = excess;
+        largest_excess = std::max(largest_excess, excess);
+      }
       // Less than 0.1 % progress a step: what is left converges too slowly to wait for (the
       // space cannot hold it, or only in directions the refinement barely reaches).
       if (rms < previous[b] * (1.0 - 1e-3) && rms > 1e-13 * scale) stalled = false;
@@ -682,14 +802,32 @@ Eigen::MatrixXd ConstrainedSolve::Impl::solve_penalty(const Eigen::MatrixXd& g,
       }
       previous[b] = rms;
     }
-    if (met || hopeless || (stalled && move <= 1e-12 * scale)) break;
+    if (out.met || hopeless || (stalled && move <= 1e-12 * scale)) break;
     dk += res;
+    excess_history.push_back(largest_excess);
+    if (!may_raise || !(slow_needed > kStepBudget)) continue;
+    if (!raise_weight(slow_rate)) {
+      // Still slow on the heaviest weight allowed, over the last kRateSpan steps (one step's
+      // rate jumps about): most likely constraints that contradict each other, the refinement
+      // creeping toward a residual beyond the tolerance at any weight.
+      const size_t k = excess_history.size();
+      if (mu2 != first_mu2 && k > kRateSpan) {
+        const double e = excess_history[k - 1];
+        const double rate = std::pow(e / excess_history[k - 1 - kRateSpan], 1.0 / kRateSpan);
+        if (!(rate < 1.0) || std::log(e) / -std::log(rate) > 4.0 * kStepBudget) break;
+      }
+    } else {
+      // Restarted on the heavier weight: its refinement, not a continuation of this one.
+      dk = d;
+      x = center = x0_free;
+      std::fill(previous.begin(), previous.end(), 1e300);
+      std::fill(previous_excess.begin(), previous_excess.end(), 1e300);
+      excess_history.clear();
+    }
   }
-  it = std::min(it, max_steps);
-  bregman_offset = dk - d;
-  rep.inner_iterations = it;
-  rep.conflict = met || worst <= opt.fit_tolerance ? 0.0 : worst;
-  return x;
+  out.steps = std::min(it, max_steps);
+  out.dk = std::move(dk);
+  return out;
 }
 
 Eigen::MatrixXd ConstrainedSolve::Impl::solve_krylov(const Eigen::MatrixXd& g,

@@ -133,8 +133,13 @@ struct SolveOptions {
   double penalty_weight = 1e4;
   double max_fit_factor = 4.0;
   // Penalty mode: at most this many refinement steps (beyond, the space is too coarse for the
-  // constraints and a refining caller adds detail).
+  // constraints and a refining caller adds detail); a run on a raised weight that misses the
+  // tolerance is followed by one on the configured weight with as many.
   int penalty_steps = 200;
+  // Penalty mode: a refinement that would need many steps restarts on a heavier weight, up to
+  // this multiple of penalty_weight (1: never). The raised weight stays for the prepared
+  // sheet's updates (drags).
+  double max_weight_gain = 30.0;
   // Penalty mode: stop the refinement steps once the constraints' residual falls too slowly to
   // reach fit_tolerance within penalty_steps (reported as the conflict): for a caller that adds
   // detail to a sheet that stays short of the tolerance. Measured: a 19 x 19 sheet ran all 200
