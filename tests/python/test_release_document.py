@@ -7,15 +7,7 @@ again.
 the object's Tolerance where it has one. The penalty solve of the two sheets made from curves
 alone is conditioned so that the processor's rounding (OpenBLAS picks its kernels by processor)
 moves their poles by 4.2e-6 mm of a 1e-3 mm tolerance between machines; a base face's sheet
-agrees to 3e-18 mm.
-
-The hinged pair's joint solve is the exception: both sheets sample the one seam, and those samples
-disagree by 1.1e-4 mm, below its 2.5e-4 mm fit tolerance; so the refinement meets the tolerance
-with a residual that keeps moving the surface if it goes on, and where it stops decides the
-poles. The penalty weight's restart (the refinement on a heavier weight when it converges slowly)
-stops it elsewhere than release 0.1.0 did: its poles move by 0.22 mm, its surface by 0.055 mm, the
-seam still within 3.6e-4 mm and the hinge within 0.0036 degrees. Measured with a fixed weight,
-that pair recomputes to 3.2e-6 mm."""
+agrees to 3e-18 mm."""
 
 from pathlib import Path
 
@@ -38,13 +30,7 @@ def _open(path):
     return doc
 
 
-#: Poles (mm) of the hinged pair, where the joint solve's refinement stops (see above).
-JOINT_STOP = 0.25
-
-
 def _allowed(obj):
-    if getattr(obj.Proxy, "TYPE", "") == "VarSurf::Solid" and obj.Hinges:
-        return JOINT_STOP
     tolerance = float(obj.getPropertyByName("Tolerance")) if "Tolerance" in obj.PropertiesList else 0.0
     return max(1e-12, 1e-2 * tolerance)
 

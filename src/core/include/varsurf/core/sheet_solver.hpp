@@ -138,7 +138,7 @@ struct SolveOptions {
   int penalty_steps = 200;
   // Penalty mode: a refinement that would need many steps restarts on a heavier weight, up to
   // this multiple of penalty_weight (1: never). The raised weight stays for the prepared
-  // sheet's updates (drags).
+  // sheet's updates (drags). Joint solves of several sheets (solve_model) keep the weight.
   double max_weight_gain = 30.0;
   // Penalty mode: stop the refinement steps once the constraints' residual falls too slowly to
   // reach fit_tolerance within penalty_steps (reported as the conflict): for a caller that adds
