@@ -64,19 +64,6 @@ double sheet_gap(const SplineSpace& space, const Eigen::MatrixX3d& a, const Eige
   return gap;
 }
 
-// Largest distance from the curve's samples to the sheet at the same pre-image points.
-double curve_gap(const SheetProblem& pb, const Eigen::MatrixX3d& poles, const CurveConstraint& c) {
-  double gap = 0.0;
-  for (int i = 0; i <= 200; ++i) {
-    const double t = i / 200.0;
-    const Eigen::VectorXd uv = c.preimage.derivatives(t, 0).row(0).transpose();
-    const Eigen::VectorXd p = c.target.derivatives(t, 0).row(0).transpose();
-    gap =
-        std::max(gap, (evaluate_surface(pb.space, poles, uv(0), uv(1), 0).transpose() - p).norm());
-  }
-  return gap;
-}
-
 class HeldNoise : public ::testing::TestWithParam<SolveMode> {};
 
 // Curves within a fraction of the fit tolerance of the rest shape (noise along them, as a curve
@@ -98,7 +85,8 @@ TEST_P(HeldNoise, CurvesTheRestShapeMeetsLeaveTheSheetAlone) {
     EXPECT_EQ(r.report.constraint_rank, 0);  // the L-curve modes fit no direction
   else
     EXPECT_GT(r.report.held_constraints, 0) << r.report.mode_reason;
-  for (const CurveConstraint& c : pb.curves) EXPECT_LT(curve_gap(pb, r.poles, c), 1.01 * noise);
+  for (const CurveConstraint& c : pb.curves)
+    EXPECT_LT(test::curve_gap(pb, r.poles, c), 1.01 * noise);
 }
 
 INSTANTIATE_TEST_SUITE_P(Modes, HeldNoise, ::testing::ValuesIn(kAllModes),
@@ -117,8 +105,8 @@ TEST(Discrepancy, FittedCurveNextToAHeldOne) {
     opt.fit_tolerance = fit;
     const SolveResult r = solve_sheet(pb, opt);
     SCOPED_TRACE(to_string(mode));
-    EXPECT_LT(curve_gap(pb, r.poles, pb.curves[0]), 4.0 * fit);
-    EXPECT_LT(curve_gap(pb, r.poles, pb.curves[1]), 4.0 * fit);
+    EXPECT_LT(test::curve_gap(pb, r.poles, pb.curves[0]), 4.0 * fit);
+    EXPECT_LT(test::curve_gap(pb, r.poles, pb.curves[1]), 4.0 * fit);
     EXPECT_GT(sheet_gap(pb.space, r.poles, pb.rest_poles), 0.015);  // the lift was taken
   }
 }
@@ -138,7 +126,7 @@ TEST(Discrepancy, HeldCurveDraggedMovesTheSheet) {
     moved.curves[0].target.poles.col(2).array() += 0.05;
     const SolveResult r = prepared.update(moved);
     SCOPED_TRACE(to_string(mode));
-    EXPECT_LT(curve_gap(moved, r.poles, moved.curves[0]), 4.0 * fit);
+    EXPECT_LT(test::curve_gap(moved, r.poles, moved.curves[0]), 4.0 * fit);
     EXPECT_GT(sheet_gap(pb.space, r.poles, pb.rest_poles), 0.04);
   }
 }
@@ -218,7 +206,7 @@ TEST(PenaltyMode, SemiDefiniteSystemIsRegularized) {
     EXPECT_NE(r.report.mode_reason.find("not positive definite"), std::string::npos)
         << r.report.mode_reason;
     ASSERT_TRUE(r.poles.allFinite());
-    EXPECT_LT(curve_gap(pb, r.poles, pb.curves[0]), 4e-5);
+    EXPECT_LT(test::curve_gap(pb, r.poles, pb.curves[0]), 4e-5);
     // Meeting the curve only within the tolerance, the sheet bends no more than the exactly
     // constrained minimum; the motions the energy leaves free (tilting about the curve) stay
     // near the start.

@@ -56,22 +56,10 @@ double bending(const SheetProblem& pb, const Eigen::MatrixX3d& poles) {
   return (poles.transpose() * (h * poles)).trace();
 }
 
-// Largest distance from a curve's samples to the sheet at the same pre-image points.
-double curve_gap(const SheetProblem& pb, const Eigen::MatrixX3d& poles, const CurveConstraint& c) {
-  double gap = 0.0;
-  for (int i = 0; i <= 400; ++i) {
-    const double t = i / 400.0;
-    const Eigen::VectorXd uv = c.preimage.derivatives(t, 0).row(0).transpose();
-    const Eigen::VectorXd p = c.target.derivatives(t, 0).row(0).transpose();
-    gap =
-        std::max(gap, (evaluate_surface(pb.space, poles, uv(0), uv(1), 0).transpose() - p).norm());
-  }
-  return gap;
-}
-
 double largest_gap(const SheetProblem& pb, const Eigen::MatrixX3d& poles) {
   double gap = 0.0;
-  for (const CurveConstraint& c : pb.curves) gap = std::max(gap, curve_gap(pb, poles, c));
+  for (const CurveConstraint& c : pb.curves)
+    gap = std::max(gap, test::curve_gap(pb, poles, c, 400));
   return gap;
 }
 

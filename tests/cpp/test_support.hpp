@@ -3,12 +3,14 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <vector>
 
 #include "varsurf/core/bspline_curve.hpp"
 #include "varsurf/core/knot_vector.hpp"
+#include "varsurf/core/sheet_solver.hpp"
 #include "varsurf/core/spline_space.hpp"
 
 namespace varsurf::test {
@@ -108,6 +110,21 @@ inline Eigen::MatrixX3d half_cylinder_poles(const SplineSpace& s) {
     for (int j = 0; j < s.nv(); ++j)
       p.row(s.index(i, j)) << xy[i][0], xy[i][1], 2.0 * gv[static_cast<size_t>(j)];
   return p;
+}
+
+// Largest distance from a curve's samples (samples + 1 of them, evenly in its parameter) to the
+// sheet at the same pre-image points.
+inline double curve_gap(const SheetProblem& pb, const Eigen::MatrixX3d& poles,
+                        const CurveConstraint& c, int samples = 200) {
+  double gap = 0.0;
+  for (int i = 0; i <= samples; ++i) {
+    const double t = static_cast<double>(i) / samples;
+    const Eigen::VectorXd uv = c.preimage.derivatives(t, 0).row(0).transpose();
+    const Eigen::VectorXd p = c.target.derivatives(t, 0).row(0).transpose();
+    gap =
+        std::max(gap, (evaluate_surface(pb.space, poles, uv(0), uv(1), 0).transpose() - p).norm());
+  }
+  return gap;
 }
 
 }  // namespace varsurf::test
