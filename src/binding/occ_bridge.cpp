@@ -4,6 +4,7 @@
 #include <pybind11/eigen.h>
 #include <pybind11/stl.h>
 
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -272,8 +273,11 @@ void bind_occ_bridge(py::module_& m) {
         "samples Newton finds within `accept` of the sheet skip the global search unless they "
         "could be the largest (the same figure, faster).");
   m.def("max_deviations", &occ::max_deviations, "surface"_a, "curves"_a, "samples"_a = 200,
-        "accept"_a = 0.0, py::call_guard<py::gil_scoped_release>(),
-        "max_deviation of each curve from one sheet (the sheet's search structure built once).");
+        "accept"_a = 0.0, "stop_above"_a = std::numeric_limits<double>::infinity(),
+        py::call_guard<py::gil_scoped_release>(),
+        "max_deviation of each curve from one sheet (the sheet's search structure built once). "
+        "A finite stop_above ends the measure at the first curve found farther than it: that "
+        "curve's figure is a distance beyond stop_above, the curves after it are infinity.");
 
   m.def(
       "write_step",

@@ -413,6 +413,51 @@ TEST(MaxDeviation, AllCurvesOfASheetAtOnceGiveEachOnesFigure) {
   EXPECT_THROW(occ::max_deviations(sheet, {curves[0], BSplineCurve{}}, 200, 0.0), InvalidInput);
 }
 
+// Stopping at a threshold: the curves before the first one beyond it keep their full figures,
+// that one gets a distance proven beyond the threshold (at most its full figure), the rest are
+// not measured; a threshold nothing exceeds changes nothing.
+TEST(MaxDeviation, StopsAtTheFirstCurveProvenBeyondAThreshold) {
+  std::mt19937 rng(9);
+  const Handle(Geom_BSplineSurface) geom = random_surface(rng, 3, 7, 8);
+  const BSplineSurface sheet = occ::surface_from_face(face_of(geom));
+  std::vector<BSplineCurve> edges;
+  for (TopExp_Explorer ex(face_of(geom), TopAbs_EDGE); ex.More(); ex.Next())
+    edges.push_back(occ::curve_from_edge(TopoDS::Edge(ex.Current())));
+  double u0, u1, v0, v1;
+  geom->Bounds(u0, u1, v0, v1);
+  const auto lifted = [&](double lift) {
+    std::vector<gp_Pnt> points;
+    for (int i = 0; i <= 30; ++i) {
+      gp_Pnt p;
+      gp_Vec du, dv;
+      const double s = i / 30.0;
+      geom->D1(u0 + (u1 - u0) * (0.2 + 0.6 * s), v0 + (v1 - v0) * (0.3 + 0.4 * s), p, du, dv);
+      points.push_back(p.Translated(du.Crossed(dv).Normalized() * lift * std::sin(M_PI * s)));
+    }
+    return occ::from_geom(interpolate(points));
+  };
+  // Two edges, a curve 0.5 off, two edges, a curve 2 off.
+  const std::vector<BSplineCurve> curves{edges[0], edges[1], lifted(0.5),
+                                         edges[2], edges[3], lifted(2.0)};
+  for (double accept : {0.0, 0.01}) {
+    const std::vector<double> full = occ::max_deviations(sheet, curves, 200, accept);
+    EXPECT_NEAR(full[2], 0.5, 1e-3);
+    EXPECT_NEAR(full[5], 2.0, 2e-2);
+    EXPECT_EQ(occ::max_deviations(sheet, curves, 200, accept, 3.0), full);
+    for (const auto& [stop, first] : {std::pair{0.1, size_t{2}}, std::pair{1.0, size_t{5}}}) {
+      const std::vector<double> part = occ::max_deviations(sheet, curves, 200, accept, stop);
+      ASSERT_EQ(part.size(), curves.size());
+      for (size_t k = 0; k < first; ++k) EXPECT_EQ(part[k], full[k]) << k;
+      EXPECT_GT(part[first], stop);
+      EXPECT_LE(part[first], full[first] + 1e-9);
+      for (size_t k = first + 1; k < curves.size(); ++k)
+        EXPECT_EQ(part[k], std::numeric_limits<double>::infinity()) << k;
+    }
+  }
+  EXPECT_THROW(occ::max_deviations(sheet, curves, 200, 0.0, -1.0), InvalidInput);
+  EXPECT_THROW(occ::max_deviations(sheet, curves, 200, 0.0, std::nan("")), InvalidInput);
+}
+
 TEST(MaxDeviation, RejectsBadInput) {
   const BSplineSurface sheet = test::plane_sheet(10.0);
   Eigen::VectorXd a(3), b(3);

@@ -212,6 +212,12 @@ def test_functions_have_docstrings_and_keywords():
     assert nat.max_deviation(surface=sheet, curve=line([1, 1, 2], [9, 8, 2]), samples=10) == (
         pytest.approx(2.0, abs=1e-9)
     )
+    # Stopped at the first curve beyond 1 mm: the one after it is not measured.
+    curves = [line([1, 1, 0.5], [9, 8, 0.5]), line([1, 1, 2], [9, 8, 2]), line([1, 1, 0], [9, 8, 0])]
+    assert nat.max_deviations(sheet, curves, 10) == pytest.approx([0.5, 2.0, 0.0], abs=1e-9)
+    stopped = nat.max_deviations(surface=sheet, curves=curves, samples=10, accept=0.0, stop_above=1.0)
+    assert stopped[0] == pytest.approx(0.5, abs=1e-9) and 1.0 < stopped[1] <= 2.0 + 1e-9
+    assert stopped[2] == math.inf
 
 
 def test_knot_helpers_round_trip():

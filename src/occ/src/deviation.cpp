@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "varsurf/core/errors.hpp"
@@ -162,13 +163,19 @@ void check_measure_arguments(const BSplineSurface& surface, int samples, double 
     throw InvalidInput("max_deviation: accept must be a finite distance >= 0");
 }
 
+// The curve's largest distance from the sheet; past stop_above, the first global distance found
+// beyond it (a proof that the curve is farther, not its largest distance).
 double measure_curve(const Handle(Geom_BSplineSurface) & geom, SurfaceInversion& inversion,
-                     const Handle(Geom_BSplineCurve) & curve, int samples, double accept) {
+                     const Handle(Geom_BSplineCurve) & curve, int samples, double accept,
+                     double stop_above) {
   Measure measure(geom, inversion, curve, accept);
+  const auto beyond = [&](const Sample& s) { return s.global && s.foot.distance > stop_above; };
   // 1. The starting samples, each inverted from the previous one's closest point.
   std::vector<Sample> coarse;
-  for (double t : initial_parameters(curve, samples))
+  for (double t : initial_parameters(curve, samples)) {
     coarse.push_back(measure.at(t, coarse.empty() ? nullptr : &coarse.back()));
+    if (beyond(coarse.back())) return coarse.back().foot.distance;
+  }
   // 2. Bisection wherever the curve turns or its closest point crosses a surface patch faster
   //    than the distance can be followed.
   std::vector<Sample> fine{coarse.front()};
@@ -184,6 +191,7 @@ double measure_curve(const Handle(Geom_BSplineSurface) & geom, SurfaceInversion&
         continue;
       }
       const Sample mid = measure.at(0.5 * (a.t + b.t), &a);
+      if (beyond(mid)) return mid.foot.distance;
       pending.back().second = depth + 1;
       pending.emplace_back(mid, depth + 1);
     }
@@ -200,6 +208,7 @@ double measure_curve(const Handle(Geom_BSplineSurface) & geom, SurfaceInversion&
     for (size_t k : order) {
       if (fine[k].foot.distance <= proven) break;
       measure.make_global(fine[k]);
+      if (beyond(fine[k])) return fine[k].foot.distance;
       proven = std::max(proven, fine[k].foot.distance);
     }
   }
@@ -248,6 +257,7 @@ double measure_curve(const Handle(Geom_BSplineSurface) & geom, SurfaceInversion&
   for (const Peak& p : peaks) {
     if (p.distance <= worst) break;
     worst = std::max(worst, measure.exact(p.t, fine[p.sample].foot));
+    if (worst > stop_above) break;
   }
   return worst;
 }
@@ -261,8 +271,9 @@ double max_deviation(const BSplineSurface& surface, const BSplineCurve& target, 
 
 std::vector<double> max_deviations(const BSplineSurface& surface,
                                    const std::vector<BSplineCurve>& targets, int samples,
-                                   double accept) {
+                                   double accept, double stop_above) {
   check_measure_arguments(surface, samples, accept);
+  if (!(stop_above >= 0.0)) throw InvalidInput("max_deviations: stop_above must be >= 0");
   for (const BSplineCurve& target : targets) {
     target.validate("target curve");
     if (target.dim() != 3) throw InvalidInput("target curve must be a 3D curve");
@@ -272,9 +283,12 @@ std::vector<double> max_deviations(const BSplineSurface& surface,
     // One inversion (the sheet cut into Bezier patches with their bounds) for all the curves:
     // building it was a fifth of each curve's measure.
     SurfaceInversion inversion(geom);
-    std::vector<double> out;
-    for (const BSplineCurve& target : targets)
-      out.push_back(measure_curve(geom, inversion, to_geom_curve(target), samples, accept));
+    std::vector<double> out(targets.size(), std::numeric_limits<double>::infinity());
+    for (size_t i = 0; i < targets.size(); ++i) {
+      out[i] =
+          measure_curve(geom, inversion, to_geom_curve(targets[i]), samples, accept, stop_above);
+      if (out[i] > stop_above) break;
+    }
     return out;
   });
 }
