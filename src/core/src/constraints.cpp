@@ -80,9 +80,10 @@ CurveSampling curve_sampling(const SplineSpace& space, const CurveConstraint& c)
     throw InvalidInput("curve pre-image and target must share their parameter range");
 
   const std::vector<double> pieces = curve_pieces(space, c.preimage, &c.target);
-  const GaussRule& g = gauss_legendre(gauss_points_along(space, c.preimage));
+  const std::vector<int> points = gauss_points_per_piece(space, c.preimage, pieces);
   CurveSampling out;
   for (size_t i = 0; i + 1 < pieces.size(); ++i) {
+    const GaussRule& g = gauss_legendre(points[i]);
     const double a = pieces[i], h = 0.5 * (pieces[i + 1] - pieces[i]);
     for (size_t q = 0; q < g.nodes.size(); ++q) {
       out.t.push_back(a + h * (g.nodes[q] + 1.0));

@@ -25,4 +25,11 @@ std::vector<double> curve_pieces(const SplineSpace& space, const BSplineCurve& p
 // pre-image, and this many points integrate its square exactly and sample it at full rank.
 int gauss_points_along(const SplineSpace& space, const BSplineCurve& preimage);
 
+// Gauss points for each piece [pieces[i], pieces[i + 1]]: gauss_points_along's count, or a
+// straight pre-image's (degree 1: p_u + p_v + 1 points) where the pre-image leaves the chord of
+// the piece by at most 1e-3 of the sheet's shortest knot span (non-rational sheets and
+// pre-images): b(c(t)) is there a polynomial of degree p_u + p_v up to terms of that relative size.
+std::vector<int> gauss_points_per_piece(const SplineSpace& space, const BSplineCurve& preimage,
+                                        const std::vector<double>& pieces);
+
 }  // namespace varsurf
