@@ -358,6 +358,9 @@ void bind_core_types(py::module_& m) {
       .def_readwrite("max_weight_gain", &SolveOptions::max_weight_gain,
                      "Penalty mode: a slow refinement restarts on a heavier weight, up to this "
                      "multiple of penalty_weight (1: never).")
+      .def_readwrite("drag_responses", &SolveOptions::drag_responses,
+                     "Penalty mode: updates that translate one or two whole constraints after a "
+                     "one-step solve reuse precomputed responses instead of a back-substitution.")
       .def_readwrite("give_up_early", &SolveOptions::give_up_early,
                      "Penalty mode: stop the refinement steps once the residual falls too slowly "
                      "to reach fit_tolerance within penalty_steps (for a caller that refines).")
@@ -369,6 +372,9 @@ void bind_core_types(py::module_& m) {
       .def(py::init<>())
       .def_readonly("mode", &SolveReport::mode, "The SolveMode used (automatic resolved).")
       .def_readonly("mode_reason", &SolveReport::mode_reason, "Why that mode, in words.")
+      .def_readonly("back_substitutions", &SolveReport::back_substitutions,
+                    "Penalty mode: back-substitutions with the factor (a drag step taken from kept "
+                    "responses needs none).")
       .def_readonly("inner_iterations", &SolveReport::inner_iterations,
                     "Penalty refinement steps or CG iterations.")
       .def_readonly("lcurve", &SolveReport::lcurve, "The L-curve (tsvd and mtsvd modes).")

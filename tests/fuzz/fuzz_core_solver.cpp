@@ -98,6 +98,7 @@ SolveOptions options(FuzzedDataProvider& in) {
   o.max_iterations = in.ConsumeIntegralInRange<int>(0, 8);  // bounded work per input
   o.penalty_steps = in.ConsumeIntegralInRange<int>(0, 30);
   o.max_weight_gain = in.ConsumeBool() ? 1.0 : number(in, 0.5, 1e4);
+  o.drag_responses = in.ConsumeBool();
   o.max_unknowns = 20000;
   if (in.ConsumeIntegralInRange<int>(0, 9) == 0) o.time_limit = 1e-9;    // times out at once
   if (in.ConsumeIntegralInRange<int>(0, 9) == 0) o.memory_limit = 1024;  // far too little
@@ -123,6 +124,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       PreparedSheet prepared(pb, opt);
       check(prepared.result().poles, pb.space.size());
       SheetProblem moved = pb;
+      for (auto& p : moved.points) p.target += fuzz::vector3(in, 1);
+      check(prepared.update(moved).poles, pb.space.size());
+      // Again: after a one-step solve, the penalty mode's drag responses take over.
       for (auto& p : moved.points) p.target += fuzz::vector3(in, 1);
       check(prepared.update(moved).poles, pb.space.size());
     } else {

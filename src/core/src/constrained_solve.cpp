@@ -17,6 +17,7 @@
 #include <sstream>
 #include <string>
 
+#include "penalty_drag.hpp"
 #include "solve_limits.hpp"
 #include "stopwatch.hpp"
 #include "varsurf/core/errors.hpp"
@@ -139,6 +140,8 @@ struct ConstrainedSolve::Impl {
   std::vector<double> block_weight;   // sum of the sample weights of each block
   std::vector<bool> block_exact;
   mutable Eigen::MatrixXd bregman_offset;  // d_k - D of the last solve: a warm start for drags
+  mutable PenaltyDrag drag;                // drags of whole constraints without a back-substitution
+  mutable Eigen::MatrixXd last_bx;         // B x of the last penalty solve
   // Added to D in each solve: for a constraint the start already meets within the tolerance it
   // is B x0 - D of the prepared data, so the sheet keeps the start there and follows only the
   // data's later motion (its noise below the tolerance is not fitted).
@@ -166,7 +169,7 @@ struct ConstrainedSolve::Impl {
   // One run of the penalty refinement from data d_k (may_raise: it may restart on a heavier
   // weight).
   struct Refined {
-    Eigen::MatrixXd x, dk;
+    Eigen::MatrixXd x, dk, bx;  // bx: B x
     bool met = true;            // every constraint done (exact ones converged)
     bool tolerance_met = true;  // every toleranced constraint within it
     double worst = 0.0;         // the largest block RMS
@@ -174,6 +177,22 @@ struct ConstrainedSolve::Impl {
   };
   Refined refine(const Eigen::MatrixXd& g, const Eigen::MatrixXd& d, Eigen::MatrixXd dk,
                  bool may_raise) const;
+  // K^-1 r for the penalty matrix's factor (not the QR form).
+  Eigen::VectorXd factor_solve(const Eigen::VectorXd& r) const {
+#ifdef VARSURF_HAVE_CHOLMOD
+    if (use_cholmod) return cholmod.solve(r);
+#endif
+    return ldlt.solve(r);
+  }
+  // Per constraint block: its rows' summed squared residual and its farthest sample's distance.
+  void block_residuals(const Eigen::MatrixXd& res, std::vector<double>& sq,
+                       std::vector<double>& far) const;
+  // A block within fit_tolerance as the refinement judges it: RMS, and no sample beyond
+  // max_fit_factor times it.
+  bool within(size_t block, double sq, double far) const {
+    const double rms = block_weight[block] > 0.0 ? std::sqrt(sq / block_weight[block]) : 0.0;
+    return rms <= opt.fit_tolerance && far <= opt.max_fit_factor * opt.fit_tolerance;
+  }
   void setup_samples(const std::vector<ConstraintSamples>& blocks);
   // The blocks' right-hand sides relative to the rest shape (empty without one).
   std::vector<ConstraintSamples> shifted(const std::vector<ConstraintSamples>& blocks) const;
@@ -630,18 +649,11 @@ void ConstrainedSolve::Impl::setup_samples(const std::vector<ConstraintSamples>&
   // Constraints the start meets as the refinement would judge them met (RMS within
   // fit_tolerance, no sample beyond max_fit_factor times it) are held at the start.
   const Eigen::MatrixXd res = sample_rhs - samples * x0_free;
-  std::vector<double> sq(block_weight.size(), 0.0), far(block_weight.size(), 0.0);
-  for (Eigen::Index i = 0; i < res.rows(); ++i) {
-    const size_t b = static_cast<size_t>(sample_block[static_cast<size_t>(i)]);
-    const double r2 = res.row(i).squaredNorm(), w = sample_weight[static_cast<size_t>(i)];
-    sq[b] += r2;
-    if (w > 0.0) far[b] = std::max(far[b], std::sqrt(r2 / w));
-  }
+  std::vector<double> sq, far;
+  block_residuals(res, sq, far);
   std::vector<bool> held(block_weight.size(), false);
   for (size_t b = 0; b < block_weight.size(); ++b) {
-    const double rms = block_weight[b] > 0.0 ? std::sqrt(sq[b] / block_weight[b]) : 0.0;
-    held[b] = !block_exact[b] && rms <= opt.fit_tolerance &&
-              far[b] <= opt.max_fit_factor * opt.fit_tolerance;
+    held[b] = !block_exact[b] && within(b, sq[b], far[b]);
     held_blocks += held[b] ? 1 : 0;
   }
   if (!held_blocks) return;
@@ -694,9 +706,51 @@ Eigen::MatrixXd ConstrainedSolve::Impl::solve_kkt(const Eigen::MatrixXd& g,
   return sol.topRows(n);
 }
 
+void ConstrainedSolve::Impl::block_residuals(const Eigen::MatrixXd& res, std::vector<double>& sq,
+                                             std::vector<double>& far) const {
+  sq.assign(block_weight.size(), 0.0);
+  far.assign(block_weight.size(), 0.0);
+  for (Eigen::Index i = 0; i < res.rows(); ++i) {
+    const size_t b = static_cast<size_t>(sample_block[static_cast<size_t>(i)]);
+    const double r2 = res.row(i).squaredNorm(), w = sample_weight[static_cast<size_t>(i)];
+    sq[b] += r2;
+    // The row is scaled by sqrt(w): its distance is |res| / sqrt(w).
+    if (w > 0.0) far[b] = std::max(far[b], std::sqrt(r2 / w));
+  }
+}
+
 Eigen::MatrixXd ConstrainedSolve::Impl::solve_penalty(const Eigen::MatrixXd& g,
                                                       const Eigen::MatrixXd& d,
                                                       SolveReport& rep) const {
+  rep.back_substitutions = 0;
+  // A drag of whole constraints after a solve done in one step: that step again from the
+  // precomputed responses, kept if it is done too (the refinement would stop there as well).
+  bool draggable =
+      opt.drag_responses && mode == SolveMode::penalty && !krylov && samples.rows() > 0;
+#ifdef VARSURF_HAVE_SPQR
+  draggable = draggable && !use_qr;
+#endif
+  if (draggable) {
+    Eigen::MatrixXd x, bx;
+    const auto solve = [this](const Eigen::VectorXd& r) { return factor_solve(r); };
+    int solves = 0;
+    if (drag.first_step(d, g, mu2, samples, sample_block, sample_weight, solve, x, bx, solves)) {
+      rep.back_substitutions += solves;
+      std::vector<double> sq, far;
+      block_residuals(d - bx, sq, far);
+      bool met = opt.fit_tolerance > 0.0;
+      for (size_t b = 0; b < block_weight.size() && met; ++b)
+        met = !block_exact[b] && within(b, sq[b], far[b]);
+      if (met) {
+        drag.remember(d, g, mu2, x, bx);
+        last_bx = std::move(bx);
+        rep.inner_iterations = 1;
+        rep.conflict = 0.0;
+        return x;  // d_k - d stays what it was
+      }
+    }
+  }
+  const double weight_before = mu2;
   Eigen::MatrixXd dk = d;
   if (bregman_offset.rows() == samples.rows() && bregman_offset.cols() == width)
     dk += bregman_offset;
@@ -713,7 +767,13 @@ Eigen::MatrixXd ConstrainedSolve::Impl::solve_penalty(const Eigen::MatrixXd& g,
     }
   }
   bregman_offset = out.dk - d;
+  last_bx = out.bx;
+  if (draggable && out.steps == 1 && mu2 == weight_before && out.bx.rows() == d.rows())
+    drag.remember(d, g, mu2, out.x, out.bx);
+  else
+    drag.forget_step();
   rep.inner_iterations = out.steps;
+  rep.back_substitutions += out.steps;
   rep.conflict = out.met || out.worst <= opt.fit_tolerance ? 0.0 : out.worst;
   return out.x;
 }
@@ -751,16 +811,10 @@ ConstrainedSolve::Impl::Refined ConstrainedSolve::Impl::refine(const Eigen::Matr
       if (move <= 1e-13 * scale) break;
       continue;
     }
-    const Eigen::MatrixXd res = d - samples * x;
-    std::vector<double> sq(blocks, 0.0), far(blocks, 0.0);
-    for (Eigen::Index i = 0; i < rows; ++i) {
-      const size_t b = static_cast<size_t>(sample_block[static_cast<size_t>(i)]);
-      const double r2 = res.row(i).squaredNorm();
-      sq[b] += r2;
-      // The row is scaled by sqrt(w): its distance is |res| / sqrt(w).
-      if (sample_weight[static_cast<size_t>(i)] > 0.0)
-        far[b] = std::max(far[b], std::sqrt(r2 / sample_weight[static_cast<size_t>(i)]));
-    }
+    out.bx = samples * x;
+    const Eigen::MatrixXd res = d - out.bx;
+    std::vector<double> sq, far;
+    block_residuals(res, sq, far);
     out.met = out.tolerance_met = true;
     bool stalled = true, hopeless = false;
     out.worst = 0.0;
@@ -770,10 +824,9 @@ ConstrainedSolve::Impl::Refined ConstrainedSolve::Impl::refine(const Eigen::Matr
       const double rms = block_weight[b] > 0.0 ? std::sqrt(sq[b] / block_weight[b]) : 0.0;
       out.worst = std::max(out.worst, rms);
       const bool exact = block_exact[b] || opt.fit_tolerance == 0.0;
-      const bool within =
-          rms <= opt.fit_tolerance && far[b] <= opt.max_fit_factor * opt.fit_tolerance;
-      if (exact || !within) out.met = false;
-      if (!exact && !within) out.tolerance_met = false;
+      const bool met = within(b, sq[b], far[b]);
+      if (exact || !met) out.met = false;
+      if (!exact && !met) out.tolerance_met = false;
       if (!exact) {
         // How far the block is from its tolerance (1: just met), by RMS and by its farthest
         // sample.
@@ -967,7 +1020,10 @@ Eigen::MatrixXd ConstrainedSolve::solve(const Eigen::MatrixXd& f, const Eigen::M
         break;
     }
   if (!sol.allFinite()) throw SolveFailure("the solve produced non-finite poles");
-  if (m.mode == SolveMode::penalty || m.krylov) {
+  if (m.mode == SolveMode::penalty && !m.krylov && m.last_bx.rows() == b.rows() &&
+      m.samples.rows() > 0) {
+    rep.constraint_residual = (m.last_bx - b).cwiseAbs().maxCoeff();  // B sol, kept by the solve
+  } else if (m.mode == SolveMode::penalty || m.krylov) {
     if (m.samples.rows() > 0) rep.constraint_residual = (m.samples * sol - b).cwiseAbs().maxCoeff();
   } else if (m.r > 0) {
     rep.constraint_residual = (m.a * sol - b).cwiseAbs().maxCoeff();
