@@ -13,12 +13,24 @@ namespace varsurf {
 
 namespace {
 
-// Parameters in (a, b) where the pre-image crosses an interior knot line of the sheet: the
-// integrand is a different polynomial on each side.
-void add_knot_crossings(const SplineSpace& space, const BSplineCurve& pre, double a, double b,
-                        std::vector<double>& cuts) {
-  const std::vector<double> ku = breakpoints(space.knots_u, space.degree_u);
-  const std::vector<double> kv = breakpoints(space.knots_v, space.degree_v);
+// Whether a knot line of `knots` (interior ones) lies strictly between lo and hi.
+bool line_between(const std::vector<double>& knots, double lo, double hi) {
+  const auto it = std::upper_bound(knots.begin() + 1, knots.end() - 1, lo);
+  return it != knots.end() - 1 && *it < hi;
+}
+
+// Parameters in (a, b) where the pre-image crosses an interior knot line of the sheet (ku, kv:
+// its breakpoints): the integrand is a different polynomial on each side.
+void add_knot_crossings(const std::vector<double>& ku, const std::vector<double>& kv,
+                        const BSplineCurve& pre, double a, double b, std::vector<double>& cuts) {
+  // The piece lies in one span of the pre-image, so in the box of that span's poles (positive
+  // weights keep a rational span in its poles' hull too). A box that no knot line cuts needs no
+  // search: most pieces of a projected edge (62 spans over a 16-span sheet) are such, and sampling
+  // each was a third of sampling the curve.
+  const int span = find_span(pre.knots, pre.degree, 0.5 * (a + b));
+  const auto poles = pre.poles.middleRows(span - pre.degree, pre.degree + 1);
+  const Eigen::Vector2d lo = poles.colwise().minCoeff(), hi = poles.colwise().maxCoeff();
+  if (!line_between(ku, lo(0), hi(0)) && !line_between(kv, lo(1), hi(1))) return;
   const int m = 4 * (pre.degree + 1);
   Eigen::MatrixXd uv(m + 1, 2);
   for (int i = 0; i <= m; ++i) uv.row(i) = pre.evaluate(a + (b - a) * i / m).transpose();
@@ -97,8 +109,10 @@ std::vector<double> curve_pieces(const SplineSpace& space, const BSplineCurve& p
   pieces.front() = t0;
   pieces.back() = t1;
   std::vector<double> all = pieces;
+  const std::vector<double> ku = breakpoints(space.knots_u, space.degree_u);
+  const std::vector<double> kv = breakpoints(space.knots_v, space.degree_v);
   for (size_t i = 0; i + 1 < pieces.size(); ++i)
-    add_knot_crossings(space, pre, pieces[i], pieces[i + 1], all);
+    add_knot_crossings(ku, kv, pre, pieces[i], pieces[i + 1], all);
   std::sort(all.begin(), all.end());
   pieces.clear();
   for (double t : all)
