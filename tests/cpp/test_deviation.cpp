@@ -379,6 +379,24 @@ TEST(MaxDeviation, CurveAtAKnownOffsetFromAPlane) {
   EXPECT_LT(occ::max_deviation(sheet, test::line_curve(a, b), 51), 1e-9);
 }
 
+// A curve over the surface along u from 0.2 to 0.8 of its range and v = 0.3 + a s + b s^2, lifted
+// off it along the normal by lift * sin(pi s) (s from 0 to 1): `lift` from it at its middle.
+BSplineCurve lifted_curve(const Handle(Geom_BSplineSurface) & geom, double lift, double a,
+                          double b) {
+  double u0, u1, v0, v1;
+  geom->Bounds(u0, u1, v0, v1);
+  std::vector<gp_Pnt> points;
+  for (int i = 0; i <= 30; ++i) {
+    gp_Pnt p;
+    gp_Vec du, dv;
+    const double s = i / 30.0;
+    geom->D1(u0 + (u1 - u0) * (0.2 + 0.6 * s), v0 + (v1 - v0) * (0.3 + a * s + b * s * s), p, du,
+             dv);
+    points.push_back(p.Translated(du.Crossed(dv).Normalized() * lift * std::sin(M_PI * s)));
+  }
+  return occ::from_geom(interpolate(points));
+}
+
 // One search structure for all the curves of a sheet gives each curve's own figure, to the last
 // bit, with Newton's answers accepted or not; the known offsets are met.
 TEST(MaxDeviation, AllCurvesOfASheetAtOnceGiveEachOnesFigure) {
@@ -388,19 +406,7 @@ TEST(MaxDeviation, AllCurvesOfASheetAtOnceGiveEachOnesFigure) {
   std::vector<BSplineCurve> curves;
   for (TopExp_Explorer ex(face_of(geom), TopAbs_EDGE); ex.More(); ex.Next())
     curves.push_back(occ::curve_from_edge(TopoDS::Edge(ex.Current())));
-  double u0, u1, v0, v1;
-  geom->Bounds(u0, u1, v0, v1);
-  for (double lift : {0.5, 2.0}) {
-    std::vector<gp_Pnt> points;
-    for (int i = 0; i <= 30; ++i) {
-      gp_Pnt p;
-      gp_Vec du, dv;
-      const double s = i / 30.0;
-      geom->D1(u0 + (u1 - u0) * (0.2 + 0.6 * s), v0 + (v1 - v0) * (0.3 + 0.3 * s * s), p, du, dv);
-      points.push_back(p.Translated(du.Crossed(dv).Normalized() * lift * std::sin(M_PI * s)));
-    }
-    curves.push_back(occ::from_geom(interpolate(points)));
-  }
+  for (double lift : {0.5, 2.0}) curves.push_back(lifted_curve(geom, lift, 0.0, 0.3));
   for (double accept : {0.0, 0.01}) {
     const std::vector<double> all = occ::max_deviations(sheet, curves, 200, accept);
     ASSERT_EQ(all.size(), curves.size());
@@ -423,19 +429,7 @@ TEST(MaxDeviation, StopsAtTheFirstCurveProvenBeyondAThreshold) {
   std::vector<BSplineCurve> edges;
   for (TopExp_Explorer ex(face_of(geom), TopAbs_EDGE); ex.More(); ex.Next())
     edges.push_back(occ::curve_from_edge(TopoDS::Edge(ex.Current())));
-  double u0, u1, v0, v1;
-  geom->Bounds(u0, u1, v0, v1);
-  const auto lifted = [&](double lift) {
-    std::vector<gp_Pnt> points;
-    for (int i = 0; i <= 30; ++i) {
-      gp_Pnt p;
-      gp_Vec du, dv;
-      const double s = i / 30.0;
-      geom->D1(u0 + (u1 - u0) * (0.2 + 0.6 * s), v0 + (v1 - v0) * (0.3 + 0.4 * s), p, du, dv);
-      points.push_back(p.Translated(du.Crossed(dv).Normalized() * lift * std::sin(M_PI * s)));
-    }
-    return occ::from_geom(interpolate(points));
-  };
+  const auto lifted = [&](double lift) { return lifted_curve(geom, lift, 0.4, 0.0); };
   // Two edges, a curve 0.5 off, two edges, a curve 2 off.
   const std::vector<BSplineCurve> curves{edges[0], edges[1], lifted(0.5),
                                          edges[2], edges[3], lifted(2.0)};
