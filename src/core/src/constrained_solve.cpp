@@ -128,10 +128,7 @@ struct ConstrainedSolve::Impl {
 #endif
     Eigen::MatrixXd rhs = g;
     if (samples.rows() > 0) rhs += mu2 * (samples.transpose() * d);
-#ifdef VARSURF_HAVE_CHOLMOD
-    if (use_cholmod) return cholmod.solve(rhs);
-#endif
-    return ldlt.solve(rhs);
+    return factor_solve(rhs);
   }
   Sparse samples;                     // B: sample rows x n
   Eigen::MatrixXd sample_rhs;         // D: sample rows x width (fixed columns moved over)
@@ -178,7 +175,7 @@ struct ConstrainedSolve::Impl {
   Refined refine(const Eigen::MatrixXd& g, const Eigen::MatrixXd& d, Eigen::MatrixXd dk,
                  bool may_raise) const;
   // K^-1 r for the penalty matrix's factor (not the QR form).
-  Eigen::VectorXd factor_solve(const Eigen::VectorXd& r) const {
+  Eigen::MatrixXd factor_solve(const Eigen::MatrixXd& r) const {
 #ifdef VARSURF_HAVE_CHOLMOD
     if (use_cholmod) return cholmod.solve(r);
 #endif
@@ -192,6 +189,10 @@ struct ConstrainedSolve::Impl {
   bool within(size_t block, double sq, double far) const {
     const double rms = block_weight[block] > 0.0 ? std::sqrt(sq / block_weight[block]) : 0.0;
     return rms <= opt.fit_tolerance && far <= opt.max_fit_factor * opt.fit_tolerance;
+  }
+  // A block the refinement may stop on: toleranced (not exact) and within its tolerance.
+  bool done(size_t block, double sq, double far) const {
+    return !block_exact[block] && opt.fit_tolerance > 0.0 && within(block, sq, far);
   }
   void setup_samples(const std::vector<ConstraintSamples>& blocks);
   // The blocks' right-hand sides relative to the rest shape (empty without one).
@@ -653,7 +654,7 @@ void ConstrainedSolve::Impl::setup_samples(const std::vector<ConstraintSamples>&
   block_residuals(res, sq, far);
   std::vector<bool> held(block_weight.size(), false);
   for (size_t b = 0; b < block_weight.size(); ++b) {
-    held[b] = !block_exact[b] && within(b, sq[b], far[b]);
+    held[b] = done(b, sq[b], far[b]);
     held_blocks += held[b] ? 1 : 0;
   }
   if (!held_blocks) return;
@@ -732,15 +733,16 @@ Eigen::MatrixXd ConstrainedSolve::Impl::solve_penalty(const Eigen::MatrixXd& g,
 #endif
   if (draggable) {
     Eigen::MatrixXd x, bx;
-    const auto solve = [this](const Eigen::VectorXd& r) { return factor_solve(r); };
+    const auto solve = [this](const Eigen::VectorXd& r) -> Eigen::VectorXd {
+      return factor_solve(r);
+    };
     int solves = 0;
     if (drag.first_step(d, g, mu2, samples, sample_block, sample_weight, solve, x, bx, solves)) {
       rep.back_substitutions += solves;
       std::vector<double> sq, far;
       block_residuals(d - bx, sq, far);
-      bool met = opt.fit_tolerance > 0.0;
-      for (size_t b = 0; b < block_weight.size() && met; ++b)
-        met = !block_exact[b] && within(b, sq[b], far[b]);
+      bool met = true;
+      for (size_t b = 0; b < block_weight.size() && met; ++b) met = done(b, sq[b], far[b]);
       if (met) {
         drag.remember(d, g, mu2, x, bx);
         last_bx = std::move(bx);
@@ -824,9 +826,8 @@ ConstrainedSolve::Impl::Refined ConstrainedSolve::Impl::refine(const Eigen::Matr
       const double rms = block_weight[b] > 0.0 ? std::sqrt(sq[b] / block_weight[b]) : 0.0;
       out.worst = std::max(out.worst, rms);
       const bool exact = block_exact[b] || opt.fit_tolerance == 0.0;
-      const bool met = within(b, sq[b], far[b]);
-      if (exact || !met) out.met = false;
-      if (!exact && !met) out.tolerance_met = false;
+      if (!done(b, sq[b], far[b])) out.met = false;
+      if (!exact && !within(b, sq[b], far[b])) out.tolerance_met = false;
       if (!exact) {
         // How far the block is from its tolerance (1: just met), by RMS and by its farthest
         // sample.
