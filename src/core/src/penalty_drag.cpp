@@ -47,7 +47,6 @@ bool PenaltyDrag::first_step(const Eigen::MatrixXd& d, const Eigen::MatrixXd& g,
   struct Moved {
     int block;
     Eigen::RowVector3d t;
-    double s = 0.0;  // the root weight T_b was taken from
   };
   std::vector<Moved> moved;
   const double size = std::max(d.cwiseAbs().maxCoeff(), d_.cwiseAbs().maxCoeff());
@@ -64,7 +63,7 @@ bool PenaltyDrag::first_step(const Eigen::MatrixXd& d, const Eigen::MatrixXd& g,
       // A block's rows are contiguous: its earlier rows did not move, so no common translation.
       if (r > 0 && sample_block[static_cast<size_t>(r - 1)] == b) return false;
       if (!(s > 0.0)) return false;
-      moved.push_back({b, delta / s, s});
+      moved.push_back({b, delta / s});
       continue;
     }
     if ((delta - s * it->t).cwiseAbs().maxCoeff() > rounding) return false;
