@@ -397,15 +397,21 @@ BSplineCurve lifted_curve(const Handle(Geom_BSplineSurface) & geom, double lift,
   return occ::from_geom(interpolate(points));
 }
 
+// The edges of the face of a surface, as curves.
+std::vector<BSplineCurve> face_edges(const Handle(Geom_BSplineSurface) & geom) {
+  std::vector<BSplineCurve> out;
+  for (TopExp_Explorer ex(face_of(geom), TopAbs_EDGE); ex.More(); ex.Next())
+    out.push_back(occ::curve_from_edge(TopoDS::Edge(ex.Current())));
+  return out;
+}
+
 // One search structure for all the curves of a sheet gives each curve's own figure, to the last
 // bit, with Newton's answers accepted or not; the known offsets are met.
 TEST(MaxDeviation, AllCurvesOfASheetAtOnceGiveEachOnesFigure) {
   std::mt19937 rng(5);
   const Handle(Geom_BSplineSurface) geom = random_surface(rng, 3, 8, 7);
   const BSplineSurface sheet = occ::surface_from_face(face_of(geom));
-  std::vector<BSplineCurve> curves;
-  for (TopExp_Explorer ex(face_of(geom), TopAbs_EDGE); ex.More(); ex.Next())
-    curves.push_back(occ::curve_from_edge(TopoDS::Edge(ex.Current())));
+  std::vector<BSplineCurve> curves = face_edges(geom);
   for (double lift : {0.5, 2.0}) curves.push_back(lifted_curve(geom, lift, 0.0, 0.3));
   for (double accept : {0.0, 0.01}) {
     const std::vector<double> all = occ::max_deviations(sheet, curves, 200, accept);
@@ -426,9 +432,7 @@ TEST(MaxDeviation, StopsAtTheFirstCurveProvenBeyondAThreshold) {
   std::mt19937 rng(9);
   const Handle(Geom_BSplineSurface) geom = random_surface(rng, 3, 7, 8);
   const BSplineSurface sheet = occ::surface_from_face(face_of(geom));
-  std::vector<BSplineCurve> edges;
-  for (TopExp_Explorer ex(face_of(geom), TopAbs_EDGE); ex.More(); ex.Next())
-    edges.push_back(occ::curve_from_edge(TopoDS::Edge(ex.Current())));
+  const std::vector<BSplineCurve> edges = face_edges(geom);
   const auto lifted = [&](double lift) { return lifted_curve(geom, lift, 0.4, 0.0); };
   // Two edges, a curve 0.5 off, two edges, a curve 2 off.
   const std::vector<BSplineCurve> curves{edges[0], edges[1], lifted(0.5),
