@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "varsurf/core/heap_policy.hpp"
 #include "varsurf/core/knot_vector.hpp"
 #include "varsurf/core/sheet_solver.hpp"
 
@@ -177,7 +178,7 @@ int scaling(int poles, int interior, SolveMode mode, bool qr) {
   pin.target = Eigen::Vector3d(0.5 * kSize, 0.5 * kSize, 10.0);
   pinned.points.push_back(pin);
   const double tc = now();
-  prepared.change(pinned);
+  const bool kept = prepared.change(pinned).report.factor_kept;
   const double change = now() - tc;
   std::printf(
       "{\"case\": \"scaling\", \"poles\": %d, \"interior\": %d, \"unknowns\": %d, "
@@ -185,11 +186,11 @@ int scaling(int poles, int interior, SolveMode mode, bool qr) {
       "%.6f, "
       "\"full\": %.6f, \"first\": %.6f, \"drag\": %.6f, \"change\": %.6f, \"rank\": %d, \"inner\": "
       "%d, "
-      "\"peak_mib\": %.1f, "
+      "\"change_kept\": %s, \"peak_mib\": %.1f, "
       "\"max_dev\": %.3g}\n",
       poles, interior, r.unknowns, to_string(r.mode), qr ? " (QR)" : "", r.assemble_seconds,
       r.reduce_seconds, r.factor_seconds, r.solve_seconds, full, first, drag, change,
-      r.constraint_rank, r.inner_iterations, peak_mib(), max_dev);
+      r.constraint_rank, r.inner_iterations, kept ? "true" : "false", peak_mib(), max_dev);
   return 0;
 }
 
@@ -267,6 +268,8 @@ int duqin() {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // The heap policy the Python module sets when it loads: measured as FreeCAD runs the solver.
+  varsurf::keep_freed_heap();
   try {
     const std::string what = argc > 1 ? argv[1] : "";
     if (what == "scaling" && (argc == 4 || argc == 5)) {

@@ -375,6 +375,9 @@ void bind_core_types(py::module_& m) {
       .def_readonly("back_substitutions", &SolveReport::back_substitutions,
                     "Penalty mode: back-substitutions with the factor (a drag step taken from kept "
                     "responses needs none).")
+      .def_readonly("factor_kept", &SolveReport::factor_kept,
+                    "Penalty mode, PreparedSheet.change: the earlier factorization served the "
+                    "added constraints (the same answer as a new one's, to rounding).")
       .def_readonly("inner_iterations", &SolveReport::inner_iterations,
                     "Penalty refinement steps or CG iterations.")
       .def_readonly("lcurve", &SolveReport::lcurve, "The L-curve (tsvd and mtsvd modes).")

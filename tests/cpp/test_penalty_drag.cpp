@@ -16,42 +16,6 @@ using namespace varsurf;
 
 namespace {
 
-// A free sheet over the unit square through its four sides, three wavy slanted curves and two
-// pins, fitted to 1e-4 (a fit one refinement step reaches).
-SheetProblem scene(int spans) {
-  SheetProblem pb;
-  pb.space = SplineSpace::uniform(3, 3, spans, spans);
-  pb.initial_poles = test::flat_poles(pb.space);
-  std::vector<double> breaks;
-  for (int i = 0; i <= 12; ++i) breaks.push_back(i / 12.0);
-  const double pi = std::acos(-1.0);
-  auto add = [&](Eigen::Vector2d a, Eigen::Vector2d b, double height, double wave, int phase) {
-    CurveConstraint c;
-    c.preimage = test::line_curve(a, b);
-    c.target = test::fit_piecewise_curve(breaks, 3, 3, [&](double t) {
-      const Eigen::Vector2d uv = a + t * (b - a);
-      return Eigen::VectorXd(
-          Eigen::Vector3d(uv(0), uv(1), height + wave * std::sin(2.0 * pi * t + phase)));
-    });
-    pb.curves.push_back(c);
-  };
-  add({0, 0}, {1, 0}, 0.0, 0.02, 0);
-  add({1, 0}, {1, 1}, 0.0, 0.02, 0);
-  add({1, 1}, {0, 1}, 0.0, 0.02, 0);
-  add({0, 1}, {0, 0}, 0.0, 0.02, 0);
-  for (int j = 0; j < 3; ++j) add({0.2 + 0.25 * j, 0.15}, {0.3 + 0.25 * j, 0.85}, 0.05, 0.01, j);
-  PointConstraint p;
-  p.u = 0.35;
-  p.v = 0.5;
-  p.target = Eigen::Vector3d(0.35, 0.5, 0.06);
-  pb.points.push_back(p);
-  p.u = 0.6;
-  p.v = 0.3;
-  p.target = Eigen::Vector3d(0.6, 0.3, 0.04);
-  pb.points.push_back(p);
-  return pb;
-}
-
 SolveOptions options(bool responses) {
   SolveOptions opt;
   opt.mode = SolveMode::penalty;
@@ -69,7 +33,7 @@ void translate(CurveConstraint& c, const Eigen::Vector3d& t) {
 // 19 x 19 poles (Eigen's LDL^T) and 35 x 35 (CHOLMOD's supernodal Cholesky where built with it).
 TEST(PenaltyDrag, TranslatedConstraintsTakeTheStepFromKeptResponses) {
   for (int spans : {16, 32}) {
-    const SheetProblem pb = scene(spans);
+    const SheetProblem pb = test::penalty_scene(spans);
     PreparedSheet with(pb, options(true)), without(pb, options(false));
     ASSERT_EQ(with.result().report.inner_iterations, 1) << spans;
     EXPECT_EQ(with.result().poles, without.result().poles);
@@ -139,7 +103,7 @@ TEST(PenaltyDrag, TranslatedConstraintsTakeTheStepFromKeptResponses) {
 // A drag whose one step misses the tolerance is refined as before: a pin on a curve, where the
 // curve passes, moved off it (the two then contradict each other).
 TEST(PenaltyDrag, AMoveOneStepCannotFitIsRefinedAsBefore) {
-  SheetProblem pb = scene(16);
+  SheetProblem pb = test::penalty_scene(16);
   pb.points[0].u = 0.25;  // the first slanted curve's middle, 0.05 high there
   pb.points[0].target = Eigen::Vector3d(0.25, 0.5, 0.05);
   PreparedSheet with(pb, options(true)), without(pb, options(false));

@@ -127,4 +127,41 @@ inline double curve_gap(const SheetProblem& pb, const Eigen::MatrixX3d& poles,
   return gap;
 }
 
+// A free sheet over the unit square through its four sides, three wavy slanted curves and two
+// pins, fitted to 1e-4 (a fit one refinement step reaches).
+inline SheetProblem penalty_scene(int spans) {
+  SheetProblem pb;
+  pb.space = SplineSpace::uniform(3, 3, spans, spans);
+  pb.initial_poles = flat_poles(pb.space);
+  std::vector<double> breaks;
+  for (int i = 0; i <= 12; ++i) breaks.push_back(i / 12.0);
+  const double pi = std::acos(-1.0);
+  const auto add = [&](Eigen::Vector2d a, Eigen::Vector2d b, double height, double wave,
+                       int phase) {
+    CurveConstraint c;
+    c.preimage = line_curve(a, b);
+    c.target = fit_piecewise_curve(breaks, 3, 3, [&](double t) {
+      const Eigen::Vector2d uv = a + t * (b - a);
+      return Eigen::VectorXd(
+          Eigen::Vector3d(uv(0), uv(1), height + wave * std::sin(2.0 * pi * t + phase)));
+    });
+    pb.curves.push_back(c);
+  };
+  add({0, 0}, {1, 0}, 0.0, 0.02, 0);
+  add({1, 0}, {1, 1}, 0.0, 0.02, 0);
+  add({1, 1}, {0, 1}, 0.0, 0.02, 0);
+  add({0, 1}, {0, 0}, 0.0, 0.02, 0);
+  for (int j = 0; j < 3; ++j) add({0.2 + 0.25 * j, 0.15}, {0.3 + 0.25 * j, 0.85}, 0.05, 0.01, j);
+  PointConstraint p;
+  p.u = 0.35;
+  p.v = 0.5;
+  p.target = Eigen::Vector3d(0.35, 0.5, 0.06);
+  pb.points.push_back(p);
+  p.u = 0.6;
+  p.v = 0.3;
+  p.target = Eigen::Vector3d(0.6, 0.3, 0.04);
+  pb.points.push_back(p);
+  return pb;
+}
+
 }  // namespace varsurf::test

@@ -82,6 +82,35 @@ def test_prepared_sheet_drag_equals_a_fresh_solve(native):
         prepared.change(problem)
 
 
+def test_prepared_sheet_change_keeps_the_penalty_factor(native):
+    """A pin added in the penalty mode is solved through the earlier factorization (the report
+    says so), with the fresh solve's poles; a pin taken away factors anew."""
+    nat = native
+    unit = nat.BSplineSurface(space=nat.SplineSpace.uniform(1, 1, 1, 1),
+                              poles=[[0, 0, 0], [0, 1, 0], [1, 0, 0], [1, 1, 0]])
+    flat = nat.refine_surface(unit, 12, 12, 3)
+    problem = nat.SheetProblem()
+    problem.space = flat.space
+    problem.initial_poles = flat.poles
+    problem.fixed_poles = list(nat.boundary_pole_indices(flat.space))
+    spots = [(0.2 + 0.12 * k, 0.3 + 0.07 * k, 0.02 * k) for k in range(6)]
+    problem.points = [nat.PointConstraint(u=u, v=v, target=[u, v, z]) for u, v, z in spots]
+    options = nat.SolveOptions()
+    options.mode = nat.SolveMode.penalty
+    options.fit_tolerance = 1e-4
+    prepared = nat.PreparedSheet(problem, options)
+    assert not prepared.result.report.factor_kept
+    problem.points = list(problem.points) + [nat.PointConstraint(u=0.7, v=0.25, target=[0.7, 0.25, 0.1])]
+    changed = prepared.change(problem)
+    assert changed.report.factor_kept
+    assert abs(changed.poles - nat.solve_sheet(problem, options).poles).max() < 1e-9
+    assert abs(changed.poles - flat.poles).max() > 1e-2
+    problem.points = list(problem.points)[1:]
+    changed = prepared.change(problem)
+    assert not changed.report.factor_kept
+    assert abs(changed.poles - nat.solve_sheet(problem, options).poles).max() < 1e-9
+
+
 def test_unknown_mode_is_refused(sheet):
     face = sheet.Base[0].Shape.Faces[0]
     with pytest.raises(errors.SheetError, match="SolveMode must be one of"):

@@ -16,7 +16,9 @@
 #include <limits>
 #include <sstream>
 #include <string>
+#include <utility>
 
+#include "factor_correction.hpp"
 #include "penalty_drag.hpp"
 #include "solve_limits.hpp"
 #include "stopwatch.hpp"
@@ -27,6 +29,13 @@ namespace varsurf {
 namespace {
 
 using Sparse = Eigen::SparseMatrix<double>;
+using RowSparse = Eigen::SparseMatrix<double, Eigen::RowMajor>;
+
+// change(): an earlier factor serves at most this many added sample rows (one back-substitution
+// each when the correction is set up), and a weight within kMaxWeightDrift of its own (the
+// correction's conjugate gradients need about 7 steps at 5 %, 10 at 25 %).
+constexpr Eigen::Index kMaxAddedRows = 16;
+constexpr double kMaxWeightDrift = 0.25;
 
 // Penalty steps before SolveOptions::give_up_early judges the rate: the first ones fall fast.
 constexpr int kWarmUpSteps = 20;
@@ -89,19 +98,51 @@ struct ConstrainedSolve::Impl {
   // penalty: the raw samples (no reduction), one sparse Cholesky of Q + mu^2 B^T B. A solve
   // that converges slowly raises mu^2 and refactors (same pattern, numeric only); the raised
   // weight and its factor stay for the next solves (drags), hence mutable.
-  Sparse btb;
+  mutable Sparse btb;  // B^T B, formed when a factorization needs it
   mutable double mu2 = 0.0;
   mutable double first_mu2 = 0.0;     // mu^2 before any raise
   mutable double heaviest_mu2 = 0.0;  // the largest mu^2 a raise may reach
-  mutable Eigen::SimplicialLDLT<Sparse> ldlt;
+  // The factor of Q + weight B_f^T B_f + eps I; shared with a later solve of the same energy that
+  // adds constraints (change()), which refactors into a factor of its own.
+  struct Factor {
+    Eigen::SimplicialLDLT<Sparse> ldlt;
 #ifdef VARSURF_HAVE_CHOLMOD
-  // CHOLMOD beyond 500 unknowns, on one OpenMP thread (measured on benchmark 3's sheets, factor
-  // and drag update against SimplicialLDLT: 24 x 24 poles 4.1 / 0.65 ms against 4.9 / 0.71 ms,
-  // 45 x 45 13 / 1.2 ms against 19 / 1.8 ms, 64 x 64 30 / 2.2 ms against 52 / 3.8 ms); at
-  // 16 x 16 the two are even.
-  mutable Eigen::CholmodDecomposition<Sparse> cholmod;
-  mutable bool use_cholmod = false;
+    // CHOLMOD beyond 500 unknowns, on one OpenMP thread (measured on benchmark 3's sheets,
+    // factor and drag update against SimplicialLDLT: 24 x 24 poles 4.1 / 0.65 ms against
+    // 4.9 / 0.71 ms, 45 x 45 13 / 1.2 ms against 19 / 1.8 ms, 64 x 64 30 / 2.2 ms against
+    // 52 / 3.8 ms); at 16 x 16 the two are even.
+    Eigen::CholmodDecomposition<Sparse> cholmod;
+    bool use_cholmod = false;
 #endif
+    double weight = 0.0, eps = 0.0;
+    double seconds = 0.0;                   // what its factorization took
+    std::shared_ptr<const RowSparse> rows;  // B_f
+    Eigen::MatrixXd solve(const Eigen::MatrixXd& r) const {
+#ifdef VARSURF_HAVE_CHOLMOD
+      if (use_cholmod) return cholmod.solve(r);
+#endif
+      return ldlt.solve(r);
+    }
+  };
+  mutable std::shared_ptr<Factor> factor;
+  // Set when `factor` is an earlier solve's, made for fewer sample rows: see FactorCorrection.
+  mutable std::unique_ptr<FactorCorrection> correction;
+  mutable int extra_substitutions = 0;  // the correction's, beyond one per factor_solve
+  // The time the correction took; once it exceeds the factor's own, a new factorization is
+  // cheaper (a refinement of many steps pays the correction's iterations at each).
+  mutable double correction_seconds = 0.0;
+  // B by rows, shared with the factor rather than copied (Eigen 3.4's sparse matrices have no
+  // move assignment).
+  std::shared_ptr<const RowSparse> sample_rows;
+  // Takes the factor of an earlier solve of the same energy whose samples are this one's with
+  // at most kMaxAddedRows rows removed, under a weight close to this one's.
+  bool borrow_factor(const Impl& earlier);
+  // (Q + mu^2 B^T B + eps I) v, without forming the matrix.
+  Eigen::MatrixXd apply_penalty(const Eigen::MatrixXd& v) const {
+    Eigen::MatrixXd out = q_ff * v;
+    out.noalias() += mu2 * (samples.transpose() * (samples * v));
+    return out + eps * v;
+  }
 #ifdef VARSURF_HAVE_SPQR
   // penalty_qr: W&W's eq. 10 as written, the stacked system (mu B; S) factored by SuiteSparseQR,
   // S^T S = Q + eps I from a sparse Cholesky of the energy alone.
@@ -175,12 +216,7 @@ struct ConstrainedSolve::Impl {
   Refined refine(const Eigen::MatrixXd& g, const Eigen::MatrixXd& d, Eigen::MatrixXd dk,
                  bool may_raise) const;
   // K^-1 r for the penalty matrix's factor (not the QR form).
-  Eigen::MatrixXd factor_solve(const Eigen::MatrixXd& r) const {
-#ifdef VARSURF_HAVE_CHOLMOD
-    if (use_cholmod) return cholmod.solve(r);
-#endif
-    return ldlt.solve(r);
-  }
+  Eigen::MatrixXd factor_solve(const Eigen::MatrixXd& r) const;
   // Per constraint block: its rows' summed squared residual and its farthest sample's distance.
   void block_residuals(const Eigen::MatrixXd& res, std::vector<double>& sq,
                        std::vector<double>& far) const;
@@ -199,8 +235,9 @@ struct ConstrainedSolve::Impl {
   std::vector<ConstraintSamples> shifted(const std::vector<ConstraintSamples>& blocks) const;
   void reduce(const std::vector<ConstraintSamples>& blocks, SolveReport& rep);
   void factor_kkt();
-  // false if the penalty matrix is not numerically positive definite at this eps.
-  bool factor_penalty(double scale);
+  // false if the penalty matrix is not numerically positive definite at this eps. `earlier`: a
+  // solve of the same energy whose factor may serve (see borrow_factor), or null.
+  bool factor_penalty(double scale, const Impl* earlier);
   // Raises mu^2 (and refactors) so that a mode converging at `rate` a step converges at
   // kTargetRate; false if it keeps the weight (no room left, or the factorization failed).
   bool raise_weight(double rate) const;
@@ -228,7 +265,8 @@ struct ConstrainedSolve::Impl {
                            SolveReport& rep) const;
 };
 
-ConstrainedSolve::ConstrainedSolve(const Quadratic& pb, const SolveOptions& opt, SolveReport& rep)
+ConstrainedSolve::ConstrainedSolve(const Quadratic& pb, const SolveOptions& opt, SolveReport& rep,
+                                   const ConstrainedSolve* earlier)
     : impl_(new Impl) {
   Impl& m = *impl_;
   m.opt = opt;
@@ -367,13 +405,13 @@ ConstrainedSolve::ConstrainedSolve(const Quadratic& pb, const SolveOptions& opt,
     // previous iterate (the refinement is a proximal iteration, so it biases nothing) restores
     // it; if even that fails, the exact mode's LU takes the semi-definite system.
     const double first_eps = m.eps;
-    bool factored = m.factor_penalty(scale);
+    bool factored = m.factor_penalty(scale, earlier ? earlier->impl_.get() : nullptr);
     // eps must grow each step: an energy scale near the smallest double underflows it to 0.
     for (double eps = std::max(first_eps, 1e-13 * scale) * 1e3;
          !factored && eps > 0.0 && std::isfinite(eps) && eps <= 1e-4 * scale * (1.0 + 1e-9);
          eps *= 1e3) {
       m.eps = eps;
-      factored = m.factor_penalty(scale);
+      factored = m.factor_penalty(scale, earlier ? earlier->impl_.get() : nullptr);
     }
     if (factored && m.eps != first_eps) {
       std::ostringstream why;
@@ -465,14 +503,18 @@ void ConstrainedSolve::Impl::factor_kkt() {
     throw SolveFailure("the constrained system is singular: " + lu.lastErrorMessage());
 }
 
-bool ConstrainedSolve::Impl::factor_penalty(double scale) {
+bool ConstrainedSolve::Impl::factor_penalty(double scale, const Impl* earlier) {
   // W&W eq. 10 minimizes |(mu B; H) p - (mu d; f)|; its normal equations (Q + mu^2 B^T B) p =
   // f + mu^2 B^T d keep the sparsity of Q (each sample row touches one span's poles), so a
   // sparse Cholesky replaces W&W's sparse QR of the stacked system, which would need a square
   // root of the energy. mu^2 is relative to the energy's and the samples' scales.
-  btb = Sparse(samples.transpose()) * samples;
+  // B^T B's diagonal: the columns' sums of squares (B^T B itself is formed only to factor).
   double btb_mean = 0.0;
-  for (int i = 0; i < n; ++i) btb_mean += btb.coeff(i, i);
+  for (int col = 0; col < samples.outerSize(); ++col) {
+    double sum = 0.0;
+    for (Sparse::InnerIterator it(samples, col); it; ++it) sum += it.value() * it.value();
+    btb_mean += sum;
+  }
   btb_mean /= n;
   mu2 = opt.penalty_weight * scale / (btb_mean > 0.0 ? btb_mean : 1.0);
   if (opt.penalty_qr) {
@@ -504,7 +546,85 @@ bool ConstrainedSolve::Impl::factor_penalty(double scale) {
   }
   first_mu2 = mu2;
   heaviest_mu2 = opt.max_weight_gain * mu2;
+  if (earlier && borrow_factor(*earlier)) return true;
   return factor_numeric(mu2, true);
+}
+
+bool ConstrainedSolve::Impl::borrow_factor(const Impl& earlier) {
+  const std::shared_ptr<Factor>& f = earlier.factor;
+  if (!f || mode != SolveMode::penalty || krylov || earlier.mode != SolveMode::penalty ||
+      earlier.krylov || earlier.n != n || earlier.width != width ||
+      earlier.free_cols != free_cols || f->eps != eps ||
+      !(std::abs(mu2 / f->weight - 1.0) <= kMaxWeightDrift) || !f->rows || f->rows->cols() != n)
+    return false;
+#ifdef VARSURF_HAVE_SPQR
+  if (earlier.use_qr) return false;
+#endif
+  // The same energy, entry for entry.
+  const Sparse& q = earlier.q_ff;
+  if (q.nonZeros() != q_ff.nonZeros() ||
+      !std::equal(q.outerIndexPtr(), q.outerIndexPtr() + n + 1, q_ff.outerIndexPtr()) ||
+      !std::equal(q.innerIndexPtr(), q.innerIndexPtr() + q.nonZeros(), q_ff.innerIndexPtr()) ||
+      !std::equal(q.valuePtr(), q.valuePtr() + q.nonZeros(), q_ff.valuePtr()))
+    return false;
+  // The factor's rows, in order, among this solve's: the others are the added ones.
+  const RowSparse& old_rows = *f->rows;
+  const RowSparse& new_rows = *sample_rows;
+  const auto same_row = [&](Eigen::Index i, Eigen::Index j) {
+    const Eigen::Index a0 = old_rows.outerIndexPtr()[i], a1 = old_rows.outerIndexPtr()[i + 1];
+    const Eigen::Index b0 = new_rows.outerIndexPtr()[j];
+    return a1 - a0 == new_rows.outerIndexPtr()[j + 1] - b0 &&
+           std::equal(old_rows.innerIndexPtr() + a0, old_rows.innerIndexPtr() + a1,
+                      new_rows.innerIndexPtr() + b0) &&
+           std::equal(old_rows.valuePtr() + a0, old_rows.valuePtr() + a1, new_rows.valuePtr() + b0);
+  };
+  std::vector<Eigen::Index> added;
+  Eigen::Index i = 0;
+  for (Eigen::Index j = 0; j < new_rows.rows(); ++j) {
+    if (i < old_rows.rows() && same_row(i, j)) {
+      ++i;
+      continue;
+    }
+    added.push_back(j);
+    if (static_cast<Eigen::Index>(added.size()) > kMaxAddedRows) return false;
+  }
+  if (i != old_rows.rows()) return false;  // a row removed or changed
+  RowSparse u(static_cast<Eigen::Index>(added.size()), n);
+  std::vector<Eigen::Triplet<double>> trip;
+  for (size_t k = 0; k < added.size(); ++k)
+    for (RowSparse::InnerIterator it(new_rows, added[k]); it; ++it)
+      trip.emplace_back(static_cast<int>(k), static_cast<int>(it.col()), it.value());
+  u.setFromTriplets(trip.begin(), trip.end());
+  const std::shared_ptr<const Factor> kept = f;
+  const auto start = Clock::now();
+  try {
+    correction = std::make_unique<FactorCorrection>(
+        [kept](const Eigen::MatrixXd& r) { return kept->solve(r); }, u, mu2);
+  } catch (const SolveFailure&) {
+    return false;
+  }
+  factor = f;
+  extra_substitutions = correction->setup_substitutions();
+  correction_seconds = seconds_since(start);
+  return true;
+}
+
+Eigen::MatrixXd ConstrainedSolve::Impl::factor_solve(const Eigen::MatrixXd& r) const {
+  if (correction && correction_seconds <= factor->seconds) {
+    const auto start = Clock::now();
+    Eigen::MatrixXd x;
+    int substitutions = 0;
+    const bool done = correction->solve(
+        r, [this](const Eigen::MatrixXd& v) { return apply_penalty(v); }, x, substitutions);
+    extra_substitutions += substitutions - 1;
+    correction_seconds += seconds_since(start);
+    if (done) return x;
+  }
+  // No correction, or it does not serve (not converging, or costlier than a factorization by
+  // now): this system's own factor.
+  if (correction && !factor_numeric(mu2, true))
+    throw SolveFailure("the penalty system could not be factored");
+  return factor->solve(r);
 }
 
 bool ConstrainedSolve::Impl::raise_weight(double rate) const {
@@ -532,12 +652,24 @@ bool ConstrainedSolve::Impl::refactor(double weight) const {
 }
 
 bool ConstrainedSolve::Impl::factor_numeric(double weight, bool analyze) const {
+  if (!factor || correction || factor.use_count() > 1) {
+    // A factor shared with an earlier solve stays that solve's: this one gets its own.
+    correction.reset();
+    factor = std::make_shared<Factor>();
+    analyze = true;
+  }
+  const auto start = Clock::now();
+  if (btb.rows() != n) btb = Sparse(samples.transpose()) * samples;
+  factor->weight = weight;
+  factor->eps = eps;
+  factor->rows = sample_rows;
   Sparse m_pen = q_ff + Sparse(weight * btb);
   for (int i = 0; i < n; ++i) m_pen.coeffRef(i, i) += eps;
 #ifdef VARSURF_HAVE_CHOLMOD
+  Eigen::CholmodDecomposition<Sparse>& cholmod = factor->cholmod;
   // A failed CHOLMOD factorization must not be used by the solve (LDLT takes over below).
-  if (analyze) use_cholmod = n > 500;
-  if (use_cholmod) {
+  if (analyze) factor->use_cholmod = n > 500;
+  if (factor->use_cholmod) {
     {
       const SerialOpenMp one_thread;
       if (analyze) {
@@ -556,12 +688,16 @@ bool ConstrainedSolve::Impl::factor_numeric(double weight, bool analyze) const {
       // (rounding beyond the regularization) is refused too.
       const Eigen::VectorXd ones = Eigen::VectorXd::Ones(n);
       const Eigen::VectorXd back = cholmod.solve(Eigen::VectorXd(m_pen * ones));
-      if (back.allFinite() && (back - ones).cwiseAbs().maxCoeff() <= 1e-2) return true;
+      if (back.allFinite() && (back - ones).cwiseAbs().maxCoeff() <= 1e-2) {
+        factor->seconds = seconds_since(start);
+        return true;
+      }
     }
     if (!analyze) return false;
-    use_cholmod = false;
+    factor->use_cholmod = false;
   }
 #endif
+  Eigen::SimplicialLDLT<Sparse>& ldlt = factor->ldlt;
   // LDL^T "succeeds" on an indefinite matrix (negative pivots). Each pivot of Q + mu^2 B^T B +
   // eps I is at least its smallest eigenvalue, eps: smaller ones are rounding beyond it (without
   // a regularization, pivots at rounding level mean a singular system).
@@ -571,6 +707,7 @@ bool ConstrainedSolve::Impl::factor_numeric(double weight, bool analyze) const {
     ldlt.factorize(m_pen);
   if (ldlt.info() != Eigen::Success || !ldlt.vectorD().allFinite()) return false;
   const double smallest = ldlt.vectorD().minCoeff();
+  factor->seconds = seconds_since(start);
   return smallest > (eps > 0.0 ? 0.5 * eps : 1e-13 * ldlt.vectorD().cwiseAbs().maxCoeff());
 }
 
@@ -599,7 +736,8 @@ void ConstrainedSolve::Impl::setup_samples(const std::vector<ConstraintSamples>&
     rows += static_cast<size_t>(block.rows());
     for (const auto& idx : block.index) entries += idx.size();
   }
-  Eigen::SparseMatrix<double, Eigen::RowMajor> by_row(static_cast<Eigen::Index>(rows), n);
+  const auto rows_b = std::make_shared<RowSparse>(static_cast<Eigen::Index>(rows), n);
+  RowSparse& by_row = *rows_b;
   by_row.resizeNonZeros(static_cast<Eigen::Index>(entries));
   int* outer = by_row.outerIndexPtr();
   int* inner = by_row.innerIndexPtr();
@@ -645,6 +783,7 @@ void ConstrainedSolve::Impl::setup_samples(const std::vector<ConstraintSamples>&
   }
   by_row.resizeNonZeros(kept);
   samples = by_row;
+  sample_rows = rows_b;
   sample_rhs = samples_rhs(blocks);
   if (!start_is_minimum || !(opt.fit_tolerance > 0.0) || row == 0) return;
   // Constraints the start meets as the refinement would judge them met (RMS within
@@ -748,6 +887,8 @@ Eigen::MatrixXd ConstrainedSolve::Impl::solve_penalty(const Eigen::MatrixXd& g,
         last_bx = std::move(bx);
         rep.inner_iterations = 1;
         rep.conflict = 0.0;
+        rep.back_substitutions += std::exchange(extra_substitutions, 0);
+        rep.factor_kept = correction != nullptr;
         return x;  // d_k - d stays what it was
       }
     }
@@ -775,7 +916,8 @@ Eigen::MatrixXd ConstrainedSolve::Impl::solve_penalty(const Eigen::MatrixXd& g,
   else
     drag.forget_step();
   rep.inner_iterations = out.steps;
-  rep.back_substitutions += out.steps;
+  rep.back_substitutions += out.steps + std::exchange(extra_substitutions, 0);
+  rep.factor_kept = correction != nullptr;
   rep.conflict = out.met || out.worst <= opt.fit_tolerance ? 0.0 : out.worst;
   return out.x;
 }

@@ -30,7 +30,10 @@ struct Quadratic {
 // new right-hand sides (moved targets) at the cost of back-substitution.
 class ConstrainedSolve {
  public:
-  ConstrainedSolve(const Quadratic& problem, const SolveOptions& options, SolveReport& report);
+  // earlier: a solve of the same energy (its constraints fewer by a few sample rows) whose
+  // penalty factor may serve this one instead of a new factorization; it stays usable.
+  ConstrainedSolve(const Quadratic& problem, const SolveOptions& options, SolveReport& report,
+                   const ConstrainedSolve* earlier = nullptr);
   ~ConstrainedSolve();
 
   // All columns (fixed ones at x0) for energy right-hand side f and reduced constraint

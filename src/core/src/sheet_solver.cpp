@@ -646,7 +646,9 @@ SolveResult PreparedSheet::change(const SheetProblem& changed) {
   rep.coupled = st.result.report.coupled;
   st.assembled.quad.blocks = sample_constraints(changed, rep.coupled, reuse);
   rep.assemble_seconds = seconds_since(t);
-  st.solver = std::make_unique<ConstrainedSolve>(st.assembled.quad, st.options, rep);
+  // The earlier factor serves a few added rows (ConstrainedSolve decides).
+  st.solver =
+      std::make_unique<ConstrainedSolve>(st.assembled.quad, st.options, rep, st.solver.get());
   const Eigen::MatrixXd x = st.solver->solve(st.assembled.quad.f, st.solver->reduced_rhs(), rep);
   st.problem = changed;
   st.curve_samplings = std::move(samplings);

@@ -179,6 +179,9 @@ struct SolveReport {
   // Penalty mode: back-substitutions with the factor (one per refinement step, none for a drag
   // step taken from kept responses, one per dragged constraint when its drag starts).
   int back_substitutions = 0;
+  // Penalty mode, PreparedSheet::change(): the earlier factor served, the added constraint rows
+  // solved through it exactly (the same answer as a new factorization's, to rounding).
+  bool factor_kept = false;
   LCurve lcurve;     // tsvd and mtsvd: the L-curve and its corner
   int unknowns = 0;  // free poles (per coordinate), or free coordinates if coupled
   bool coupled = false;
