@@ -204,6 +204,12 @@ struct ConstrainedSolve::Impl {
                             SolveReport& rep) const;
   Eigen::MatrixXd solve_penalty(const Eigen::MatrixXd& g, const Eigen::MatrixXd& d,
                                 SolveReport& rep) const;
+  // Where a refinement stood after a step: a run resumes from it.
+  struct Progress {
+    Eigen::MatrixXd x, dk;
+    std::vector<double> previous, previous_excess, excess_history;
+    int it = 0;
+  };
   // One run of the penalty refinement from data d_k (may_raise: it may restart on a heavier
   // weight).
   struct Refined {
@@ -212,9 +218,12 @@ struct ConstrainedSolve::Impl {
     bool tolerance_met = true;  // every toleranced constraint within it
     double worst = 0.0;         // the largest block RMS
     int steps = 0;
+    // The run on the configured weight when it first restarted on a heavier one (null: no raise).
+    std::shared_ptr<const Progress> before_raise;
   };
+  // resume: continue that run's steps (on the weight it ran on) instead of starting from dk.
   Refined refine(const Eigen::MatrixXd& g, const Eigen::MatrixXd& d, Eigen::MatrixXd dk,
-                 bool may_raise) const;
+                 bool may_raise, const Progress* resume = nullptr) const;
   // K^-1 r for the penalty matrix's factor (not the QR form).
   Eigen::MatrixXd factor_solve(const Eigen::MatrixXd& r) const;
   // Per constraint block: its rows' summed squared residual and its farthest sample's distance.
@@ -902,10 +911,14 @@ Eigen::MatrixXd ConstrainedSolve::Impl::solve_penalty(const Eigen::MatrixXd& g,
     // A raised weight that still misses the tolerance presses harder on what the sheet cannot
     // hold, and roughens it: such a sheet is refined on the configured weight, as W&W's is.
     // It stays there for the later solves (drags) too, which would otherwise each try again.
+    // The configured weight's run goes on where it was when the weight was raised (those steps
+    // are the ones a solve without raises takes: a raise late in a long run costs no more than
+    // the heavier weight's few steps).
     heaviest_mu2 = first_mu2;
     if (refactor(first_mu2)) {
       const int spent = out.steps;
-      out = refine(g, d, d, false);
+      const std::shared_ptr<const Progress> from = out.before_raise;
+      out = refine(g, d, from ? from->dk : d, false, from.get());
       out.steps += spent;
     }
   }
@@ -924,8 +937,8 @@ Eigen::MatrixXd ConstrainedSolve::Impl::solve_penalty(const Eigen::MatrixXd& g,
 
 ConstrainedSolve::Impl::Refined ConstrainedSolve::Impl::refine(const Eigen::MatrixXd& g,
                                                                const Eigen::MatrixXd& d,
-                                                               Eigen::MatrixXd dk,
-                                                               bool may_raise) const {
+                                                               Eigen::MatrixXd dk, bool may_raise,
+                                                               const Progress* resume) const {
   // W&W's refinement of the penalty solution, on its one factorization: each step solves
   // (Q + mu^2 B^T B) x = f + mu^2 B^T d_k and adds the constraint residual to the data,
   // d_k+1 = d_k + (d - B x) (a Bregman iteration: for consistent constraints it converges to the
@@ -943,9 +956,18 @@ ConstrainedSolve::Impl::Refined ConstrainedSolve::Impl::refine(const Eigen::Matr
   std::vector<double> previous(blocks, 1e300), previous_excess(blocks, 1e300);
   std::vector<double> excess_history;  // the largest excess of each step since the last restart
   int it = 0;
+  if (resume) {
+    x = center = resume->x;
+    dk = resume->dk;
+    previous = resume->previous;
+    previous_excess = resume->previous_excess;
+    excess_history = resume->excess_history;
+    it = resume->it;
+  }
+  const int first = it;
   const int max_steps =
       opt.penalty_steps;  // beyond, the space is too coarse: the caller refines it
-  for (it = 1; it <= max_steps; ++it) {
+  for (it = first + 1; it <= max_steps; ++it) {
     check_keep_going(opt);
     const Eigen::MatrixXd next = penalty_step(g + eps * center, dk);
     const double move = (next - x).cwiseAbs().maxCoeff();
@@ -1005,6 +1027,7 @@ ConstrainedSolve::Impl::Refined ConstrainedSolve::Impl::refine(const Eigen::Matr
     dk += res;
     excess_history.push_back(largest_excess);
     if (!may_raise || !(slow_needed > kStepBudget)) continue;
+    const double stepped_on = mu2;
     if (!raise_weight(slow_rate)) {
       // Still slow on the heaviest weight allowed, over the last kRateSpan steps (one step's
       // rate jumps about): most likely constraints that contradict each other, the refinement
@@ -1016,7 +1039,11 @@ ConstrainedSolve::Impl::Refined ConstrainedSolve::Impl::refine(const Eigen::Matr
         if (!(rate < 1.0) || std::log(e) / -std::log(rate) > 4.0 * kStepBudget) break;
       }
     } else {
-      // Restarted on the heavier weight: its refinement, not a continuation of this one.
+      // Restarted on the heavier weight: its refinement, not a continuation of this one. Where
+      // the configured weight's stood is kept: should the heavier one fail, that run goes on.
+      if (!out.before_raise && stepped_on == first_mu2)
+        out.before_raise = std::make_shared<const Progress>(
+            Progress{x, dk, previous, previous_excess, excess_history, it});
       dk = d;
       x = center = x0_free;
       std::fill(previous.begin(), previous.end(), 1e300);
@@ -1024,7 +1051,7 @@ ConstrainedSolve::Impl::Refined ConstrainedSolve::Impl::refine(const Eigen::Matr
       excess_history.clear();
     }
   }
-  out.steps = std::min(it, max_steps);
+  out.steps = std::min(it, max_steps) - first;
   out.dk = std::move(dk);
   return out;
 }
