@@ -413,7 +413,9 @@ def gui_drag():
         result = json.loads(out.read_text())
     if "error" in result:
         return f"(failed: {result['error'].splitlines()[-1]})"
-    return f"{result['redrawn']:.0f} moves/s (move alone in that process: {result['move_only']:.0f})"
+    return (f"{result['redrawn']:.0f} moves/s (move alone in that process: {result['move_only']:.0f}; "
+            f"redraw alone, nothing moved: {result['redraw_only']:.0f}; an empty view's redraw: "
+            f"{result['empty_view']:.0f})")
 
 
 def local_refinement():

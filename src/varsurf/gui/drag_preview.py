@@ -7,6 +7,7 @@ move alone, 24); the grid costs under a millisecond."""
 
 from __future__ import annotations
 
+import numpy
 from pivy import coin
 
 from varsurf.solve.native import native
@@ -64,8 +65,11 @@ class DragPreview:
     def show(self, surface):
         grid = native().sample_grid(surface, self.cells_u, self.cells_v)
         self.points = grid.points
-        self.coords.point.setValues(0, len(grid.points), grid.points.tolist())
-        self.normals.vector.setValues(0, len(grid.normals), grid.normals.tolist())
+        # Arrays, not lists: in the GUI process (about 100 000 Python objects) the 2 x 9 409 small
+        # lists of a 96 x 96 grid set off the garbage collector: 10 ms a move, against 2.4 ms.
+        for field, values in ((self.coords.point, grid.points), (self.normals.vector, grid.normals)):
+            values = numpy.ascontiguousarray(values, dtype=numpy.float64).reshape(-1, 3)
+            field.setValues(0, len(values), values)
 
     def close(self):
         self.vobj.RootNode.removeChild(self.root)
