@@ -13,5 +13,6 @@ void bind_core_functions(pybind11::module_& m);  // solver and knot helpers
 void bind_occ_bridge(pybind11::module_& m);      // BREP/STEP bridge to FreeCAD
 void bind_model(pybind11::module_& m);           // several sheets and curves as one system
 void bind_hierarchical(pybind11::module_& m);    // locally refined sheets
+void bind_pde(pybind11::module_& m);             // the PDE energy's coefficient
 
 }  // namespace varsurf::binding

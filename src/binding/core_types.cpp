@@ -243,6 +243,9 @@ void bind_core_types(py::module_& m) {
       .def_readwrite("space", &SheetProblem::space)
       .def_readwrite("initial_poles", &SheetProblem::initial_poles)
       .def_readwrite("energy", &SheetProblem::energy)
+      .def_readwrite("pde", &SheetProblem::pde,
+                     "PdeCoefficient or None: the Bloor-Wilson PDE energy instead of the thin "
+                     "plate (energy is then unused).")
       .def_readwrite("points", &SheetProblem::points)
       .def_readwrite("curves", &SheetProblem::curves)
       .def_readwrite("fixed_poles", &SheetProblem::fixed_poles, "Flat indices held in place.")

@@ -11,6 +11,7 @@ PYBIND11_MODULE(_native, m) {
   varsurf::keep_freed_heap();
   varsurf::binding::bind_errors(m);
   varsurf::binding::bind_operators(m);
+  varsurf::binding::bind_pde(m);
   varsurf::binding::bind_core_types(m);
   varsurf::binding::bind_core_functions(m);
   varsurf::binding::bind_occ_bridge(m);

@@ -212,6 +212,24 @@ def hostile_weights():
     return out
 
 
+def hostile_painted():
+    out = [[nat.PaintedCoefficient(nat.Region(0.2, 0.6, 0.2, 0.6), x)] for x in hostile_floats()]
+    out += [[nat.PaintedCoefficient(r, 2.0)] for r in hostile_regions()]
+    return out
+
+
+def hostile_pde():
+    out = [nat.PdeCoefficient(a=x) for x in hostile_floats()]
+    out += [nat.PdeCoefficient(a=1.0, blend=x) for x in hostile_floats()]
+    out += [nat.PdeCoefficient(a=1.0, painted=p, blend=0.1) for p in hostile_painted()]
+    for sp in hostile_spaces() + [space()]:
+        for values in (np.ones(4), np.full(4, NAN), -np.ones(25), np.zeros(0), np.ones(10 ** 5)):
+            c = nat.PdeCoefficient()
+            c.field_space, c.field_values = sp, values
+            out.append(c)
+    return out
+
+
 def hostile_problems():
     out = []
 
@@ -228,6 +246,8 @@ def hostile_problems():
         variant(rest_poles=poles)
     for w in hostile_weights():
         variant(energy=w)
+    for c in hostile_pde():
+        variant(pde=c)
     for x in hostile_floats():
         variant(points=[nat.PointConstraint(x, 0.5, np.array([1.0, 2.0, 3.0]), 1.0)])
         variant(points=[nat.PointConstraint(0.5, 0.5, np.array([x, 2.0, 3.0]), x)])
@@ -405,6 +425,9 @@ CLASS_VALUES = {
     "HierarchicalOptions": (nat.HierarchicalOptions, hostile_hierarchies),
     "Region": (nat.Region, hostile_regions),
     "ThinPlateWeights": (lambda: nat.ThinPlateWeights.isotropic(0.0, 1.0), hostile_weights),
+    "PdeCoefficient": (lambda: nat.PdeCoefficient(a=2.0), hostile_pde),
+    "List[PaintedCoefficient]": (lambda: [nat.PaintedCoefficient(nat.Region(0.2, 0.6, 0.2, 0.6), 3.0)],
+                                 lambda: [[]] + hostile_painted()),
     "SolveMode": (lambda: nat.SolveMode.exact, lambda: list(nat.SolveMode.__members__.values())),
     "AttractorKind": (lambda: nat.AttractorKind.point, lambda: list(nat.AttractorKind.__members__.values())),
     "ClosestPointTarget": (lambda: nat.ClosestPointTarget(FACE_BREP), lambda: []),

@@ -128,6 +128,10 @@ Eigen::Vector4d loop_box(const SplineSpace& s, const Polygon& p) {
 
 }  // namespace
 
+bool same_region(const Region& a, const Region& b) {
+  return a.loop == b.loop && a.u0 == b.u0 && a.u1 == b.u1 && a.v0 == b.v0 && a.v1 == b.v1;
+}
+
 void check_region(const SplineSpace& space, const Region& r, const char* what) {
   const std::string w(what);
   const double du = space.u_last() - space.u_first(), dv = space.v_last() - space.v_first();

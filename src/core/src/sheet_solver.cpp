@@ -11,6 +11,7 @@
 #include "solve_limits.hpp"
 #include "stopwatch.hpp"
 #include "varsurf/core/errors.hpp"
+#include "varsurf/core/pde_energy.hpp"
 
 namespace varsurf {
 
@@ -247,9 +248,13 @@ Assembled assemble(const SheetProblem& pb, const SolveOptions& opt, SolveReport&
   const SplineSpace& sp = pb.space;
   const int poles = sp.size();
   Assembled out;
-  Sparse h = pb.kept_region
-                 ? assemble_thin_plate(sp, pb.energy, *pb.kept_region, pb.overhang_energy)
-                 : assemble_thin_plate(sp, pb.energy);
+  Sparse h;
+  if (pb.pde)
+    h = pb.kept_region ? assemble_pde(sp, *pb.pde, *pb.kept_region, pb.overhang_energy)
+                       : assemble_pde(sp, *pb.pde);
+  else
+    h = pb.kept_region ? assemble_thin_plate(sp, pb.energy, *pb.kept_region, pb.overhang_energy)
+                       : assemble_thin_plate(sp, pb.energy);
   QuadraticTerms terms(poles);
   const bool rest = pb.rest_poles.rows() != 0;  // the energy acts on the displacement from it
   if (!pb.attractors.empty() || !pb.directors.empty() || !pb.repellers.empty() ||
@@ -512,10 +517,6 @@ bool same_space(const SplineSpace& a, const SplineSpace& b) {
          a.knots_v == b.knots_v && a.weights.size() == b.weights.size() && a.weights == b.weights;
 }
 
-bool same_region(const Region& a, const Region& b) {
-  return a.loop == b.loop && a.u0 == b.u0 && a.u1 == b.u1 && a.v0 == b.v0 && a.v1 == b.v1;
-}
-
 bool same_curve_shape(const BSplineCurve& a, const BSplineCurve& b) {
   return a.degree == b.degree && a.knots == b.knots && a.poles.rows() == b.poles.rows() &&
          a.poles.cols() == b.poles.cols();
@@ -532,6 +533,7 @@ void check_same_setup(const SheetProblem& pb, const SheetProblem& moved) {
   const bool same_setup =
       same_space(pb.space, moved.space) && pb.fixed_poles == moved.fixed_poles &&
       pb.energy.alpha == moved.energy.alpha && pb.energy.beta == moved.energy.beta &&
+      pb.pde.has_value() == moved.pde.has_value() && (!pb.pde || *pb.pde == *moved.pde) &&
       pb.rest_poles.rows() == moved.rest_poles.rows() && pb.closed_u == moved.closed_u &&
       pb.closed_v == moved.closed_v &&
       (pb.rest_poles.rows() == 0 || pb.rest_poles == moved.rest_poles) &&

@@ -64,6 +64,10 @@ def make_sheet(
     name: str = "Sheet",
     degree: Optional[int] = None,
     solve_mode: Optional[str] = None,
+    energy: str = "ThinPlate",
+    pde_a: float = 1.0,
+    pde_regions: Iterable = (),
+    pde_blend: float = 0.0,
 ):
     """Add a VarSurf Sheet to the document (it is computed at the next recompute).
 
@@ -77,6 +81,9 @@ def make_sheet(
         automatic refinement used when the curves cannot be met within the tolerance.
     degree: the sheet's smallest degree in u and v (the base is elevated to it).
     solve_mode: one of settings.SOLVE_MODES.
+    energy: "ThinPlate" (stretch, bend) or "PDE": Du & Qin's (d2/du2 + a^2 d2/dv2)^2 P = 0 with
+        a = pde_a, painted on pde_regions ((a, u0, u1, v0, v1) each, u and v normalized to 0..1)
+        and blended across their borders over pde_blend (a fraction of the domain; 0: sharp).
     Omitted values come from the VarSurf preferences (built in: thin plate 0 and 1, 16 to 64
     spans, degree 3, Automatic); without a stored tolerance, 1e-4 of the base's (or curves')
     size, rounded down to 1, 2 or 5 x 10^k (0.01 mm for a 100 mm part).
@@ -88,7 +95,9 @@ def make_sheet(
         values["tolerance"] = settings.tolerance_for_size(_model_size(base, curves))
     if values["solve_mode"] not in settings.SOLVE_MODES:
         raise ValueError(f"solve_mode must be one of {', '.join(settings.SOLVE_MODES)} (got {values['solve_mode']!r})")
-    chosen = settings.SheetSettings(fix_boundary=bool(fix_boundary), **values)
+    chosen = settings.SheetSettings(fix_boundary=bool(fix_boundary), energy=str(energy), pde_a=float(pde_a),
+                                    pde_regions=tuple(tuple(float(x) for x in r) for r in pde_regions),
+                                    pde_blend=float(pde_blend), **values)
 
     curve_links = references.normalize_curves(curves)
     if base is not None:

@@ -42,6 +42,10 @@ _PROPERTIES = [
     ("StretchTensor", "App::PropertyFloatList", "Weight tensors", "Anisotropic stretch weights (a11, a12, a22) replacing Stretch; empty: isotropic", False),
     ("BendTensor", "App::PropertyFloatList", "Weight tensors", "Anisotropic bend weights (b11, b12, b22) replacing Bend; empty: isotropic", False),
     ("Pressure", "App::PropertyFloat", "Energy", "Inflate (> 0, along the sheet's normal) or deflate (< 0); solved by iteration", False),
+    ("Energy", "App::PropertyEnumeration", "Energy", "ThinPlate: Stretch and Bend (fairness). PDE: the Bloor-Wilson PDE (d2/du2 + a^2 d2/dv2)^2 P = 0 of Du & Qin, with a set by PdeA and PdeRegions (u and v normalized to 0..1); with RestShape it acts on the displacement", False),
+    ("PdeA", "App::PropertyFloatConstraint", "Energy", "PDE: the coefficient a where nothing is painted. Large a: changes along u happen over a length scale 1/a of that along v. Default 1", False),
+    ("PdeRegions", "App::PropertyFloatList", "Energy", "PDE: a painted on rectangles, five numbers each: a, u0, u1, v0, v1 (u and v normalized to 0..1; later regions over earlier ones)", False),
+    ("PdeBlend", "App::PropertyFloat", "Energy", "PDE: width of the band over which a blends across a painted region's border, as a fraction of the domain (0: a sharp border; at most 0.5)", False),
     ("Stretch", "App::PropertyFloatConstraint", "Energy", "Stretching weight (alpha, >= 0): penalizes first derivatives, pulls toward a membrane of least area. Default 0", False),
     ("Bend", "App::PropertyFloatConstraint", "Energy", "Bending weight (beta, >= 0): penalizes second derivatives, pulls toward a fair thin plate. Default 1", False),
     ("FixBoundary", "App::PropertyBool", "Constraints", "Keep the base face's boundary (its boundary poles are held)", False),
@@ -95,6 +99,8 @@ _DEFAULTS = {
     "FixBoundary": True,
     "Trim": list(settings.TRIMS),
     "RestShape": _set_rest_shapes,
+    "Energy": list(settings.ENERGIES),
+    "PdeA": (1.0, 1e-3, settings.MAX_PDE_A, 0.1),
     "Projection": list(projection.MODES),
     "ProjectionDirection": FreeCAD.Vector(0, 0, 1),
     "Tolerance": settings.DEFAULT_TOLERANCE,
@@ -115,6 +121,8 @@ def _restore_constraints(obj):
         if name in obj.PropertiesList:
             number = float(getattr(obj, name))
             setattr(obj, name, (max(number, 0.0), 0.0, _FLOAT_MAX, 0.1))
+    if "PdeA" in obj.PropertiesList:
+        obj.PdeA = (min(max(float(obj.PdeA), 1e-3), settings.MAX_PDE_A), 1e-3, settings.MAX_PDE_A, 0.1)
     for name in ("MinSpans", "MaxSpans"):
         if name in obj.PropertiesList:
             setattr(obj, name, (min(max(int(getattr(obj, name)), 1), 512), 1, 512, 1))
@@ -220,6 +228,10 @@ def settings_of(obj) -> settings.SheetSettings:
         stretch_tensor=tensor("StretchTensor"),
         bend_tensor=tensor("BendTensor"),
         pressure=float(getattr(obj, "Pressure", 0.0)),
+        energy=str(getattr(obj, "Energy", "ThinPlate")),
+        pde_a=float(getattr(obj, "PdeA", 1.0)),
+        pde_regions=tuple(_fives(list(getattr(obj, "PdeRegions", []) or []), "PdeRegions", "a, u0, u1, v0, v1")),
+        pde_blend=float(getattr(obj, "PdeBlend", 0.0)),
         fix_boundary=bool(obj.FixBoundary),
         trim=str(getattr(obj, "Trim", "None")),
         tolerance=float(value(obj, "Tolerance")),
@@ -230,7 +242,8 @@ def settings_of(obj) -> settings.SheetSettings:
         solve_mode=str(obj.SolveMode),
         refinement=str(getattr(obj, "Refinement", "Uniform")),
         max_depth=int(getattr(obj, "MaxDepth", settings.DEFAULT_MAX_DEPTH)),
-        refine_regions=tuple(_regions(list(getattr(obj, "RefineRegions", []) or []))),
+        refine_regions=tuple(_fives(list(getattr(obj, "RefineRegions", []) or []), "RefineRegions",
+                                    "level, u0, u1, v0, v1")),
         auto_refine=bool(getattr(obj, "AutoRefine", True)),
         influence_level=int(getattr(obj, "InfluenceLevel", 0)),
         **preferences.solve_limits(),
@@ -247,6 +260,10 @@ def apply_settings(obj, values: settings.SheetSettings) -> None:
     obj.MaxSpans = int(values.max_spans)
     obj.Degree = int(values.degree)
     obj.SolveMode = values.solve_mode
+    obj.Energy = values.energy
+    obj.PdeA = float(values.pde_a)
+    obj.PdeRegions = [float(x) for region in values.pde_regions for x in region]
+    obj.PdeBlend = float(values.pde_blend)
 
 
 def compute(obj):
@@ -281,11 +298,11 @@ def _write_joins(obj, joins):
     obj.JoinCurvatureJumps = [measured(j.curvature_jump) for j in joins]
 
 
-def _regions(flat):
-    """RefineRegions' numbers in fives: (level, u0, u1, v0, v1)."""
+def _fives(flat, name, fields):
+    """A list property's numbers in fives (RefineRegions, PdeRegions)."""
     if len(flat) % 5:
-        raise errors.SheetError(f"RefineRegions needs five numbers a region (level, u0, u1, v0, v1); got {len(flat)}: "
-                                "give each region all five")
+        raise errors.SheetError(f"{name} needs five numbers a region ({fields}); got {len(flat)}: give each region "
+                                "all five")
     return [tuple(flat[k:k + 5]) for k in range(0, len(flat), 5)]
 
 

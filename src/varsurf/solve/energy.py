@@ -1,5 +1,6 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
-"""The thin-plate energy's weights, per unit of the base's relative parameter speeds."""
+"""The sheet's energy: the thin plate's weights, per unit of the base's relative parameter speeds,
+or the PDE energy's coefficient a(u, v)."""
 
 from __future__ import annotations
 
@@ -65,3 +66,27 @@ def energy_weights(nat, stretch, bend, stretch_tensor, bend_tensor, lengths=(1.0
         return nat.ThinPlateWeights(alpha=alpha, beta=beta)
     except nat.InvalidInput as error:
         raise SheetError(f"energy weights: {error}; give tensors that are positive semidefinite (or none)") from error
+
+
+def pde_coefficient(nat, settings, space):
+    """The native PdeCoefficient of a PDE sheet on `space` (None for the thin plate): PdeA, and the
+    PdeRegions' rectangles (normalized u, v) mapped onto the space's domain.
+
+    Unlike the thin plate's weights, a is measured in the normalized parameters (Du & Qin's
+    u, v in 0..1), not per unit of the base's speeds: it is a shape control (the ratio of the
+    length scales of changes along u and along v), and the same a gives the same shape on any
+    domain."""
+    if settings.energy != "PDE":
+        return None
+    u0, u1 = space.knots_u[0], space.knots_u[-1]
+    v0, v1 = space.knots_v[0], space.knots_v[-1]
+    painted = []
+    for a, ru0, ru1, rv0, rv1 in settings.pde_regions:
+        region = nat.Region(u0 + ru0 * (u1 - u0), u0 + ru1 * (u1 - u0), v0 + rv0 * (v1 - v0), v0 + rv1 * (v1 - v0))
+        painted.append(nat.PaintedCoefficient(region, float(a)))
+    coefficient = nat.PdeCoefficient(a=float(settings.pde_a), painted=painted, blend=float(settings.pde_blend))
+    try:
+        coefficient.validate(space)
+    except nat.InvalidInput as error:
+        raise SheetError(f"PDE energy: {error}; check PdeA, PdeRegions and PdeBlend") from error
+    return coefficient

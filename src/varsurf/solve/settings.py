@@ -45,6 +45,13 @@ DEFAULT_RANK_TOLERANCE = 1e-9
 #: closed loop among its curves, with or without base face: a hole's loop on a larger face), None
 #: (the whole base face, or the whole best-fit rectangle).
 TRIMS = ("Automatic", "Loop", "None")
+#: Energies a Sheet minimizes: the thin plate (Stretch, Bend; Welch & Witkin) or the generalized
+#: Bloor-Wilson PDE (d_ss + a^2 d_tt)^2 P = 0 of Du & Qin, whose a(s, t) sets how much shorter the
+#: length scale of changes along u is than along v (s, t: u and v normalized to 0..1).
+ENERGIES = ("ThinPlate", "PDE")
+#: Largest PDE coefficient accepted: a^4 weighs the v derivatives, and beyond this the energy's
+#: two directions differ by more than 1e12 (rounding then decides the shape, not the PDE).
+MAX_PDE_A = 1000.0
 #: Refinement modes: Uniform doubles the spans everywhere until the curves are met; Local refines
 #: only the spans under the curves that are off (hierarchical layers, Welch & Witkin sec. 3, 4.4).
 REFINEMENTS = ("Uniform", "Local")
@@ -90,6 +97,11 @@ class SheetSettings:
     stretch_tensor: Optional[Sequence[float]] = None
     bend_tensor: Optional[Sequence[float]] = None
     pressure: float = 0.0  # inflate (> 0) or deflate (< 0), in the energy's units
+    energy: str = "ThinPlate"  # one of ENERGIES
+    pde_a: float = 1.0  # PDE: a where nothing is painted
+    #: PDE: a painted on rectangles, (a, u0, u1, v0, v1) with u and v normalized (later over earlier)
+    pde_regions: Sequence[Tuple[float, float, float, float, float]] = ()
+    pde_blend: float = 0.0  # PDE: width of the band a blends across a region's border (0..0.5)
     fix_boundary: bool = True  # keep the base face's boundary (and its trim's edges)
     #: One of TRIMS: bound the sheet by the closed loop among its curves (boundary.py).
     trim: str = "Automatic"
@@ -116,7 +128,11 @@ class SheetSettings:
         for label, value in (("Stretch", self.stretch), ("Bend", self.bend)):
             if not value >= 0.0:  # also rejects NaN
                 raise SheetError(f"{label} must be a number >= 0 (got {value}): set the Sheet's {label} to 0 or more")
-        if self.stretch == 0.0 and self.bend == 0.0 and not self.stretch_tensor and not self.bend_tensor:
+        if self.energy not in ENERGIES:
+            raise SheetError(f"Energy must be one of {', '.join(ENERGIES)} (got {self.energy!r}): pick one of them")
+        if self.energy == "PDE":
+            self._check_pde()
+        elif self.stretch == 0.0 and self.bend == 0.0 and not self.stretch_tensor and not self.bend_tensor:
             raise SheetError("Stretch and Bend are both 0: the sheet would have no energy to minimize; give Bend (or "
                              "Stretch) a positive weight")
         if not (self.tolerance > 0.0 and math.isfinite(self.tolerance)):
@@ -146,6 +162,21 @@ class SheetSettings:
             raise SheetError(f"the time and memory limits must be positive (got {self.time_seconds()} s, "
                              f"{self.memory_bytes()} bytes): set them in VarSurf's preferences (0 MB: "
                              "automatic)")
+
+    def _check_pde(self) -> None:
+        if not (math.isfinite(self.pde_a) and 0.0 < self.pde_a <= MAX_PDE_A):
+            raise SheetError(f"PdeA must be a number in (0, {MAX_PDE_A:g}] (got {self.pde_a}): set the Sheet's PdeA "
+                             "above 0 (1: the same length scale along u and v)")
+        if not (math.isfinite(self.pde_blend) and 0.0 <= self.pde_blend <= 0.5):
+            raise SheetError(f"PdeBlend must be in [0, 0.5] (got {self.pde_blend}): a fraction of the sheet's domain, "
+                             "0 for a sharp border")
+        for k, region in enumerate(self.pde_regions):
+            a, u0, u1, v0, v1 = (float(x) for x in region)
+            if not (math.isfinite(a) and 0.0 < a <= MAX_PDE_A):
+                raise SheetError(f"PdeRegions: region {k + 1} paints a = {a}; give it a number in (0, {MAX_PDE_A:g}]")
+            if not (0.0 <= u0 < u1 <= 1.0 and 0.0 <= v0 < v1 <= 1.0):
+                raise SheetError(f"PdeRegions: region {k + 1} spans u {u0}..{u1}, v {v0}..{v1}; give 0 <= u0 < u1 <= 1 "
+                                 "and 0 <= v0 < v1 <= 1 (u and v normalized to the sheet's domain)")
 
     def time_seconds(self) -> float:
         return DEFAULT_TIME_LIMIT if self.time_limit is None else float(self.time_limit)

@@ -176,6 +176,9 @@ def _problem(nat, sheet, spans):
     problem = build(nat.SheetProblem, space=space, initial_poles=refined.poles, energy=sheet.energy, points=[],
                     curves=sheet.curves, fixed_poles=fixed, closed_u=closed.closed_u, closed_v=closed.closed_v)
     terms.apply(problem)
+    pde = energy.pde_coefficient(nat, settings, space)
+    if pde is not None:
+        problem.pde = pde
     if sheet.kept is not None:
         problem.kept_region = sheet.kept
     # The core inflates along Su x Sv; a Reversed base face's outward normal is the opposite.
@@ -486,8 +489,11 @@ def _stages(face, edges, settings, names, projections, constraints, rest, keep_g
         raise SheetError("G2 cannot hold where two G2 joins meet with different curvatures: "
                          + "; ".join(c.message() for c in g2_corners))
     sheet.rest = _rest(nat, rest)
-    sheet.energy = energy.energy_weights(nat, settings.stretch, settings.bend, settings.stretch_tensor,
-                                         settings.bend_tensor, energy.parameter_lengths(sheet.base))
+    if settings.energy == "PDE":  # the problem's pde replaces the thin plate (_problem)
+        sheet.energy = nat.ThinPlateWeights()
+    else:
+        sheet.energy = energy.energy_weights(nat, settings.stretch, settings.bend, settings.stretch_tensor,
+                                             settings.bend_tensor, energy.parameter_lengths(sheet.base))
     # Pre-images and constraint (u, v) stay valid on every refinement: knot insertion keeps the
     # parametrization.
     options = _options(nat, settings, keep_going)

@@ -24,6 +24,9 @@ struct Region {
   bool is_loop() const { return !loop.empty(); }
 };
 
+// The same rectangle or the same loop, point for point.
+bool same_region(const Region& a, const Region& b);
+
 // Throws InvalidInput (prefixed by `what`) for non-finite, empty or self-intersecting regions and
 // for regions outside the domain. Loop points within 1e-9 of the domain (relative) count as on it.
 void check_region(const SplineSpace& space, const Region& region, const char* what);

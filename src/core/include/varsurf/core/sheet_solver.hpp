@@ -20,6 +20,7 @@
 #include "varsurf/core/curvature_constraint.hpp"
 #include "varsurf/core/external_energy.hpp"
 #include "varsurf/core/lcurve.hpp"
+#include "varsurf/core/pde_coefficient.hpp"
 #include "varsurf/core/point_constraints.hpp"
 #include "varsurf/core/ribbon_constraint.hpp"
 #include "varsurf/core/seam_ties.hpp"
@@ -32,6 +33,10 @@ struct SheetProblem {
   SplineSpace space;
   Eigen::MatrixX3d initial_poles;  // size() x 3: start shape, values of fixed poles
   ThinPlateWeights energy;
+  // The Bloor-Wilson PDE energy (Du & Qin eq. 1) with this coefficient a(u, v) instead of the
+  // thin plate (`energy` is then unused); with rest_poles it acts on the displacement (their
+  // eq. 4).
+  std::optional<PdeCoefficient> pde;
   // Rest shape p^ (size() x 3, or empty for none): the energy becomes (p - p^)^T H (p - p^), so
   // the sheet keeps the rest shape's detail and only its deviation is made fair (Welch & Witkin
   // eq. 6, Boier-Martin et al. 4.1).

@@ -1,0 +1,69 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+// The Bloor-Wilson PDE energy's coefficient a(u, v) (Du & Qin).
+#include <pybind11/eigen.h>
+#include <pybind11/stl.h>
+
+#include "binding.hpp"
+#include "varsurf/core/errors.hpp"
+#include "varsurf/core/pde_coefficient.hpp"
+#include "varsurf/core/pde_energy.hpp"
+
+namespace py = pybind11;
+using namespace pybind11::literals;
+
+namespace varsurf::binding {
+
+void bind_pde(py::module_& m) {
+  py::class_<PaintedCoefficient>(m, "PaintedCoefficient", "The PDE coefficient a over a Region.")
+      .def(py::init([](Region region, double a) {
+             return PaintedCoefficient{std::move(region), a};
+           }),
+           "region"_a, "a"_a)
+      .def_readwrite("region", &PaintedCoefficient::region)
+      .def_readwrite("a", &PaintedCoefficient::a);
+
+  py::class_<PdeCoefficient>(
+      m, "PdeCoefficient",
+      "a(u, v) of Du & Qin's (d_ss + a^2 d_tt)^2 P = 0 in the domain's normalized parameters: a "
+      "constant or a scalar B-spline field, with painted regions over it (later over earlier), "
+      "blended across their borders over `blend` (a fraction of the domain; 0: sharp).")
+      .def(py::init([](double a, std::vector<PaintedCoefficient> painted, double blend) {
+             PdeCoefficient c;
+             c.a = a;
+             c.painted = std::move(painted);
+             c.blend = blend;
+             return c;
+           }),
+           "a"_a = 1.0, "painted"_a = std::vector<PaintedCoefficient>{}, "blend"_a = 0.0)
+      .def_readwrite("a", &PdeCoefficient::a)
+      .def_readwrite("painted", &PdeCoefficient::painted, "List of PaintedCoefficient (a copy).")
+      .def_readwrite("blend", &PdeCoefficient::blend)
+      .def_readwrite("field_space", &PdeCoefficient::field_space,
+                     "SplineSpace of the scalar field a(u, v) (with field_values).")
+      .def_readwrite("field_values", &PdeCoefficient::field_values,
+                     "The field's values, one per basis function of field_space; empty: none.")
+      .def("validate", &PdeCoefficient::validate, "sheet"_a,
+           "Raise InvalidInput naming the field or region that is wrong on this sheet's space.")
+      .def(
+          "value",
+          [](const PdeCoefficient& c, const SplineSpace& sheet, double u, double v) {
+            c.validate(sheet);
+            if (!(u >= sheet.u_first() && u <= sheet.u_last() && v >= sheet.v_first() &&
+                  v <= sheet.v_last()))
+              throw InvalidInput("PdeCoefficient.value: (u, v) is not in the sheet's domain");
+            return c.value(sheet, u, v);
+          },
+          "sheet"_a, "u"_a, "v"_a, "a(u, v) on the sheet's domain.");
+
+  m.def(
+      "pde_energy",
+      [](const SplineSpace& space, const PdeCoefficient& a, const Eigen::MatrixX3d& poles) {
+        const Eigen::SparseMatrix<double> h = assemble_pde(space, a);
+        if (poles.rows() != h.rows())
+          throw InvalidInput("pde_energy: poles do not match the space");
+        return Eigen::Vector3d((poles.transpose() * (h * poles)).diagonal());
+      },
+      "space"_a, "a"_a, "poles"_a, "The PDE energy of each coordinate of the surface (x, y, z).");
+}
+
+}  // namespace varsurf::binding
