@@ -20,7 +20,7 @@ def render():
     doc = App.openDocument(fcstd)
     Gui.activateWorkbench("VarSurfWorkbench")
     import varsurf
-    from varsurf.gui.view_providers import ViewProviderSheet
+    from varsurf.gui.view_providers import ViewProviderPdeSurface, ViewProviderSheet
 
     for obj in doc.Objects:
         vobj = obj.ViewObject
@@ -30,6 +30,16 @@ def render():
             vobj.ShapeColor = (0.30, 0.58, 0.86)
             vobj.LineColor = (0.05, 0.24, 0.40)
             vobj.Transparency = 0
+            vobj.Visibility = True
+        elif varsurf.is_pde_surface(obj):
+            if getattr(vobj, "Proxy", None) is None:
+                ViewProviderPdeSurface(vobj)
+            vobj.ShapeColor = (0.36, 0.70, 0.45)
+            vobj.LineColor = (0.05, 0.30, 0.15)
+            vobj.Visibility = True
+        elif obj.TypeId == "Part::Feature" and obj.Shape.Edges and not obj.Shape.Faces:  # input curves
+            vobj.LineColor = (0.80, 0.15, 0.15) if "Deriv" not in obj.Name else (0.60, 0.20, 0.70)
+            vobj.LineWidth = 4.0
             vobj.Visibility = True
         elif obj.TypeId == "Sketcher::SketchObject":
             vobj.LineColor = (0.91, 0.35, 0.05)

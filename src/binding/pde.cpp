@@ -7,6 +7,7 @@
 #include "varsurf/core/errors.hpp"
 #include "varsurf/core/pde_coefficient.hpp"
 #include "varsurf/core/pde_energy.hpp"
+#include "varsurf/core/pde_surface.hpp"
 
 namespace py = pybind11;
 using namespace pybind11::literals;
@@ -38,6 +39,9 @@ void bind_pde(py::module_& m) {
       .def_readwrite("a", &PdeCoefficient::a)
       .def_readwrite("painted", &PdeCoefficient::painted, "List of PaintedCoefficient (a copy).")
       .def_readwrite("blend", &PdeCoefficient::blend)
+      .def_readwrite("plate_form", &PdeCoefficient::plate_form,
+                     "The plate form int P_ss^2 + 2 a^2 P_st^2 + a^4 P_tt^2 (the same equation "
+                     "inside for constant a; free sides held like a free plate's).")
       .def_readwrite("field_space", &PdeCoefficient::field_space,
                      "SplineSpace of the scalar field a(u, v) (with field_values).")
       .def_readwrite("field_values", &PdeCoefficient::field_values,
@@ -64,6 +68,51 @@ void bind_pde(py::module_& m) {
         return Eigen::Vector3d((poles.transpose() * (h * poles)).diagonal());
       },
       "space"_a, "a"_a, "poles"_a, "The PDE energy of each coordinate of the surface (x, y, z).");
+
+  py::class_<IsoCurve>(
+      m, "IsoCurve", "A Gordon curve: P(at, t) (u-curve) or P(t, at) (v-curve), t along the curve.")
+      .def(py::init([](double at, BSplineCurve curve) {
+             return IsoCurve{at, std::move(curve)};
+           }),
+           "at"_a, "curve"_a)
+      .def_readwrite("at", &IsoCurve::at)
+      .def_readwrite("curve", &IsoCurve::curve);
+
+  py::class_<PdeBoundary>(
+      m, "PdeBoundary",
+      "Du & Qin's boundary conditions: u0, u1 = P(0, v), P(1, v); Hermite derivative curves d0, d1 "
+      "(P_u = magnitude * (d - u)); Coons sides v0, v1; Gordon u_curves, v_curves; coefficient a. "
+      "Empty curves: not given. List fields are copies: assign whole lists.")
+      .def(py::init<>())
+      .def_readwrite("u0", &PdeBoundary::u0)
+      .def_readwrite("u1", &PdeBoundary::u1)
+      .def_readwrite("d0", &PdeBoundary::d0)
+      .def_readwrite("d1", &PdeBoundary::d1)
+      .def_readwrite("magnitude0", &PdeBoundary::magnitude0)
+      .def_readwrite("magnitude1", &PdeBoundary::magnitude1)
+      .def_readwrite("v0", &PdeBoundary::v0)
+      .def_readwrite("v1", &PdeBoundary::v1)
+      .def_readwrite("u_curves", &PdeBoundary::u_curves)
+      .def_readwrite("v_curves", &PdeBoundary::v_curves)
+      .def_readwrite("a", &PdeBoundary::a);
+
+  py::class_<PdeSurfaceOptions>(m, "PdeSurfaceOptions", "Degree, spans and meeting tolerance.")
+      .def(py::init<>())
+      .def_readwrite("degree", &PdeSurfaceOptions::degree)
+      .def_readwrite("spans_u", &PdeSurfaceOptions::spans_u)
+      .def_readwrite("spans_v", &PdeSurfaceOptions::spans_v)
+      .def_readwrite("tolerance", &PdeSurfaceOptions::tolerance);
+
+  m.def(
+      "pde_surface_problem",
+      [](const PdeBoundary& b, const PdeSurfaceOptions& o) {
+        double fit = 0.0;
+        SheetProblem pb = pde_surface_problem(b, o, &fit);
+        return py::make_tuple(std::move(pb), fit);
+      },
+      "boundary"_a, "options"_a = PdeSurfaceOptions(),
+      "(SheetProblem, fit error): the sheet whose solve is the PDE surface, and the largest "
+      "distance between a held boundary row and its curve.");
 }
 
 }  // namespace varsurf::binding

@@ -13,6 +13,7 @@ public API (importable headless, without any GUI module):
     make_space_curve((obj, "EdgeN"), handle_parameters, handles)        -> SpaceCurve object
     move_handle(space_curve, index, position)
     make_hinge(solid, sheet_a, sheet_b, (obj, "EdgeN"), angle=180)      -> Hinge object
+    make_pde_surface(u0, u1, derivative0=None, ..., a=1.0)              -> PdeSurface object
     install_rest_shape(sheet), melt(sheet)                              -> sheet
     export_step(objects, path)                                           -> path
     selection_to_sheet_args(selection_ex)                                -> (base, curves)
@@ -105,7 +106,8 @@ APP_API = (
     "export_step",
     "make_space_curve", "make_hinge", "move_handle", "selection_to_sheet_args", "selection_problem",
     "create_sheet_from_selection", "sheet_command_lines", "is_sheet", "run_sheet_command",
-    "run_space_curve_command", "run_hinge_command",
+    "run_space_curve_command", "run_hinge_command", "make_pde_surface", "run_pde_surface_command",
+    "is_pde_surface",
 )
 
 
@@ -150,4 +152,5 @@ __all__ = [
     "make_space_curve",
     "move_handle",
     "make_hinge",
+    "make_pde_surface",
 ]

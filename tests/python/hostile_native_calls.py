@@ -230,6 +230,52 @@ def hostile_pde():
     return out
 
 
+def pde_boundary():
+    """Two parallel lines and their derivative curves: a valid Hermite PDE surface."""
+    b = nat.PdeBoundary()
+    b.u0, b.u1 = curve([0, 0, 0], [0, 10, 0]), curve([10, 0, 0], [10, 10, 0])
+    b.d0, b.d1 = curve([2, 0, 1], [2, 10, 1]), curve([12, 0, 1], [12, 10, 1])
+    return b
+
+
+def hostile_pde_boundaries():
+    out = []
+
+    def variant(**fields):
+        b = pde_boundary()
+        for k, v in fields.items():
+            setattr(b, k, v)
+        out.append(b)
+
+    for c in hostile_curves():
+        for role in ("u0", "u1", "d0", "d1", "v0", "v1"):
+            variant(**{role: c})
+        variant(u_curves=[nat.IsoCurve(0.5, c)])
+    for x in hostile_floats():
+        variant(magnitude0=x)
+        variant(u_curves=[nat.IsoCurve(x, curve([5, 0, 0], [5, 10, 0]))])
+        variant(v_curves=[nat.IsoCurve(x, curve([0, 5, 0], [10, 5, 0]))])
+    for c in hostile_pde():
+        variant(a=c)
+    variant(v0=curve([0, 0, 0], [10, 0, 0]), v1=curve([0, 10, 0], [10, 10, 5]))  # a corner missed
+    variant(v_curves=[nat.IsoCurve(0.5, curve([0, 5, 9], [10, 5, 9]))])  # meets nothing
+    return out
+
+
+def hostile_pde_options():
+    out = []
+    for k in hostile_ints():
+        for field in ("degree", "spans_u", "spans_v"):
+            o = nat.PdeSurfaceOptions()
+            setattr(o, field, k)
+            out.append(o)
+    for x in hostile_floats():
+        o = nat.PdeSurfaceOptions()
+        o.tolerance = x
+        out.append(o)
+    return out
+
+
 def hostile_problems():
     out = []
 
@@ -426,6 +472,10 @@ CLASS_VALUES = {
     "Region": (nat.Region, hostile_regions),
     "ThinPlateWeights": (lambda: nat.ThinPlateWeights.isotropic(0.0, 1.0), hostile_weights),
     "PdeCoefficient": (lambda: nat.PdeCoefficient(a=2.0), hostile_pde),
+    "PdeBoundary": (pde_boundary, hostile_pde_boundaries),
+    "PdeSurfaceOptions": (nat.PdeSurfaceOptions, hostile_pde_options),
+    "List[IsoCurve]": (lambda: [nat.IsoCurve(0.5, curve([5, 0, 0], [5, 10, 0]))],
+                       lambda: [[]] + [[nat.IsoCurve(0.5, c)] for c in hostile_curves()]),
     "List[PaintedCoefficient]": (lambda: [nat.PaintedCoefficient(nat.Region(0.2, 0.6, 0.2, 0.6), 3.0)],
                                  lambda: [[]] + hostile_painted()),
     "SolveMode": (lambda: nat.SolveMode.exact, lambda: list(nat.SolveMode.__members__.values())),

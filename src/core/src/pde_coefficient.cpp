@@ -133,8 +133,8 @@ int PdeCoefficient::field_degree() const {
 }
 
 bool operator==(const PdeCoefficient& x, const PdeCoefficient& y) {
-  if (x.a != y.a || x.blend != y.blend || x.painted.size() != y.painted.size() ||
-      x.has_field() != y.has_field())
+  if (x.a != y.a || x.blend != y.blend || x.plate_form != y.plate_form ||
+      x.painted.size() != y.painted.size() || x.has_field() != y.has_field())
     return false;
   for (size_t k = 0; k < x.painted.size(); ++k)
     if (x.painted[k].a != y.painted[k].a || !same_region(x.painted[k].region, y.painted[k].region))

@@ -29,9 +29,19 @@ struct Scales {
 
 // Adds weight * (L phi)^T (L phi), L = cu d_uu + cv a^2 d_vv, at one point (a negative weight
 // takes it away: a painted region's correction).
-void add_operator(const BasisSample& s, const Scales& k, double a, double weight,
+void add_operator(const BasisSample& s, const Scales& k, double a, double weight, bool plate,
                   Eigen::MatrixXd& local) {
-  const Eigen::RowVectorXd l = k.cu * s.values.row(3) + (k.cv * a * a) * s.values.row(5);
+  const double a2 = a * a;
+  if (plate) {  // P_ss^2 + 2 a^2 P_st^2 + a^4 P_tt^2, P_st = du dv P_uv
+    const Eigen::RowVectorXd ss = k.cu * s.values.row(3),
+                             st = std::sqrt(k.cu * k.cv) * s.values.row(4),
+                             tt = (k.cv * a2) * s.values.row(5);
+    local.noalias() +=
+        (weight * k.area) *
+        (ss.transpose() * ss + (2.0 * a2) * (st.transpose() * st) + tt.transpose() * tt);
+    return;
+  }
+  const Eigen::RowVectorXd l = k.cu * s.values.row(3) + (k.cv * a2) * s.values.row(5);
   local.noalias() += (weight * k.area) * (l.transpose() * l);
 }
 
@@ -68,9 +78,17 @@ std::vector<QuadraturePoint> span_points(const SplineSpace& space, int n, double
   return out;
 }
 
-// Constant a on a polynomial space: (cu d_uu + cv a^2 d_vv)^2 expands into four separable terms.
-Eigen::SparseMatrix<double> uniform_energy(const SplineSpace& space, const Scales& k, double a) {
+// Constant a on a polynomial space: (cu d_uu + cv a^2 d_vv)^2 expands into four separable terms,
+// the plate form into three.
+Eigen::SparseMatrix<double> uniform_energy(const SplineSpace& space, const Scales& k, double a,
+                                           bool plate) {
   const double a2 = a * a;
+  if (plate)
+    return assemble_separable(space,
+                              {{k.area * k.cu * k.cu, 2, 2, 0, 0},
+                               {2.0 * a2 * k.area * k.cu * k.cv, 1, 1, 1, 1},
+                               {k.area * k.cv * k.cv * a2 * a2, 0, 0, 2, 2}},
+                              2);
   const std::vector<SeparableTerm> terms = {
       {k.area * k.cu * k.cu, 2, 2, 0, 0},
       {k.area * k.cu * k.cv * a2, 2, 0, 0, 2},
@@ -100,7 +118,7 @@ Eigen::SparseMatrix<double> assemble_pde(const SplineSpace& space, const PdeCoef
   const int exact = p + 2 * a.field_degree() + 1;
   Eigen::SparseMatrix<double> h;
   if (!space.rational() && !a.has_field() && (a.painted.empty() || sharp)) {
-    h = uniform_energy(space, k, a.a);
+    h = uniform_energy(space, k, a.a, a.plate_form);
   } else {
     // A blended border is smooth but not polynomial, rational bases neither: more points, and
     // cells a quarter of the band wide across a border (its smoothstep is C2 only at the band's
@@ -113,7 +131,7 @@ Eigen::SparseMatrix<double> assemble_pde(const SplineSpace& space, const PdeCoef
         space, span_points(space, exact + extra, step), 2,
         [&](const BasisSample& s, const QuadraturePoint& q, Eigen::MatrixXd& local) {
           const double value = whole_value ? a.value(space, q.u, q.v) : a.base_value(q.u, q.v);
-          add_operator(s, k, value, q.weight, local);
+          add_operator(s, k, value, q.weight, a.plate_form, local);
         });
   }
   if (!sharp) return h;
@@ -125,8 +143,8 @@ Eigen::SparseMatrix<double> assemble_pde(const SplineSpace& space, const PdeCoef
         space, region_quadrature(space, a.painted[r].region), 2,
         [&](const BasisSample& s, const QuadraturePoint& q, Eigen::MatrixXd& local) {
           if (a.top_region(space, q.u, q.v) != static_cast<int>(r)) return;
-          add_operator(s, k, ar, q.weight, local);
-          add_operator(s, k, a.base_value(q.u, q.v), -q.weight, local);
+          add_operator(s, k, ar, q.weight, a.plate_form, local);
+          add_operator(s, k, a.base_value(q.u, q.v), -q.weight, a.plate_form, local);
         });
   }
   return h;
@@ -142,7 +160,7 @@ Eigen::SparseMatrix<double> assemble_pde(const SplineSpace& space, const PdeCoef
   const Eigen::SparseMatrix<double> inside = assemble_at_points(
       space, region_quadrature(space, region), 2,
       [&](const BasisSample& s, const QuadraturePoint& q, Eigen::MatrixXd& local) {
-        add_operator(s, k, a.value(space, q.u, q.v), q.weight, local);
+        add_operator(s, k, a.value(space, q.u, q.v), q.weight, a.plate_form, local);
       });
   return Eigen::SparseMatrix<double>((1.0 - outside) * inside + outside * whole);
 }

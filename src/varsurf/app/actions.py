@@ -15,6 +15,7 @@ TRANSACTION_CREATE = "Create VarSurf sheet"
 TRANSACTION_SOLID = "Add VarSurf solid"
 TRANSACTION_CONSTRAINT = "Add VarSurf constraint"
 TRANSACTION_SPACE_CURVE = "Add VarSurf space curve"
+TRANSACTION_PDE_SURFACE = "Add VarSurf PDE surface"
 TRANSACTION_HINGE = "Add VarSurf hinge"
 TRANSACTION_FILL_HOLE = "Fill hole with VarSurf sheet"
 TRANSACTION_TUBE = "Add VarSurf tube"
@@ -79,6 +80,18 @@ def run_space_curve_command(selection_ex, do_command=None, on_error=None):
         _report(error, on_error)
         return None
     return run_in_transaction(obj.Document, TRANSACTION_SPACE_CURVE, macro.space_curve_command_lines(obj, sub),
+                              do_command)
+
+
+def run_pde_surface_command(selection_ex, do_command=None, on_error=None):
+    """What VarSurf_PdeSurface does: a PdeSurface between the selected boundary curves (and their
+    derivative curves, or the Coons sides). Returns it, or None."""
+    try:
+        args = selection.pde_surface_selection_to_args(selection_ex)
+    except ValueError as error:
+        _report(error, on_error)
+        return None
+    return run_in_transaction(args["u0"][0].Document, TRANSACTION_PDE_SURFACE, macro.pde_surface_command_lines(args),
                               do_command)
 
 

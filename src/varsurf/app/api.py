@@ -7,6 +7,7 @@ from varsurf.app.actions import (
     run_constraint_command,
     run_fill_hole_command,
     run_hinge_command,
+    run_pde_surface_command,
     run_sheet_command,
     run_solid_command,
     run_space_curve_command,
@@ -22,11 +23,13 @@ from varsurf.app.make import (
     melt,
 )
 from varsurf.app.make_joints import make_hinge, make_space_curve, move_handle
+from varsurf.app.pde_surface import is_pde_surface, make_pde_surface
 from varsurf.app.references import is_sheet, single_element
 from varsurf.app.selection import (
     constraint_selection_to_args,
     fill_hole_selection_to_args,
     hinge_selection_to_args,
+    pde_surface_selection_to_args,
     selection_hint,
     selection_problem,
     selection_to_sheet_args,
@@ -41,6 +44,7 @@ __all__ = [
     "run_constraint_command",
     "run_fill_hole_command",
     "run_hinge_command",
+    "run_pde_surface_command",
     "run_sheet_command",
     "run_solid_command",
     "run_space_curve_command",
@@ -55,6 +59,8 @@ __all__ = [
     "make_solid",
     "melt",
     "make_hinge",
+    "make_pde_surface",
+    "is_pde_surface",
     "make_space_curve",
     "move_handle",
     "is_sheet",
@@ -62,6 +68,7 @@ __all__ = [
     "constraint_selection_to_args",
     "fill_hole_selection_to_args",
     "hinge_selection_to_args",
+    "pde_surface_selection_to_args",
     "selection_hint",
     "selection_problem",
     "selection_to_sheet_args",

@@ -97,6 +97,18 @@ def space_curve_command_lines(obj, sub) -> List[str]:
     ]
 
 
+def pde_surface_command_lines(args) -> List[str]:
+    """Macro lines that add a PdeSurface (make_pde_surface's keyword arguments of edge links) and
+    recompute."""
+    doc = args["u0"][0].Document
+    given = ", ".join(f"{key}=({ref(obj)}, {sub!r})" for key, (obj, sub) in args.items())
+    return [
+        "import varsurf",
+        f"_pde = varsurf.make_pde_surface({given})",
+        f"App.getDocument({doc.Name!r}).recompute()",
+    ]
+
+
 def hinge_command_lines(solid, a, b, obj, sub, angle) -> List[str]:
     """Macro lines that add a Hinge to a Solid and recompute."""
     return [

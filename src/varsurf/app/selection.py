@@ -265,6 +265,49 @@ def tube_selection_to_args(selection_ex):
     return sections, curves
 
 
+PDE_SURFACE_HINT = ("Select the two boundary curves (edges), then optionally a derivative curve beside each, in the "
+                    "same order (Hermite); or four edges that close a loop (Coons).")
+
+
+def _ends(obj, sub):
+    import Part
+
+    edge = Part.getShape(obj, sub, needSubElement=True)
+    return edge.valueAt(edge.FirstParameter), edge.valueAt(edge.LastParameter), edge.BoundBox.DiagonalLength
+
+
+def pde_surface_selection_to_args(selection_ex):
+    """make_pde_surface's keyword arguments for a selection of edges, or ValueError: two boundary
+    curves (u = 0, u = 1) and up to two derivative curves after them; or four edges closing a loop:
+    the first at u = 0, the one not touching it at u = 1, the sides between them."""
+    picked = [(sel.Object, sub) for sel in selection_ex or [] for sub in sel.SubElementNames]
+    edges = [(o, s) for o, s in picked if s.startswith("Edge")]
+    if len(edges) != len(picked) or not 2 <= len(edges) <= 4:
+        raise ValueError(f"{len(edges)} edges selected ({len(picked) - len(edges)} other elements). {PDE_SURFACE_HINT}")
+    if len(edges) == 4:
+        ends = [_ends(o, s) for o, s in edges]
+        size = max(e[2] for e in ends)
+        close = 1e-6 * max(size, 1.0)
+
+        def touch(a, b):
+            return min((p - q).Length for p in ends[a][:2] for q in ends[b][:2]) <= close
+
+        others = [k for k in (1, 2, 3) if not touch(0, k)]
+        if len(others) == 1 and all(touch(k, m) for k in (1, 2, 3) if k != others[0] for m in (0, others[0])):
+            opposite = others[0]
+            sides = [k for k in (1, 2, 3) if k != opposite]
+            start = ends[0][0]
+            first = min(sides, key=lambda k: min((start - p).Length for p in ends[k][:2]))
+            second = [k for k in sides if k != first][0]
+            return dict(u0=edges[0], u1=edges[opposite], v0=edges[first], v1=edges[second])
+    args = dict(u0=edges[0], u1=edges[1])
+    if len(edges) > 2:
+        args["derivative0"] = edges[2]
+    if len(edges) > 3:
+        args["derivative1"] = edges[3]
+    return args
+
+
 SPACE_CURVE_HINT = "Select one edge (of a sketch or a Part object): the curve's start shape."
 HINGE_HINT = ("Select two Sheets of a Solid and the edge they share, or the edge of a Solid "
               "where two of its faces meet.")

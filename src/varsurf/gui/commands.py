@@ -116,6 +116,14 @@ SELECTION_COMMANDS = [
          "closed splines), ordered along the tube, and through curves between them. Select two or more\n"
          "sections and, optionally, edges of the curves."),
      selection.tube_selection_to_args, actions.run_tube_command),
+    ("VarSurf_PdeSurface", "VarSurf_PdeSurface.svg",
+     QT_TRANSLATE_NOOP("VarSurf_PdeSurface", "PDE surface from boundary curves"),
+     QT_TRANSLATE_NOOP(
+         "VarSurf_PdeSurface",
+         "A surface between two boundary curves whose interior solves the Bloor-Wilson PDE (Du & Qin):\n"
+         "select the two boundary curves, then optionally a derivative curve beside each (Hermite:\n"
+         "the tangent across the boundary points to it), or four edges closing a loop (Coons)."),
+     selection.pde_surface_selection_to_args, actions.run_pde_surface_command),
     ("VarSurf_SpaceCurve", "VarSurf_SpaceCurve.svg",
      QT_TRANSLATE_NOOP("VarSurf_SpaceCurve", "Variational space curve"),
      QT_TRANSLATE_NOOP(

@@ -209,6 +209,13 @@ class ViewProviderFillHole(_EditedInPanel, _ViewProvider):
         return [base[0]] if base else []
 
 
+class ViewProviderPdeSurface(_ViewProvider):
+    """Tree icon of a PdeSurface (a surface from boundary curves and the Bloor-Wilson PDE)."""
+
+    TYPE = "VarSurf::ViewProviderPdeSurface"
+    ICON = "VarSurf_PdeSurface.svg"
+
+
 class ViewProviderSpaceCurve(_ViewProvider):
     """Tree icon of a variational SpaceCurve, drawn thick so it reads as a handle-driven curve,
     with a draggable pin on each handle (gui.handles.CurveHandles)."""

@@ -70,7 +70,9 @@ def energy_weights(nat, stretch, bend, stretch_tensor, bend_tensor, lengths=(1.0
 
 def pde_coefficient(nat, settings, space):
     """The native PdeCoefficient of a PDE sheet on `space` (None for the thin plate): PdeA, and the
-    PdeRegions' rectangles (normalized u, v) mapped onto the space's domain.
+    PdeRegions' rectangles (normalized u, v) mapped onto the space's domain. A sheet whose boundary
+    is not held takes the energy's plate form, whose free sides are held like a free plate's (the
+    operator's own square lets them flare; see PdeCoefficient.plate_form).
 
     Unlike the thin plate's weights, a is measured in the normalized parameters (Du & Qin's
     u, v in 0..1), not per unit of the base's speeds: it is a shape control (the ratio of the
@@ -85,6 +87,7 @@ def pde_coefficient(nat, settings, space):
         region = nat.Region(u0 + ru0 * (u1 - u0), u0 + ru1 * (u1 - u0), v0 + rv0 * (v1 - v0), v0 + rv1 * (v1 - v0))
         painted.append(nat.PaintedCoefficient(region, float(a)))
     coefficient = nat.PdeCoefficient(a=float(settings.pde_a), painted=painted, blend=float(settings.pde_blend))
+    coefficient.plate_form = not settings.fix_boundary
     try:
         coefficient.validate(space)
     except nat.InvalidInput as error:

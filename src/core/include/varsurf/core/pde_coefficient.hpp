@@ -32,6 +32,14 @@ struct PdeCoefficient {
   Eigen::VectorXd field_values;
   std::vector<PaintedCoefficient> painted;
   double blend = 0.0;
+  // The energy's form. false: int (P_ss + a^2 P_tt)^2, the operator's own square. true: the
+  // plate form int P_ss^2 + 2 a^2 P_st^2 + a^4 P_tt^2. For constant a the two differ by a null
+  // Lagrangian: the same equation inside (eq. 1) and the same surface wherever positions and cross
+  // derivatives are held all round. They differ on a side that nothing holds: there the operator's
+  // own natural conditions (L P = 0 and its normal derivative) over-determine P with Hermite data
+  // on the other sides and the side flares (measured on Du & Qin's Fig. 7 scene: poles 17 mm
+  // beyond an 80 mm surface), while the plate form's are a free plate's and hold it.
+  bool plate_form = false;
 
   bool has_field() const { return field_values.size() > 0; }
   bool uniform() const { return !has_field() && painted.empty(); }

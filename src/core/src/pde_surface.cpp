@@ -1,0 +1,347 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+#include "varsurf/core/pde_surface.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <string>
+
+#include "varsurf/core/curve_fit.hpp"
+#include "varsurf/core/errors.hpp"
+#include "varsurf/core/knot_vector.hpp"
+
+namespace varsurf {
+
+namespace {
+
+using Vec3 = Eigen::Vector3d;
+
+// Samples of a curve for searches (closest points, lengths): enough for the few-span curves
+// sketches and edges give; the searches refine from the best sample.
+constexpr int kSearchSamples = 128;
+
+std::string fmt(double x) {
+  std::ostringstream s;
+  s.precision(3);
+  s << x;
+  return s.str();
+}
+
+// The curve at its normalized parameter s in [0, 1].
+Vec3 at(const BSplineCurve& c, double s) {
+  return c.evaluate(c.first() + std::clamp(s, 0.0, 1.0) * (c.last() - c.first()));
+}
+
+double length(const BSplineCurve& c) {
+  double sum = 0.0;
+  Vec3 prev = at(c, 0.0);
+  for (int k = 1; k <= kSearchSamples; ++k) {
+    const Vec3 p = at(c, static_cast<double>(k) / kSearchSamples);
+    sum += (p - prev).norm();
+    prev = p;
+  }
+  return sum;
+}
+
+// Normalized parameter of c's point closest to p: the best sample, refined by golden sections
+// between its neighbours.
+double closest(const BSplineCurve& c, const Vec3& p) {
+  int best = 0;
+  double dist = std::numeric_limits<double>::infinity();
+  for (int k = 0; k <= kSearchSamples; ++k) {
+    const double d = (at(c, static_cast<double>(k) / kSearchSamples) - p).squaredNorm();
+    if (d < dist) dist = d, best = k;
+  }
+  double lo = std::max(0, best - 1) / static_cast<double>(kSearchSamples);
+  double hi = std::min(kSearchSamples, best + 1) / static_cast<double>(kSearchSamples);
+  const double g = 0.5 * (std::sqrt(5.0) - 1.0);
+  for (int it = 0; it < 60; ++it) {
+    const double a = hi - g * (hi - lo), b = lo + g * (hi - lo);
+    if ((at(c, a) - p).squaredNorm() < (at(c, b) - p).squaredNorm())
+      hi = b;
+    else
+      lo = a;
+  }
+  return 0.5 * (lo + hi);
+}
+
+// Where two curves come closest: normalized parameters (on a, on b) and the distance, by
+// alternating projections from the closest pair of samples.
+struct Crossing {
+  double sa, sb, gap;
+};
+Crossing crossing(const BSplineCurve& a, const BSplineCurve& b) {
+  Crossing best{0.0, 0.0, std::numeric_limits<double>::infinity()};
+  for (int i = 0; i <= kSearchSamples; ++i) {
+    const double sa = static_cast<double>(i) / kSearchSamples;
+    const double sb = closest(b, at(a, sa));
+    const double gap = (at(a, sa) - at(b, sb)).norm();
+    if (gap < best.gap) best = {sa, sb, gap};
+  }
+  for (int it = 0; it < 20; ++it) {
+    best.sa = closest(a, at(b, best.sb));
+    best.sb = closest(b, at(a, best.sa));
+  }
+  best.gap = (at(a, best.sa) - at(b, best.sb)).norm();
+  return best;
+}
+
+BSplineCurve normalized_3d(const BSplineCurve& c, const std::string& name) {
+  c.validate(name.c_str());
+  if (c.dim() != 3) throw InvalidInput(name + ": a 3D curve is needed");
+  if (!(length(c) > 0.0))
+    throw InvalidInput(name + " has no length: give a curve that is not a point");
+  return c;
+}
+
+// c reversed if that pairs its start with `start` and its end with `end` better.
+BSplineCurve oriented(const BSplineCurve& c, const Vec3& start, const Vec3& end) {
+  const double kept = (at(c, 0.0) - start).norm() + (at(c, 1.0) - end).norm();
+  const double turned = (at(c, 1.0) - start).norm() + (at(c, 0.0) - end).norm();
+  return turned < kept ? reversed(c) : c;
+}
+
+// A monotone piecewise-linear map from the surface's parameter (0..1 along the curve) to the
+// curve's normalized parameter: through its crossings with the curves across it.
+struct ParameterMap {
+  std::vector<double> s{0.0, 1.0}, t{0.0, 1.0};
+  void add(double surface, double curve) {
+    const auto it = std::upper_bound(s.begin(), s.end(), surface);
+    const auto k = it - s.begin();
+    s.insert(it, surface);
+    t.insert(t.begin() + k, curve);
+  }
+  bool monotone() const {
+    for (size_t k = 0; k + 1 < t.size(); ++k)
+      if (!(t[k + 1] > t[k])) return false;
+    return true;
+  }
+  double operator()(double x) const {
+    const auto it = std::upper_bound(s.begin(), s.end(), x);
+    const size_t k = std::clamp<size_t>(static_cast<size_t>(it - s.begin()), 1, s.size() - 1);
+    const double w = (x - s[k - 1]) / (s[k] - s[k - 1]);
+    return t[k - 1] + w * (t[k] - t[k - 1]);
+  }
+};
+
+// A curve's data as a row of poles on `knots`: least squares through samples at the mapped
+// parameters, ends interpolated. `value(s)` is the data at surface parameter s.
+template <class Value>
+BSplineCurve fit_row(const Value& value, int degree, const std::vector<double>& knots,
+                     double* error) {
+  const int spans = static_cast<int>(knots.size()) - 2 * degree - 1;
+  const int count = spans * (2 * degree + 2) + 1;
+  std::vector<double> s(static_cast<size_t>(count));
+  Eigen::MatrixXd points(count, 3);
+  for (int k = 0; k < count; ++k) {
+    s[static_cast<size_t>(k)] = static_cast<double>(k) / (count - 1);
+    points.row(k) = value(s[static_cast<size_t>(k)]).transpose();
+  }
+  BSplineCurve fit = fit_clamped_curve(s, points, degree, knots);
+  for (int k = 0; k <= 4 * count; ++k) {
+    const double x = static_cast<double>(k) / (4 * count);
+    *error = std::max(*error, (fit.evaluate(x) - value(x)).norm());
+  }
+  return fit;
+}
+
+void check_iso(const std::vector<IsoCurve>& curves, const char* kind) {
+  for (size_t k = 0; k < curves.size(); ++k)
+    if (!(curves[k].at > 0.0 && curves[k].at < 1.0))
+      throw InvalidInput(std::string(kind) + " " + std::to_string(k + 1) + " lies at " +
+                         fmt(curves[k].at) + ": give a value strictly between 0 and 1");
+}
+
+}  // namespace
+
+BSplineCurve reversed(const BSplineCurve& c) {
+  BSplineCurve r = c;
+  const double a = c.first(), b = c.last();
+  for (size_t k = 0; k < c.knots.size(); ++k) r.knots[k] = a + b - c.knots[c.knots.size() - 1 - k];
+  r.poles = c.poles.colwise().reverse();
+  if (c.rational()) r.weights = c.weights.reverse();
+  return r;
+}
+
+SheetProblem pde_surface_problem(const PdeBoundary& in, const PdeSurfaceOptions& o,
+                                 double* fit_error) {
+  const int p = o.degree;
+  if (p < 2 || p > 9) throw InvalidInput("PDE surface degree must be in 2..9");
+  if (!(std::isfinite(o.tolerance) && o.tolerance >= 0.0))
+    throw InvalidInput("PDE surface tolerance must be a finite distance >= 0");
+  if (o.spans_u < 1 || o.spans_v < 1 || o.spans_u > 512 || o.spans_v > 512)
+    throw InvalidInput("PDE surface spans must be in 1..512");
+  const bool hermite0 = in.d0.poles.size() != 0, hermite1 = in.d1.poles.size() != 0;
+  if ((hermite0 || hermite1) && p < 3)
+    throw InvalidInput("Hermite boundary conditions need degree 3 or more");
+  for (double m : {in.magnitude0, in.magnitude1})
+    if (!std::isfinite(m)) throw InvalidInput("derivative magnitude must be finite");
+  check_iso(in.u_curves, "u-curve");
+  check_iso(in.v_curves, "v-curve");
+
+  PdeBoundary b = in;
+  b.u0 = normalized_3d(in.u0, "u0");
+  b.u1 = oriented(normalized_3d(in.u1, "u1"), at(b.u0, 0.0), at(b.u0, 1.0));
+  const double size = std::max(length(b.u0), length(b.u1));
+  const double gap_tolerance = std::max(o.tolerance, 1e-9 * size);
+  auto derivative = [&](const BSplineCurve& d, const BSplineCurve& c, const char* name,
+                        const char* of) {
+    const BSplineCurve out = oriented(normalized_3d(d, name), at(c, 0.0), at(c, 1.0));
+    const double e0 = (at(out, 0.0) - at(c, 0.0)).norm(), e1 = (at(out, 1.0) - at(c, 1.0)).norm();
+    // Tangents may be long and skewed: only a curve far beyond any tangent the two curves'
+    // sizes suggest is taken for a mistake (another curve picked, or a wrong role).
+    const double reach = 5.0 * std::max(length(c), length(out));
+    if (std::max(e0, e1) > reach)
+      throw InvalidInput(
+          std::string(name) + " does not run beside " + of + ": its ends are " + fmt(e0) + " and " +
+          fmt(e1) + " from " + of + "'s ends, more than five times the curves' length (" +
+          fmt(reach) + "); draw it alongside " + of + ", from beside its start to beside its end");
+    return out;
+  };
+  if (hermite0) b.d0 = derivative(in.d0, b.u0, "d0", "u0");
+  if (hermite1) b.d1 = derivative(in.d1, b.u1, "d1", "u1");
+  const bool coons0 = in.v0.poles.size() != 0, coons1 = in.v1.poles.size() != 0;
+  // A v-side curve runs from the u0 curve's end at that side to the u1 curve's.
+  auto side = [&](const BSplineCurve& c, const char* name, double v) {
+    const BSplineCurve out = oriented(normalized_3d(c, name), at(b.u0, v), at(b.u1, v));
+    for (int end = 0; end < 2; ++end) {
+      const Vec3 corner = at(end == 0 ? b.u0 : b.u1, v);
+      const double gap = (at(out, end) - corner).norm();
+      if (gap > gap_tolerance)
+        throw InvalidInput(std::string(name) + "'s " + (end == 0 ? "start" : "end") + " is " +
+                           fmt(gap) + " from the corner (u = " + std::to_string(end) +
+                           ", v = " + fmt(v) + ") where " + (end == 0 ? "u0" : "u1") +
+                           " ends: the boundary curves must meet at their corners (within " +
+                           fmt(gap_tolerance) + ")");
+    }
+    return out;
+  };
+  if (coons0) b.v0 = side(in.v0, "v0", 0.0);
+  if (coons1) b.v1 = side(in.v1, "v1", 1.0);
+
+  // Gordon curves: oriented like the boundary curves they run beside; every u-curve must cross
+  // every v-curve, and their crossings place them (their parameters are mapped through them).
+  for (size_t i = 0; i < b.u_curves.size(); ++i) {
+    const std::string name = "u-curve " + std::to_string(i + 1);
+    b.u_curves[i].curve =
+        oriented(normalized_3d(in.u_curves[i].curve, name), at(b.u0, 0.0), at(b.u0, 1.0));
+  }
+  for (size_t j = 0; j < b.v_curves.size(); ++j) {
+    const std::string name = "v-curve " + std::to_string(j + 1);
+    const double v = b.v_curves[j].at;
+    b.v_curves[j].curve =
+        oriented(normalized_3d(in.v_curves[j].curve, name), at(b.u0, v), at(b.u1, v));
+  }
+  // u-direction curves (u0, u1, u-curves) cross the v-direction ones (v0, v1, v-curves).
+  struct Line {
+    const BSplineCurve* curve;
+    double at;
+    std::string name;
+    ParameterMap map;
+  };
+  std::vector<Line> along_v{{&b.u0, 0.0, "u0", {}}, {&b.u1, 1.0, "u1", {}}};
+  for (size_t i = 0; i < b.u_curves.size(); ++i)
+    along_v.push_back(
+        {&b.u_curves[i].curve, b.u_curves[i].at, "u-curve " + std::to_string(i + 1), {}});
+  std::vector<Line> along_u;
+  if (coons0) along_u.push_back({&b.v0, 0.0, "v0", {}});
+  if (coons1) along_u.push_back({&b.v1, 1.0, "v1", {}});
+  for (size_t j = 0; j < b.v_curves.size(); ++j)
+    along_u.push_back(
+        {&b.v_curves[j].curve, b.v_curves[j].at, "v-curve " + std::to_string(j + 1), {}});
+  for (Line& x : along_v)
+    for (Line& y : along_u) {
+      const Crossing c = crossing(*x.curve, *y.curve);
+      if (c.gap > gap_tolerance)
+        throw InvalidInput(x.name + " and " + y.name + " do not meet (they come " + fmt(c.gap) +
+                           " close): the curves of a network must cross; move one onto the other");
+      // Crossings at the curves' ends are the corners, already at 0 and 1.
+      if (y.at > 0.0 && y.at < 1.0) x.map.add(y.at, c.sa);
+      if (x.at > 0.0 && x.at < 1.0) y.map.add(x.at, c.sb);
+    }
+  for (const std::vector<Line>* family : {&along_v, &along_u})
+    for (const Line& x : *family)
+      if (!x.map.monotone())
+        throw InvalidInput(x.name + " crosses the curves across it out of their order: order the " +
+                           "isoparametric values as the curves lie");
+
+  SheetProblem pb;
+  pb.space = SplineSpace::uniform(p, p, o.spans_u, o.spans_v);
+  pb.pde = in.a;
+  const SplineSpace& sp = pb.space;
+  const int nu = sp.nu(), nv = sp.nv();
+  double error = 0.0;
+  auto row_of = [&](const Line& line) {
+    return fit_row([&](double s) { return at(*line.curve, line.map(s)); }, p, sp.knots_v, &error);
+  };
+  const BSplineCurve row0 = row_of(along_v[0]), row1 = row_of(along_v[1]);
+  // Start: the straight blend of the two boundary rows (the energy moves the free poles from it).
+  const std::vector<double> gu = greville(sp.knots_u, p);
+  pb.initial_poles.resize(sp.size(), 3);
+  for (int i = 0; i < nu; ++i)
+    for (int j = 0; j < nv; ++j)
+      pb.initial_poles.row(sp.index(i, j)) =
+          (1.0 - gu[static_cast<size_t>(i)]) * row0.poles.row(j) +
+          gu[static_cast<size_t>(i)] * row1.poles.row(j);
+  std::vector<bool> fixed(static_cast<size_t>(sp.size()), false);
+  auto hold = [&](int i, int j, const Eigen::RowVector3d& x) {
+    pb.initial_poles.row(sp.index(i, j)) = x;
+    fixed[static_cast<size_t>(sp.index(i, j))] = true;
+  };
+  // Coons sides first: the u rows overwrite their ends (the corners and the Hermite rows).
+  for (const Line& line : along_u) {
+    if (line.at != 0.0 && line.at != 1.0) continue;
+    const BSplineCurve col =
+        fit_row([&](double s) { return at(*line.curve, line.map(s)); }, p, sp.knots_u, &error);
+    const int j = line.at == 0.0 ? 0 : nv - 1;
+    for (int i = 0; i < nu; ++i) hold(i, j, col.poles.row(i));
+  }
+  for (int j = 0; j < nv; ++j) {
+    hold(0, j, row0.poles.row(j));
+    hold(nu - 1, j, row1.poles.row(j));
+  }
+  // Hermite: P_u(0, v) = p / t_(p+1) (row 1 - row 0) and P_u(1, v) = p / (1 - t_(nu-1))
+  // (row nu-1 - row nu-2) on the clamped knots.
+  auto hermite = [&](const BSplineCurve& d, const BSplineCurve& c, const ParameterMap& map,
+                     double magnitude, const BSplineCurve& row, int i, double step) {
+    const BSplineCurve dv =
+        fit_row([&](double s) -> Vec3 { return magnitude * (at(d, map(s)) - at(c, map(s))); }, p,
+                sp.knots_v, &error);
+    for (int j = 0; j < nv; ++j) hold(i, j, row.poles.row(j) + step * dv.poles.row(j));
+  };
+  if (hermite0)
+    hermite(b.d0, b.u0, along_v[0].map, in.magnitude0, row0, 1,
+            sp.knots_u[static_cast<size_t>(p + 1)] / p);
+  if (hermite1)
+    hermite(b.d1, b.u1, along_v[1].map, in.magnitude1, row1, nu - 2,
+            -(1.0 - sp.knots_u[static_cast<size_t>(nu - 1)]) / p);
+  for (int k = 0; k < sp.size(); ++k)
+    if (fixed[static_cast<size_t>(k)]) pb.fixed_poles.push_back(k);
+  // Gordon curves inside: curve constraints whose pre-images run along their isoparametric line
+  // through the crossings (degree 1, the crossings' parameters as knots).
+  auto constraint = [&](const Line& line, bool along_v_dir) {
+    CurveConstraint c;
+    c.target = *line.curve;
+    const double t0 = line.curve->first(), dt = line.curve->last() - line.curve->first();
+    c.preimage.degree = 1;
+    const size_t m = line.map.s.size();
+    c.preimage.poles.resize(static_cast<Eigen::Index>(m), 2);
+    c.preimage.knots.push_back(t0 + dt * line.map.t.front());
+    for (size_t k = 0; k < m; ++k) {
+      c.preimage.knots.push_back(t0 + dt * line.map.t[k]);
+      const double s = line.map.s[k];
+      c.preimage.poles.row(static_cast<Eigen::Index>(k)) =
+          along_v_dir ? Eigen::RowVector2d(line.at, s) : Eigen::RowVector2d(s, line.at);
+    }
+    c.preimage.knots.push_back(t0 + dt * line.map.t.back());
+    pb.curves.push_back(std::move(c));
+  };
+  for (size_t k = 2; k < along_v.size(); ++k) constraint(along_v[k], true);
+  for (const Line& line : along_u)
+    if (line.at > 0.0 && line.at < 1.0) constraint(line, false);
+  if (fit_error) *fit_error = error;
+  return pb;
+}
+
+}  // namespace varsurf

@@ -1,0 +1,229 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""PdeSurface features from real FreeCAD curves: Hermite data (boundary sketches and derivative
+curves), Coons loops of sketch lines and arcs, Gordon networks; closed-form solutions reproduced,
+rigid motion, reversed curves, STEP round trip, saving, undo, the command and bad input."""
+
+import FreeCAD
+import Part
+import pytest
+
+import varsurf
+from scenes import Sel, V, reopened
+from step_check import assert_reads_back
+
+A = 1.5
+
+
+def harmonic(u, v, a=A):
+    """A surface whose z solves z_uu + a^2 z_vv = 0 (u, v in 0..1): x = 60 u, y = 40 v."""
+    z = 8.0 * (u ** 3 - 3.0 * u * v * v / a ** 2) + 6.0 * (u * u - v * v / a ** 2) + 5.0 * u * v
+    return V(60.0 * u, 40.0 * v, z)
+
+
+def harmonic_du(u, v, a=A):
+    return V(60.0, 0.0, 8.0 * (3 * u * u - 3 * v * v / a ** 2) + 12.0 * u + 5.0 * v)
+
+
+def add_curve(doc, name, points):
+    """A Part feature holding one B-spline edge interpolating the points at evenly spaced
+    parameters (so the curve runs like the surface's parameter: the PDE surface pairs the points
+    of its curves by their parameters, as Du & Qin's boundary conditions do)."""
+    curve = Part.BSplineCurve()
+    curve.interpolate(points, Parameters=[k / (len(points) - 1) for k in range(len(points))])
+    obj = doc.addObject("Part::Feature", name)
+    obj.Shape = curve.toShape()
+    return obj
+
+
+def _iso_u(u, n=9):
+    return [harmonic(u, k / (n - 1)) for k in range(n)]
+
+
+def _iso_v(v, n=9):
+    return [harmonic(k / (n - 1), v) for k in range(n)]
+
+
+def worst(obj, n=15):
+    surface = obj.Shape.Faces[0].Surface
+    return max((surface.value(i / (n - 1), j / (n - 1)) - harmonic(i / (n - 1), j / (n - 1))).Length
+               for i in range(n) for j in range(n))
+
+
+def hermite_scene(doc):
+    u0 = add_curve(doc, "U0", _iso_u(0.0))
+    u1 = add_curve(doc, "U1", list(reversed(_iso_u(1.0))))  # drawn the other way
+    d0 = add_curve(doc, "D0", [harmonic(0.0, k / 8) + harmonic_du(0.0, k / 8) * 0.25 for k in range(9)])
+    d1 = add_curve(doc, "D1", [harmonic(1.0, k / 8) + harmonic_du(1.0, k / 8) * 0.25 for k in range(9)])
+    doc.recompute()
+    return u0, u1, d0, d1
+
+
+def test_hermite_conditions_reproduce_a_pde_solution(doc):
+    u0, u1, d0, d1 = hermite_scene(doc)
+    v0 = add_curve(doc, "V0", _iso_v(0.0))
+    v1 = add_curve(doc, "V1", _iso_v(1.0))
+    doc.recompute()
+    pde = varsurf.make_pde_surface((u0, "Edge1"), (u1, "Edge1"), derivative0=(d0, "Edge1"),
+                                   derivative1=(d1, "Edge1"), v0=(v0, "Edge1"), v1=(v1, "Edge1"),
+                                   magnitude0=4.0, magnitude1=4.0, a=A, tolerance=1e-4)
+    doc.recompute()
+    assert pde.isValid(), pde.getStatusString()
+    assert pde.Kind == "Hermite+Coons" and pde.Status.startswith("OK"), pde.Status
+    # The curves are interpolating splines through the solution's points: they are within 1e-5 of
+    # it, and so is the surface.
+    assert worst(pde) < 1e-3
+    assert max(pde.MaxDeviations) < 1e-4
+    # The derivative curves act: half the magnitude is another surface.
+    pde.Magnitude0 = pde.Magnitude1 = 2.0
+    doc.recompute()
+    assert worst(pde) > 0.1
+
+
+def test_free_sides_hold_like_a_free_plate(doc):
+    """Hermite data alone (the v sides free): P = (60 u, 40 v + 10 u v, cubic(u) + v linear(u))
+    solves the PDE with a free plate's conditions on the open sides, and comes back."""
+    def p(u, v):
+        return V(60 * u, 40 * v + 10 * u * v, 6 * u ** 3 - 4 * u * u + 5 * u * v + 2 * v)
+
+    def pu(u, v):
+        return V(60, 10 * v, 18 * u * u - 8 * u + 5 * v)
+
+    u0 = add_curve(doc, "U0", [p(0, k / 8) for k in range(9)])
+    u1 = add_curve(doc, "U1", [p(1, k / 8) for k in range(9)])
+    d0 = add_curve(doc, "D0", [p(0, k / 8) + pu(0, k / 8) * 0.2 for k in range(9)])
+    d1 = add_curve(doc, "D1", [p(1, k / 8) + pu(1, k / 8) * 0.2 for k in range(9)])
+    doc.recompute()
+    pde = varsurf.make_pde_surface((u0, "Edge1"), (u1, "Edge1"), derivative0=(d0, "Edge1"),
+                                   derivative1=(d1, "Edge1"), magnitude0=5.0, magnitude1=5.0, a=2.5,
+                                   tolerance=1e-4)
+    doc.recompute()
+    assert pde.isValid(), pde.getStatusString()
+    assert pde.Kind == "Hermite"
+    surface = pde.Shape.Faces[0].Surface
+    assert max((surface.value(i / 10, j / 10) - p(i / 10, j / 10)).Length
+               for i in range(11) for j in range(11)) < 1e-3
+    # The surface stays between its curves: nothing flares at the free sides.
+    box = pde.Shape.BoundBox
+    assert box.XMin > -1e-6 and box.XMax < 60 + 1e-6
+
+
+def test_coons_loop_of_sketch_edges_and_the_command(doc):
+    """Four edges of one sketch closing a loop (two lines, an arc, a B-spline), picked by the
+    command in any order: a Coons PDE surface ending on all four."""
+    import Sketcher
+
+    sketch = doc.addObject("Sketcher::SketchObject", "Loop")
+    sketch.addGeometry(Part.LineSegment(V(0, 0, 0), V(60, 0, 0)))
+    sketch.addGeometry(Part.ArcOfCircle(Part.Circle(V(60, 20, 0), V(0, 0, 1), 20), -1.5707963267948966,
+                                        1.5707963267948966))
+    sketch.addGeometry(Part.LineSegment(V(60, 40, 0), V(0, 40, 0)))
+    spline = Part.BSplineCurve()
+    spline.interpolate([V(0, 40, 0), V(-8, 25, 0), V(-6, 12, 0), V(0, 0, 0)])
+    sketch.addGeometry(spline)
+    sketch.Placement = FreeCAD.Placement(V(5, 5, 10), FreeCAD.Rotation(V(1, 0, 0), 30))
+    doc.recompute()
+    del Sketcher
+    created = varsurf.run_pde_surface_command([Sel(sketch, "Edge2", "Edge1", "Edge4", "Edge3")])
+    doc.recompute()
+    assert created is not None and created.isValid(), created.getStatusString() if created else None
+    assert created.Kind == "Coons"
+    assert max(created.MaxDeviations) <= created.Tolerance.Value
+    # A flat loop gives a flat surface: in the sketch's plane.
+    normal = sketch.Placement.Rotation.multVec(V(0, 0, 1))
+    origin = sketch.Placement.Base
+    face = created.Shape.Faces[0]
+    assert max(abs((face.Surface.value(i / 6, j / 6) - origin).dot(normal)) for i in range(7) for j in range(7)) < 1e-6
+    # One undoable step.
+    name = created.Name
+    doc.undo()
+    assert name not in [o.Name for o in doc.Objects]
+
+
+def test_gordon_network_reproduces_the_solution_and_survives_step(doc, tmp_path, native):
+    u0 = add_curve(doc, "U0", _iso_u(0.0))
+    u1 = add_curve(doc, "U1", _iso_u(1.0))
+    v0 = add_curve(doc, "V0", _iso_v(0.0))
+    v1 = add_curve(doc, "V1", list(reversed(_iso_v(1.0))))
+    mid_u = add_curve(doc, "MidU", _iso_u(0.4))
+    mid_v = add_curve(doc, "MidV", list(reversed(_iso_v(0.6))))
+    doc.recompute()
+    pde = varsurf.make_pde_surface((u0, "Edge1"), (u1, "Edge1"), v0=(v0, "Edge1"), v1=(v1, "Edge1"),
+                                   u_curves=[((mid_u, "Edge1"), 0.4)], v_curves=[((mid_v, "Edge1"), 0.6)],
+                                   a=A, tolerance=1e-3)
+    doc.recompute()
+    assert pde.isValid(), pde.getStatusString()
+    assert pde.Kind == "Coons+Gordon"
+    assert len(pde.MaxDeviations) == 6 and max(pde.MaxDeviations) <= 1e-3
+    assert worst(pde) < 2e-3
+    path = tmp_path / "gordon.step"
+    varsurf.export_step([pde], str(path))
+    assert_reads_back(pde.Shape, path, native)
+
+
+def test_rigid_motion_moves_the_surface_rigidly(doc):
+    u0, u1, d0, d1 = hermite_scene(doc)
+    pde = varsurf.make_pde_surface((u0, "Edge1"), (u1, "Edge1"), derivative0=(d0, "Edge1"),
+                                   derivative1=(d1, "Edge1"), a=2.5)
+    doc.recompute()
+    before = [pde.Shape.Faces[0].Surface.value(i / 4, j / 4) for i in range(5) for j in range(5)]
+    motion = FreeCAD.Placement(V(100, -40, 7), FreeCAD.Rotation(V(0.3, 1, 0.2), 63))
+    for obj in (u0, u1, d0, d1):
+        obj.Placement = motion
+    doc.recompute()
+    after = [pde.Shape.Faces[0].Surface.value(i / 4, j / 4) for i in range(5) for j in range(5)]
+    assert max((motion.multVec(p) - q).Length for p, q in zip(before, after)) < 1e-6
+
+
+def test_saves_reopens_and_undoes(doc, tmp_path):
+    u0, u1, d0, d1 = hermite_scene(doc)
+    pde = varsurf.make_pde_surface((u0, "Edge1"), (u1, "Edge1"), derivative0=(d0, "Edge1"), a=2.0)
+    doc.recompute()
+    poles = [p for row in pde.Shape.Faces[0].Surface.getPoles() for p in row]
+    doc.openTransaction("Paint")
+    pde.PdeRegions = [6.0, 0.2, 0.6, 0.3, 0.7]
+    doc.commitTransaction()
+    doc.recompute()
+    painted = [p for row in pde.Shape.Faces[0].Surface.getPoles() for p in row]
+    assert max((p - q).Length for p, q in zip(poles, painted)) > 1e-3
+    doc.undo()
+    doc.recompute()
+    assert max((p - q).Length for p, q in zip(poles, [p for row in pde.Shape.Faces[0].Surface.getPoles()
+                                                      for p in row])) < 1e-9
+    name = pde.Name
+    with reopened(doc, tmp_path / "pde_surface.FCStd") as again:
+        copy = again.getObject(name)
+        assert copy.Kind == "Hermite"
+        copy.touch()
+        again.recompute()
+        assert copy.isValid(), copy.getStatusString()
+        assert max((p - q).Length for p, q in zip(poles, [p for row in copy.Shape.Faces[0].Surface.getPoles()
+                                                          for p in row])) < 1e-9
+
+
+@pytest.mark.parametrize("edit, words", [
+    (lambda s: setattr(s, "Derivative0", (s.Document.getObject("Far"), "Edge1")), "does not run beside"),
+    (lambda s: setattr(s, "V0", (s.Document.getObject("Far"), "Edge1")), "the boundary curves must meet"),
+    (lambda s: setattr(s, "UCurveParameters", [0.5, 0.6]), "UCurveParameters has 2 values for 0 UCurves"),
+    (lambda s: setattr(s, "PdeRegions", [0.0, 0.1, 0.2, 0.1, 0.2]), "PdeRegions: region 1 paints a = 0.0"),
+    (lambda s: setattr(s, "U1", None), "U1 is empty"),
+])
+def test_bad_input_names_the_curve_and_leaves_the_document_intact(doc, edit, words):
+    u0, u1, d0, d1 = hermite_scene(doc)
+    add_curve(doc, "Far", [V(500, 500 + 10 * k, 300) for k in range(5)])
+    doc.recompute()
+    pde = varsurf.make_pde_surface((u0, "Edge1"), (u1, "Edge1"), a=2.0)
+    doc.recompute()
+    assert pde.isValid()
+    edit(pde)
+    doc.recompute()
+    assert not pde.isValid()
+    assert words in pde.getStatusString(), pde.getStatusString()
+    assert all(o.isValid() for o in (u0, u1, d0, d1))
+
+
+def test_bad_selection_creates_nothing(doc):
+    u0, u1, d0, d1 = hermite_scene(doc)
+    messages = []
+    assert varsurf.run_pde_surface_command([Sel(u0, "Edge1")], on_error=messages.append) is None
+    assert "1 edges selected" in str(messages[0])
+    assert [o for o in doc.Objects if varsurf.is_pde_surface(o)] == []
