@@ -120,7 +120,8 @@ def solve(settings: PdeSurfaceSettings, curves: Dict[str, object], labels: Dict[
             problem, fit_error = nat.pde_surface_problem(b, options)
             result = nat.solve_sheet(problem, solve_options)
         except nat.InvalidInput as error:
-            raise SheetError(advised(_named(str(error), labels), "check the curves and their roles (boundary, derivative, side or network curve)")) from error
+            raise SheetError(advised(_named(str(error), labels), "check the curves and their roles (boundary, "
+                                     "derivative, side or network curve)")) from error
         except nat.ResourceLimit as error:
             raise SheetError(advised(str(error), "use fewer spans or a looser tolerance")) from error
         except nat.Cancelled as error:
