@@ -432,6 +432,47 @@ def local_refinement():
               f"{ratio:.1f} | {ms(r['hier_seconds'])} | {ms(r['uniform_seconds'])} |")
 
 
+# ------------------------------------------------------------------------------------------------
+# 8. dynamic PDE sheets
+
+
+def dynamics(sides=(15, 30, 60), steps=300):
+    """Du & Qin's grid sizes as PDE sheets held by Hermite data all round, one point pulled by a
+    spring: the factorization a grab costs, one backward Euler step, and the static solve of the
+    same sheet in the same process (the peer a step replaces while the sheet moves)."""
+    sys.path.insert(0, str(REPO / "src"))
+    import numpy as np
+    from varsurf.solve.native import native
+
+    nat = native()
+    print("\n## 8. Dynamic PDE sheets: Hermite data all round, one point pulled by a spring\n")
+    print("| poles | free poles | factor per grab ms | step ms | steps per second | static solve ms | "
+          "static solve / step |")
+    print("|---|---|---|---|---|---|---|")
+    for n in sides:
+        space = nat.SplineSpace.uniform(3, 3, n - 3, n - 3)
+        g = np.linspace(0.0, 1.0, n)
+        poles = np.array([[100 * a, 100 * b, 10 * (a - 0.5) * (b - 0.5)] for a in g for b in g])
+        fixed = [i * n + j for i in range(n) for j in range(n) if min(i, j) < 2 or max(i, j) >= n - 2]
+        problem = nat.SheetProblem(space=space, initial_poles=poles, fixed_poles=fixed)
+        problem.pde = nat.PdeCoefficient(a=1.5)
+        parameters = nat.DynamicsParameters()
+        parameters.damping = nat.PdeCoefficient(a=5.0)
+        sheet = nat.DynamicSheet(problem, parameters)
+        started = time.perf_counter()
+        sheet.set_springs([nat.Spring(0.5, 0.5, np.array([50.0, 50.0, 30.0]), 200.0)])
+        factor = time.perf_counter() - started
+        sheet.step(10)
+        started = time.perf_counter()
+        sheet.step(steps)
+        step = (time.perf_counter() - started) / steps
+        started = time.perf_counter()
+        nat.solve_sheet(problem)
+        static = time.perf_counter() - started
+        print(f"| {n}x{n} | {n * n - len(fixed)} | {ms(factor)} | {step * 1e3:.3f} | {1.0 / step:.0f} | "
+              f"{ms(static)} | {static / step:.0f}x |")
+
+
 def main():
     quick = "--quick" in sys.argv
     if not BENCH.exists():
@@ -447,6 +488,7 @@ def main():
     import hole_bench  # here: it puts FreeCAD on the path, which sections 1, 3, 4 and 6 do not need
 
     hole_bench.main()
+    dynamics()
 
 
 def platform_line():

@@ -28,7 +28,7 @@ import varsurf  # noqa: E402
 V = FreeCAD.Vector
 
 
-def curve(doc, name, points, color=None):
+def curve(doc, name, points):
     """A Part feature with one B-spline edge through the points at evenly spaced parameters (the
     surface pairs its curves' points by parameter)."""
     spline = Part.BSplineCurve()

@@ -8,6 +8,7 @@
 #include "varsurf/core/pde_coefficient.hpp"
 #include "varsurf/core/pde_energy.hpp"
 #include "varsurf/core/pde_surface.hpp"
+#include "varsurf/core/sheet_dynamics.hpp"
 
 namespace py = pybind11;
 using namespace pybind11::literals;
@@ -113,6 +114,41 @@ void bind_pde(py::module_& m) {
       "boundary"_a, "options"_a = PdeSurfaceOptions(),
       "(SheetProblem, fit error): the sheet whose solve is the PDE surface, and the largest "
       "distance between a held boundary row and its curve.");
+
+  py::class_<DynamicsParameters>(
+      m, "DynamicsParameters",
+      "Mass and damping densities (PdeCoefficient as a scalar field: a is "
+      "the value), stiffness of the energy, time step (s).")
+      .def(py::init<>())
+      .def_readwrite("mass", &DynamicsParameters::mass)
+      .def_readwrite("damping", &DynamicsParameters::damping)
+      .def_readwrite("stiffness", &DynamicsParameters::stiffness)
+      .def_readwrite("time_step", &DynamicsParameters::time_step);
+
+  py::class_<Spring>(m, "Spring", "The sheet pulled at (u, v) toward target.")
+      .def(py::init([](double u, double v, Eigen::Vector3d target, double stiffness) {
+             return Spring{u, v, target, stiffness};
+           }),
+           "u"_a, "v"_a, "target"_a, "stiffness"_a = 1.0)
+      .def_readwrite("u", &Spring::u)
+      .def_readwrite("v", &Spring::v)
+      .def_readwrite("target", &Spring::target)
+      .def_readwrite("stiffness", &Spring::stiffness);
+
+  py::class_<DynamicSheet>(m, "DynamicSheet",
+                           "A sheet with mass and damping (Du & Qin eq. 16), held by its fixed "
+                           "poles, stepped by backward Euler.")
+      .def(py::init<const SheetProblem&, const DynamicsParameters&>(), "problem"_a, "parameters"_a)
+      .def("set_springs", &DynamicSheet::set_springs, "springs"_a)
+      .def("move_targets", &DynamicSheet::move_targets, "targets"_a)
+      .def("step", &DynamicSheet::step, "count"_a = 1, py::call_guard<py::gil_scoped_release>())
+      .def_property_readonly("poles", &DynamicSheet::poles)
+      .def_property_readonly("velocities", &DynamicSheet::velocities)
+      .def_property_readonly("time", &DynamicSheet::time)
+      .def("kinetic_energy", &DynamicSheet::kinetic_energy)
+      .def("potential_energy", &DynamicSheet::potential_energy)
+      .def("equilibrium", &DynamicSheet::equilibrium,
+           "Where the motion settles (A P = b with the springs).");
 }
 
 }  // namespace varsurf::binding

@@ -276,6 +276,30 @@ def hostile_pde_options():
     return out
 
 
+def hostile_dynamics():
+    out = []
+    for c in hostile_pde():
+        d = nat.DynamicsParameters()
+        d.mass = c
+        out.append(d)
+        d = nat.DynamicsParameters()
+        d.damping = c
+        out.append(d)
+    for x in hostile_floats():
+        for field in ("stiffness", "time_step"):
+            d = nat.DynamicsParameters()
+            setattr(d, field, x)
+            out.append(d)
+    return out
+
+
+def held_problem():
+    """problem() held by its boundary poles, without constraints: a sheet dynamics accepts."""
+    p = nat.SheetProblem(space=space(), initial_poles=plane_poles(space()))
+    p.fixed_poles = list(nat.boundary_pole_indices(space()))
+    return p
+
+
 def hostile_problems():
     out = []
 
@@ -473,6 +497,10 @@ CLASS_VALUES = {
     "ThinPlateWeights": (lambda: nat.ThinPlateWeights.isotropic(0.0, 1.0), hostile_weights),
     "PdeCoefficient": (lambda: nat.PdeCoefficient(a=2.0), hostile_pde),
     "PdeBoundary": (pde_boundary, hostile_pde_boundaries),
+    "DynamicsParameters": (nat.DynamicsParameters, hostile_dynamics),
+    "List[Spring]": (lambda: [nat.Spring(0.5, 0.5, np.array([1.0, 2.0, 3.0]), 1.0)],
+                     lambda: [[]] + [[nat.Spring(x, 0.5, np.array([1.0, 2.0, 3.0]), 1.0)] for x in hostile_floats()]
+                     + [[nat.Spring(0.5, 0.5, np.array([x, 2.0, 3.0]), x)] for x in hostile_floats()]),
     "PdeSurfaceOptions": (nat.PdeSurfaceOptions, hostile_pde_options),
     "List[IsoCurve]": (lambda: [nat.IsoCurve(0.5, curve([5, 0, 0], [5, 10, 0]))],
                        lambda: [[]] + [[nat.IsoCurve(0.5, c)] for c in hostile_curves()]),
@@ -716,6 +744,8 @@ def instances(cls_name):
             except Exception:
                 pass
         return out
+    if cls_name == "DynamicSheet":
+        return [nat.DynamicSheet(held_problem(), nat.DynamicsParameters())]
     if cls_name == "BaseTrim":
         return [nat.BaseTrim(FACE_BREP)]
     return []

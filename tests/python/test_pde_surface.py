@@ -8,6 +8,7 @@ import Part
 import pytest
 
 import varsurf
+from pde_surfaces import curve as add_curve  # the example's curves: B-splines run by parameter
 from scenes import Sel, V, reopened
 from step_check import assert_reads_back
 
@@ -22,17 +23,6 @@ def harmonic(u, v, a=A):
 
 def harmonic_du(u, v, a=A):
     return V(60.0, 0.0, 8.0 * (3 * u * u - 3 * v * v / a ** 2) + 12.0 * u + 5.0 * v)
-
-
-def add_curve(doc, name, points):
-    """A Part feature holding one B-spline edge interpolating the points at evenly spaced
-    parameters (so the curve runs like the surface's parameter: the PDE surface pairs the points
-    of its curves by their parameters, as Du & Qin's boundary conditions do)."""
-    curve = Part.BSplineCurve()
-    curve.interpolate(points, Parameters=[k / (len(points) - 1) for k in range(len(points))])
-    obj = doc.addObject("Part::Feature", name)
-    obj.Shape = curve.toShape()
-    return obj
 
 
 def _iso_u(u, n=9):
