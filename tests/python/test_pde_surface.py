@@ -3,6 +3,8 @@
 curves), Coons loops of sketch lines and arcs, Gordon networks; closed-form solutions reproduced,
 rigid motion, reversed curves, STEP round trip, saving, undo, the command and bad input."""
 
+import math
+
 import FreeCAD
 import Part
 import pytest
@@ -217,3 +219,57 @@ def test_bad_selection_creates_nothing(doc):
     assert varsurf.run_pde_surface_command([Sel(u0, "Edge1")], on_error=messages.append) is None
     assert "1 edges selected" in str(messages[0])
     assert [o for o in doc.Objects if varsurf.is_pde_surface(o)] == []
+
+
+def _edge_at(obj, x, z):
+    """The name of obj's edge that runs along y at (x, z)."""
+    for k, e in enumerate(obj.Shape.Edges):
+        a, b = e.Vertexes[0].Point, e.Vertexes[-1].Point
+        if abs(a.x - x) < 1e-9 and abs(b.x - x) < 1e-9 and abs(a.z - z) < 1e-9 and abs(b.z - z) < 1e-9:
+            return f"Edge{k + 1}"
+    raise AssertionError("no such edge")
+
+
+def _face_at_z(obj, z):
+    for k, f in enumerate(obj.Shape.Faces):
+        if abs(f.BoundBox.ZMin - z) < 1e-9 and abs(f.BoundBox.ZMax - z) < 1e-9:
+            return f"Face{k + 1}"
+    raise AssertionError("no such face")
+
+
+def test_g1_blend_between_the_tops_of_two_boxes(doc, tmp_path, native):
+    """Du & Qin's Hermite data taken from the faces a blend joins: the surface leaves one box's top
+    and reaches the other's tangent to them, its normals along both edges the faces' own."""
+    low = doc.addObject("Part::Box", "Low")
+    low.Length, low.Width, low.Height = 50, 100, 10
+    high = doc.addObject("Part::Box", "High")
+    high.Length, high.Width, high.Height = 50, 100, 30
+    high.Placement = FreeCAD.Placement(V(90, 0, 0), FreeCAD.Rotation())
+    doc.recompute()
+    u0, u1 = (low, _edge_at(low, 50, 10)), (high, _edge_at(high, 90, 30))
+    blend = varsurf.make_pde_surface(u0, u1, face0=(low, _face_at_z(low, 10)), face1=(high, _face_at_z(high, 30)),
+                                     a=1.0, tolerance=1e-3)
+    doc.recompute()
+    assert blend.isValid(), blend.getStatusString()
+    assert blend.Kind == "Hermite"
+    face = blend.Shape.Faces[0]
+    worst = 0.0
+    for edge in (Part.getShape(*u0, needSubElement=True), Part.getShape(*u1, needSubElement=True)):
+        for k in range(21):
+            p = edge.valueAt(edge.FirstParameter + k / 20 * (edge.LastParameter - edge.FirstParameter))
+            uv = face.Surface.parameter(p)
+            assert (face.Surface.value(*uv) - p).Length < 1e-3
+            n = face.normalAt(*uv)
+            worst = max(worst, math.degrees(math.acos(min(1.0, abs(n.z)))))
+    assert worst < 0.05, f"{worst:.3g} degrees off the boxes' tops"
+    # The blend rises between the boxes, without flaring out of the gap.
+    box = blend.Shape.BoundBox
+    assert box.XMin > 50 - 1e-6 and box.XMax < 90 + 1e-6 and box.ZMin > 10 - 0.5 and box.ZMax < 30 + 0.5
+    # Joined with the boxes into one shell: the STEP round trip passes OpenCASCADE's check.
+    path = tmp_path / "blend.step"
+    varsurf.export_step([blend], str(path))
+    assert_reads_back(blend.Shape, path, native)
+    # A face that the boundary curve does not bound is refused by name.
+    blend.Face0 = (high, _face_at_z(high, 30))
+    doc.recompute()
+    assert "does not bound the face" in blend.getStatusString()

@@ -13,6 +13,8 @@ coefficient ``PdeA`` painted on ``PdeRegions``. App side only.
 
 from __future__ import annotations
 
+import dataclasses
+
 import Part
 
 from varsurf.app.feature import FeatureProxy, mark_failed, value
@@ -32,6 +34,8 @@ _PROPERTIES = [
     ("Derivative1", "App::PropertyLinkSub", "Boundary", "Hermite: a curve beside U1; the tangent across U1 is (this curve - U1) x Magnitude1. Empty: none", False),
     ("Magnitude0", "App::PropertyFloat", "Boundary", "Hermite: scales the tangent Derivative0 gives (1: the distance to the curve itself)", False),
     ("Magnitude1", "App::PropertyFloat", "Boundary", "Hermite: scales the tangent Derivative1 gives", False),
+    ("Face0", "App::PropertyLinkSub", "Boundary", "Hermite from a face: the face U0 bounds; the surface leaves U0 tangent to it (G1), the tangent Magnitude0 x the distance to U1 long. Instead of Derivative0", False),
+    ("Face1", "App::PropertyLinkSub", "Boundary", "Hermite from a face: the face U1 bounds; the surface meets it tangent (G1), the tangent Magnitude1 x the distance to U0 long. Instead of Derivative1", False),
     ("V0", "App::PropertyLinkSub", "Boundary", "Coons: the side at v = 0, from U0's start to U1's. Empty: a free side", False),
     ("V1", "App::PropertyLinkSub", "Boundary", "Coons: the side at v = 1, from U0's end to U1's. Empty: a free side", False),
     ("UCurves", "App::PropertyLinkSubList", "Network", "Gordon: curves the surface contains at u = UCurveParameters (one each), running like U0", False),
@@ -88,6 +92,59 @@ def _native_curve(nat, name, edge):
         raise errors.SheetError(f"{name} cannot be used as a curve: {error}; pick another edge") from error
 
 
+#: Points along a boundary curve at which a neighbour face gives the tangent across it.
+FACE_SAMPLES = 65
+
+
+def _face(link, sub, prop):
+    subs = [s for s in ([sub] if isinstance(sub, str) else list(sub)) if s]
+    if len(subs) != 1 or not subs[0].startswith("Face"):
+        raise errors.SheetError(f"{prop} must reference exactly one face of {link.Label}: pick one face (FaceN)")
+    face = Part.getShape(link, subs[0], needSubElement=True)
+    if face.isNull() or face.ShapeType != "Face":
+        raise errors.SheetError(f"{link.Label}:{subs[0]} does not exist (anymore): select the face again")
+    return f"{link.Label}:{subs[0]}", face
+
+
+def derivative_from_face(edge, other, face, name, magnitude, into):
+    """A derivative curve for the boundary `edge` that continues `face` across it (Du & Qin's
+    Hermite data taken from an adjacent face): at each of FACE_SAMPLES points of the edge, the
+    direction in the face's tangent plane across the edge, as long as magnitude times the distance
+    to the `other` boundary at the same parameter. P_u points along increasing u: away from the
+    face at u = 0, into it at u = 1 (`into`)."""
+    size = max(edge.BoundBox.DiagonalLength, other.BoundBox.DiagonalLength, 1e-9)
+    ends = [other.valueAt(other.FirstParameter), other.valueAt(other.LastParameter)]
+    start, end = edge.valueAt(edge.FirstParameter), edge.valueAt(edge.LastParameter)
+    turned = (start - ends[1]).Length + (end - ends[0]).Length < (start - ends[0]).Length + (end - ends[1]).Length
+    points, params = [], []
+    for k in range(FACE_SAMPLES):
+        s = k / (FACE_SAMPLES - 1)
+        t = edge.FirstParameter + s * (edge.LastParameter - edge.FirstParameter)
+        p = edge.valueAt(t)
+        so = 1.0 - s if turned else s  # the other boundary drawn the other way: paired by its ends
+        q = other.valueAt(other.FirstParameter + so * (other.LastParameter - other.FirstParameter))
+        foot = face.Surface.parameter(p)
+        gap = (face.Surface.value(*foot) - p).Length
+        if gap > 1e-3 * size:
+            raise errors.SheetError(f"{name} does not bound the face: it passes {gap:.3g} mm from it; pick the face "
+                                    "the boundary curve lies on")
+        normal = face.normalAt(*foot)
+        across = normal.cross(edge.tangentAt(t))
+        if across.Length < 1e-12:
+            raise errors.SheetError(f"{name} runs along the face's normal at {s:.2f} of its length: pick the face "
+                                    "it bounds")
+        across.normalize()
+        step = 1e-4 * size
+        # Away from the face: a short step that way leaves it, the other way stays on it.
+        if face.isInside(p + across * step, 1e-7 * size, True) != into:
+            across = across * -1.0
+        points.append(p + across * (magnitude * (q - p).Length))
+        params.append(s)
+    curve = Part.BSplineCurve()
+    curve.interpolate(points, Parameters=params)
+    return curve.toShape()
+
+
 def _network(nat, obj, links_prop, params_prop):
     links = [(link, sub) for link, subs in getattr(obj, links_prop) for sub in subs if sub]
     params = list(getattr(obj, params_prop))
@@ -132,6 +189,19 @@ def compute(obj) -> pde.PdeSurfaceOutcome:
     for prop, role in (("U0", "u0"), ("U1", "u1")):
         if role not in curves:
             raise errors.SheetError(f"{prop} is empty: link the boundary curve at {role.replace('u', 'u = ')} (an edge)")
+    edges = {role: _edge(*getattr(obj, prop), prop)[1] for prop, role in (("U0", "u0"), ("U1", "u1"))}
+    for k, (mine, other) in enumerate((("u0", "u1"), ("u1", "u0"))):
+        link = getattr(obj, f"Face{k}", None)
+        if link is None:
+            continue
+        if f"d{k}" in curves:
+            raise errors.SheetError(f"Derivative{k} and Face{k} both give the tangent across U{k}: clear one of them")
+        name, face = _face(link[0], link[1], f"Face{k}")
+        magnitude = float(getattr(obj, f"Magnitude{k}"))
+        edge = derivative_from_face(edges[mine], edges[other], face, labels[mine], magnitude, into=k == 1)
+        curves[f"d{k}"] = _native_curve(nat, name, edge)
+        labels[f"d{k}"] = f"the tangents of {name}"
+        values = dataclasses.replace(values, **{f"magnitude{k}": 1.0})  # the curve carries it
     u_names, u_curves = _network(nat, obj, "UCurves", "UCurveParameters")
     v_names, v_curves = _network(nat, obj, "VCurves", "VCurveParameters")
     return pde.solve(values, curves, pde.labels_for(labels, u_names, v_names), u_curves, v_curves)
@@ -188,9 +258,10 @@ def is_pde_surface(obj) -> bool:
 
 
 def make_pde_surface(u0, u1, derivative0=None, derivative1=None, v0=None, v1=None, u_curves=(), v_curves=(),
-                     a: float = 1.0, regions=(), blend: float = 0.0, magnitude0: float = 1.0,
+                     face0=None, face1=None, a: float = 1.0, regions=(), blend: float = 0.0, magnitude0: float = 1.0,
                      magnitude1: float = 1.0, tolerance=None, doc=None, name: str = "PdeSurface"):
-    """Add a PdeSurface (computed at the next recompute). Curves are (object, "EdgeN");
+    """Add a PdeSurface (computed at the next recompute). Curves are (object, "EdgeN"); face0 and
+    face1 (object, "FaceN") give the tangents across U0 and U1 from the faces they bound (G1);
     u_curves and v_curves are ((object, "EdgeN"), parameter) pairs (Gordon networks); regions are
     (a, u0, u1, v0, v1) rectangles (0..1) painting the coefficient."""
     if doc is None:
@@ -198,7 +269,7 @@ def make_pde_surface(u0, u1, derivative0=None, derivative1=None, v0=None, v1=Non
     obj = doc.addObject("Part::FeaturePython", name)
     PdeSurfaceFeature(obj)
     for prop, link in (("U0", u0), ("U1", u1), ("Derivative0", derivative0), ("Derivative1", derivative1),
-                       ("V0", v0), ("V1", v1)):
+                       ("V0", v0), ("V1", v1), ("Face0", face0), ("Face1", face1)):
         if link is not None:
             setattr(obj, prop, (link[0], link[1]))
     obj.UCurves = [(link[0], link[1]) for link, _ in u_curves]
