@@ -9,6 +9,7 @@
 - fig8: Coons-like conditions (four boundary curves, 8A, 8B) and a Gordon-like network (curves at
   u = 0, 0.5, 1 and v = 0, 0.5, 1, 8C, 8D).
 - fig11: the coefficient a: 3 everywhere, 5 painted on a region, 5 everywhere.
+- blend: Bloor & Wilson's blend, closed along v, from a cylinder (G1 to its side) to a flange.
 
 Each figure writes figN.FCStd, figN.step and figN.png (the FreeCAD GUI under Xvfb, when present)
 into OUT_DIR and prints what each surface measured.
@@ -103,7 +104,29 @@ def fig11(doc):
     return out
 
 
-FIGURES = {"fig7": fig7, "fig8": fig8, "fig11": fig11}
+def blend(doc):
+    """Bloor & Wilson's blend, closed along v: from a cylinder's top, tangent to its side, to a wider
+    circle the surface reaches horizontally, with a = 0.5."""
+    cylinder = doc.addObject("Part::Cylinder", "Cylinder")
+    cylinder.Radius, cylinder.Height = 10.0, 20.0
+    rim = doc.addObject("Part::Circle", "Rim")
+    rim.Radius = 25.0
+    rim.Placement = FreeCAD.Placement(V(0, 0, 35), FreeCAD.Rotation())
+    flange = doc.addObject("Part::Circle", "Derivative1")
+    flange.Radius = 40.0
+    flange.Placement = rim.Placement
+    doc.recompute()
+    top = next(f"Edge{k + 1}" for k, e in enumerate(cylinder.Shape.Edges)
+               if e.Curve.TypeId == "Part::GeomCircle" and abs(e.Vertexes[0].Point.z - 20.0) < 1e-9)
+    side = next(f"Face{k + 1}" for k, f in enumerate(cylinder.Shape.Faces)
+                if f.Surface.TypeId == "Part::GeomCylinder")
+    surface = varsurf.make_pde_surface((cylinder, top), (rim, "Edge1"), face0=(cylinder, side),
+                                       derivative1=(flange, "Edge1"), a=0.5, tolerance=1e-3, name="Blend")
+    doc.recompute()
+    return [surface]
+
+
+FIGURES = {"fig7": fig7, "fig8": fig8, "fig11": fig11, "blend": blend}
 
 
 def main(out_dir="out/pde"):

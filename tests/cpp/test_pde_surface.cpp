@@ -4,6 +4,7 @@
 // refused by name.
 #include <gtest/gtest.h>
 
+#include <Eigen/LU>
 #include <cmath>
 #include <functional>
 #include <string>
@@ -12,6 +13,7 @@
 #include "varsurf/core/errors.hpp"
 #include "varsurf/core/knot_vector.hpp"
 #include "varsurf/core/pde_surface.hpp"
+#include "varsurf/core/seam_ties.hpp"
 #include "varsurf/core/sheet_solver.hpp"
 
 using namespace varsurf;
@@ -65,6 +67,13 @@ PdeBoundary hermite_data() {
   return b;
 }
 
+// The problem with the operator's own square of energy: the harmonic solution meets every natural
+// condition of it, on the free sides too (the plate form, the default there, asks P_vv = 0).
+SheetProblem operator_form(SheetProblem pb) {
+  pb.pde->plate_form = false;
+  return pb;
+}
+
 std::string message_of(const PdeBoundary& b, const PdeSurfaceOptions& o = {}) {
   try {
     pde_surface_problem(b, o);
@@ -82,14 +91,14 @@ TEST(PdeSurface, HermiteConditionsGiveTheClosedFormSolution) {
     o.spans_u = spans;
     o.spans_v = spans + 1;
     double fit = -1.0;
-    const SheetProblem pb = pde_surface_problem(hermite_data(), o, &fit);
+    const SheetProblem pb = operator_form(pde_surface_problem(hermite_data(), o, &fit));
     EXPECT_LT(fit, 1e-12);
     const SolveResult r = solve_sheet(pb);
     EXPECT_LT(worst(pb, r.poles), 1e-8) << spans << " spans";
     // Tangents half as long across the boundaries: another surface (the derivative curves act).
     PdeBoundary shorter = hermite_data();
     shorter.magnitude0 = shorter.magnitude1 = 1.0;
-    const SheetProblem other = pde_surface_problem(shorter, o);
+    const SheetProblem other = operator_form(pde_surface_problem(shorter, o));
     EXPECT_GT(worst(other, solve_sheet(other).poles), 1e-2);
   }
 }
@@ -108,7 +117,6 @@ TEST(PdeSurface, FreeSidesOfThePlateFormGiveTheClosedFormSolution) {
   };
   PdeBoundary b;
   b.a.a = 2.2;
-  b.a.plate_form = true;
   b.u0 = cubic([&](double v) { return p(0.0, v); });
   b.u1 = cubic([&](double v) { return p(1.0, v); });
   b.d0 = cubic([&](double v) { return Eigen::Vector3d(p(0.0, v) + pu(0.0, v)); });
@@ -125,9 +133,11 @@ TEST(PdeSurface, FreeSidesOfThePlateFormGiveTheClosedFormSolution) {
                                 .norm());
     return out;
   };
-  EXPECT_LT(worst_p(pde_surface_problem(b, o)), 1e-8);
-  b.a.plate_form = false;
-  EXPECT_GT(worst_p(pde_surface_problem(b, o)), 1e-2);
+  SheetProblem pb = pde_surface_problem(b, o);
+  ASSERT_TRUE(pb.pde->plate_form);  // the v sides are free
+  EXPECT_LT(worst_p(pb), 1e-8);
+  pb.pde->plate_form = false;
+  EXPECT_GT(worst_p(pb), 1e-2);
 }
 
 TEST(PdeSurface, ReversedCurvesAreOrientedByTheirEnds) {
@@ -136,7 +146,7 @@ TEST(PdeSurface, ReversedCurvesAreOrientedByTheirEnds) {
   b.d0 = reversed(b.d0);
   PdeSurfaceOptions o;
   o.spans_u = o.spans_v = 6;
-  const SheetProblem pb = pde_surface_problem(b, o);
+  const SheetProblem pb = operator_form(pde_surface_problem(b, o));
   EXPECT_LT(worst(pb, solve_sheet(pb).poles), 1e-8);
 }
 
@@ -185,4 +195,78 @@ TEST(PdeSurface, BadCurvesAreRefusedByName) {
   b.a.a = -1.0;
   PdeSurfaceOptions o;
   EXPECT_THROW(solve_sheet(pde_surface_problem(b, o)), InvalidInput);
+}
+
+namespace {
+
+// A circle of radius r at height z about the z axis, parametrized by angle / 2 pi (a closed cubic
+// spline through 256 points of it, within 1e-8 of it for the radii used).
+BSplineCurve circle(double r, double z, double turn = 0.0, bool backwards = false) {
+  std::vector<double> t;
+  Eigen::MatrixXd pts(257, 3);
+  for (int k = 0; k <= 256; ++k) {
+    t.push_back(k / 256.0);
+    const double a = 2.0 * M_PI * (turn + (backwards ? -1.0 : 1.0) * k / 256.0);
+    pts.row(k) << r * std::cos(a), r * std::sin(a), z;
+  }
+  return fit_clamped_curve(t, pts, 3, uniform_clamped_knots(3, 128));
+}
+
+}  // namespace
+
+// Bloor & Wilson's classic closed-form solution: P = (f(u) cos 2 pi v, f(u) sin 2 pi v, H u)
+// solves (d_uu + a^2 d_vv)^2 P = 0 when f = (A + B u) e^(k u) + (C + D u) e^(-k u), k = 2 pi a.
+// Hermite data on two circles give it back on a surface closed along v, whatever the circles'
+// seams and directions.
+TEST(PdeSurface, ClosedAlongVGivesBloorWilsonsSolution) {
+  const double a = 0.3, k = 2.0 * M_PI * a, height = 25.0;
+  const double r0 = 20.0, s0 = -10.0, r1 = 12.0, s1 = 6.0;  // f and f' at u = 0 and 1
+  // f = (A + B u) e^(k u) + (C + D u) e^(-k u): four conditions.
+  Eigen::Matrix4d m;
+  const double e = std::exp(k), ie = std::exp(-k);
+  m << 1, 0, 1, 0,   //
+      k, 1, -k, 1,   //
+      e, e, ie, ie,  //
+      k * e, e + k * e, -k * ie, ie - k * ie;
+  const Eigen::Vector4d c = m.fullPivLu().solve(Eigen::Vector4d(r0, s0, r1, s1));
+  auto f = [&](double u) {
+    return (c(0) + c(1) * u) * std::exp(k * u) + (c(2) + c(3) * u) * std::exp(-k * u);
+  };
+  PdeBoundary b;
+  b.a.a = a;
+  b.u0 = circle(r0, 0.0);
+  b.u1 = circle(r1, height, 0.3, true);  // its seam elsewhere, drawn the other way
+  b.d0 = circle(r0 + s0, height, 0.1);   // P_u(0, v) = (s0 cos, s0 sin, height)
+  b.d1 = circle(r1 + s1, 2.0 * height, 0.7);
+  PdeSurfaceOptions o;
+  o.spans_u = 12;
+  o.spans_v = 32;
+  double fit = 0.0;
+  const SheetProblem pb = pde_surface_problem(b, o, &fit);
+  EXPECT_TRUE(pb.closed_v);
+  EXPECT_LT(fit, 1e-4);  // a circle by 32 cubic spans: 4e-5 of 20 mm
+  const Eigen::MatrixX3d poles = solve_sheet(pb).poles;
+  const BSplineSurface surface{pb.space, poles};
+  double worst_radius = 0.0, worst_height = 0.0;
+  for (int i = 0; i <= 24; ++i)
+    for (int j = 0; j <= 24; ++j) {
+      const double u = i / 24.0, v = j / 24.0;
+      const Eigen::Vector3d p = surface.evaluate(u, v);
+      worst_radius = std::max(worst_radius, std::abs(std::hypot(p.x(), p.y()) - f(u)));
+      worst_height = std::max(worst_height, std::abs(p.z() - height * u));
+    }
+  EXPECT_LT(worst_radius, 1e-3 * r0);
+  EXPECT_LT(worst_height, 1e-3 * height);
+  // The seam is as smooth as a knot line.
+  EXPECT_LT(seam_mismatch(pb.space, poles, 1), 1e-6 * r0);
+}
+
+TEST(PdeSurface, ClosedAndOpenBoundariesAreRefused) {
+  PdeBoundary b;
+  b.u0 = circle(10.0, 0.0);
+  b.u1 = cubic([](double v) { return Eigen::Vector3d(10.0, 20.0 * v, 5.0); });
+  EXPECT_NE(message_of(b).find("u0 is closed but u1 is open"), std::string::npos) << message_of(b);
+  b.u1 = circle(8.0, 5.0);
+  b.d0 = cubic([](double v) { return Eigen::Vector3d(12.0, 20.0 * v, 1.0); });
+  EXPECT_NE(message_of(b).find("d0 is open"), std::string::npos) << message_of(b);
 }

@@ -273,3 +273,41 @@ def test_g1_blend_between_the_tops_of_two_boxes(doc, tmp_path, native):
     blend.Face0 = (high, _face_at_z(high, 30))
     doc.recompute()
     assert "does not bound the face" in blend.getStatusString()
+
+
+def test_closed_blend_from_a_cylinder_to_a_flange(doc, tmp_path, native):
+    """Bloor & Wilson's blend, closed along v: from a Part Cylinder's top circle, leaving its side
+    tangent to it, to a wider circle above that the surface reaches horizontally (a flange)."""
+    cylinder = doc.addObject("Part::Cylinder", "Cylinder")
+    cylinder.Radius, cylinder.Height = 10.0, 20.0
+    rim = doc.addObject("Part::Circle", "Rim")
+    rim.Radius = 25.0
+    rim.Placement = FreeCAD.Placement(V(0, 0, 35), FreeCAD.Rotation())
+    flange = doc.addObject("Part::Circle", "Flange")
+    flange.Radius = 40.0
+    flange.Placement = FreeCAD.Placement(V(0, 0, 35), FreeCAD.Rotation())
+    doc.recompute()
+    top = next(f"Edge{k + 1}" for k, e in enumerate(cylinder.Shape.Edges)
+               if e.Curve.TypeId == "Part::GeomCircle" and abs(e.Vertexes[0].Point.z - 20.0) < 1e-9)
+    side = next(f"Face{k + 1}" for k, f in enumerate(cylinder.Shape.Faces) if f.Surface.TypeId == "Part::GeomCylinder")
+    blend = varsurf.make_pde_surface((cylinder, top), (rim, "Edge1"), face0=(cylinder, side),
+                                     derivative1=(flange, "Edge1"), a=0.5, tolerance=1e-3)
+    doc.recompute()
+    assert blend.isValid(), blend.getStatusString()
+    assert blend.Status.startswith("OK"), blend.Status
+    face = blend.Shape.Faces[0]
+    # Closed along v: the circle, the rim and one seam edge (used twice); the face is valid.
+    assert face.isValid() and len(face.Edges) == 3
+    # G1 to the cylinder's side all around its top circle.
+    worst = 0.0
+    for k in range(36):
+        angle = 2 * math.pi * k / 36
+        p = V(10 * math.cos(angle), 10 * math.sin(angle), 20)
+        uv = face.Surface.parameter(p)
+        assert (face.Surface.value(*uv) - p).Length < 1e-3
+        n = face.normalAt(*uv)
+        worst = max(worst, math.degrees(math.asin(min(1.0, abs(n.z)))))  # the side's normal is horizontal
+    assert worst < 0.1, f"{worst:.3g} degrees off the cylinder's side"
+    path = tmp_path / "flange.step"
+    varsurf.export_step([blend], str(path))
+    assert_reads_back(blend.Shape, path, native)

@@ -1,15 +1,18 @@
 // SPDX-License-Identifier: LGPL-2.1-or-later
 #include "varsurf/core/pde_surface.hpp"
 
+#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <sstream>
 #include <string>
 
 #include "varsurf/core/curve_fit.hpp"
 #include "varsurf/core/errors.hpp"
 #include "varsurf/core/knot_vector.hpp"
+#include "varsurf/core/seam_ties.hpp"
 
 namespace varsurf {
 
@@ -146,11 +149,166 @@ BSplineCurve fit_row(const Value& value, int degree, const std::vector<double>& 
   return fit;
 }
 
+// How a closed curve's normalized parameter runs against the surface's v: t = frac(shift + dir s).
+struct Alignment {
+  double shift = 0.0, dir = 1.0;
+  double operator()(double s) const {
+    const double t = shift + dir * s;
+    return t - std::floor(t);
+  }
+};
+
+// The alignment of closed curve c whose points best match ref(s) (after removing both centroids
+// when `centred`: two boundary circles of different radii and heights pair by direction).
+template <class Ref>
+Alignment align(const BSplineCurve& c, const Ref& ref, bool centred) {
+  constexpr int kCandidates = 256, kSamples = 64;
+  std::vector<Vec3> ring(kCandidates), target(kSamples);
+  Vec3 cc = Vec3::Zero(), rc = Vec3::Zero();
+  for (int j = 0; j < kCandidates; ++j)
+    cc += (ring[static_cast<size_t>(j)] = at(c, static_cast<double>(j) / kCandidates));
+  for (int k = 0; k < kSamples; ++k)
+    rc += (target[static_cast<size_t>(k)] = ref(static_cast<double>(k) / kSamples));
+  cc /= kCandidates;
+  rc /= kSamples;
+  if (!centred) cc.setZero(), rc.setZero();
+  auto cost = [&](const Alignment& al) {
+    double sum = 0.0;
+    for (int k = 0; k < kSamples; ++k)
+      sum += ((at(c, al(static_cast<double>(k) / kSamples)) - cc) -
+              (target[static_cast<size_t>(k)] - rc))
+                 .squaredNorm();
+    return sum;
+  };
+  Alignment best;
+  double lowest = std::numeric_limits<double>::infinity();
+  const int step = kCandidates / kSamples;
+  for (double dir : {1.0, -1.0})
+    for (int j = 0; j < kCandidates; ++j) {
+      double sum = 0.0;
+      for (int k = 0; k < kSamples; ++k) {
+        const int idx =
+            ((j + static_cast<int>(dir) * k * step) % kCandidates + kCandidates) % kCandidates;
+        sum += ((ring[static_cast<size_t>(idx)] - cc) - (target[static_cast<size_t>(k)] - rc))
+                   .squaredNorm();
+      }
+      if (sum < lowest) lowest = sum, best = {static_cast<double>(j) / kCandidates, dir};
+    }
+  // Refined between the neighbouring candidates by golden sections.
+  double lo = best.shift - 1.0 / kCandidates, hi = best.shift + 1.0 / kCandidates;
+  const double g = 0.5 * (std::sqrt(5.0) - 1.0);
+  for (int it = 0; it < 40; ++it) {
+    const double a = hi - g * (hi - lo), b = lo + g * (hi - lo);
+    if (cost({a, best.dir}) < cost({b, best.dir}))
+      hi = b;
+    else
+      lo = a;
+  }
+  best.shift = 0.5 * (lo + hi);
+  return best;
+}
+
+// fit_row for a closed curve: the row closed on itself with its derivatives up to degree - 1
+// equal across the seam (closure_rows), so a closed sheet's seam is as smooth as its knot lines.
+template <class Value>
+BSplineCurve fit_closed_row(const Value& value, int degree, const std::vector<double>& knots,
+                            double* error) {
+  const int n = static_cast<int>(knots.size()) - degree - 1;
+  const int spans = n - degree;
+  const int count = spans * (2 * degree + 2) + 1;
+  Eigen::MatrixXd a = Eigen::MatrixXd::Zero(count, n), y(count, 3);
+  Eigen::MatrixXd d(1, degree + 1);
+  for (int k = 0; k < count; ++k) {
+    const double s = static_cast<double>(k) / (count - 1);
+    const int span = find_span(knots, degree, s);
+    basis_derivatives(knots, degree, span, s, 0, d);
+    for (int i = 0; i <= degree; ++i) a(k, span - degree + i) = d(0, i);
+    y.row(k) = value(s).transpose();
+  }
+  const std::vector<std::map<int, double>> rows = closure_rows(knots, degree, degree - 1);
+  const int m = static_cast<int>(rows.size());
+  Eigen::MatrixXd kkt = Eigen::MatrixXd::Zero(n + m, n + m), rhs = Eigen::MatrixXd::Zero(n + m, 3);
+  kkt.topLeftCorner(n, n) = a.transpose() * a;
+  rhs.topRows(n) = a.transpose() * y;
+  for (int r = 0; r < m; ++r)
+    for (const auto& [col, x] : rows[static_cast<size_t>(r)]) kkt(n + r, col) = kkt(col, n + r) = x;
+  BSplineCurve fit;
+  fit.degree = degree;
+  fit.knots = knots;
+  fit.poles = kkt.fullPivLu().solve(rhs).topRows(n);
+  for (int k = 0; k <= 4 * count; ++k) {
+    const double x = static_cast<double>(k) / (4 * count);
+    *error = std::max(*error, (fit.evaluate(x) - value(x)).norm());
+  }
+  return fit;
+}
+
 void check_iso(const std::vector<IsoCurve>& curves, const char* kind) {
   for (size_t k = 0; k < curves.size(); ++k)
     if (!(curves[k].at > 0.0 && curves[k].at < 1.0))
       throw InvalidInput(std::string(kind) + " " + std::to_string(k + 1) + " lies at " +
                          fmt(curves[k].at) + ": give a value strictly between 0 and 1");
+}
+
+// A surface closed along v: both boundary curves (and their derivative curves) closed, paired by
+// the alignment that best matches their shapes; the rows fitted closed and held, the seam tied.
+SheetProblem closed_problem(const PdeBoundary& b, const PdeSurfaceOptions& o, double* fit_error) {
+  if (b.v0.poles.size() != 0 || b.v1.poles.size() != 0)
+    throw InvalidInput("a surface closed along v has no sides: clear v0 and v1");
+  if (!b.u_curves.empty() || !b.v_curves.empty())
+    throw InvalidInput(
+        "network curves on a surface closed along v are not supported yet: remove "
+        "them, or open the boundary curves");
+  const int p = o.degree;
+  SheetProblem pb;
+  pb.space = SplineSpace::uniform(p, p, o.spans_u, o.spans_v);
+  pb.closed_v = true;
+  pb.pde = b.a;
+  pb.pde->plate_form = false;  // no free side: u = 0 and u = 1 are held, v closes
+  const SplineSpace& sp = pb.space;
+  const int nu = sp.nu(), nv = sp.nv();
+  const Alignment a1 = align(
+      b.u1, [&](double s) { return at(b.u0, s); }, true);
+  auto u0 = [&](double s) { return at(b.u0, s); };
+  auto u1 = [&](double s) { return at(b.u1, a1(s)); };
+  double error = 0.0;
+  const BSplineCurve row0 = fit_closed_row(u0, p, sp.knots_v, &error);
+  const BSplineCurve row1 = fit_closed_row(u1, p, sp.knots_v, &error);
+  const std::vector<double> gu = greville(sp.knots_u, p);
+  pb.initial_poles.resize(sp.size(), 3);
+  for (int i = 0; i < nu; ++i)
+    for (int j = 0; j < nv; ++j)
+      pb.initial_poles.row(sp.index(i, j)) =
+          (1.0 - gu[static_cast<size_t>(i)]) * row0.poles.row(j) +
+          gu[static_cast<size_t>(i)] * row1.poles.row(j);
+  std::vector<int> rows{0, nu - 1};
+  auto hold_row = [&](int i, const Eigen::MatrixXd& poles) {
+    for (int j = 0; j < nv; ++j) pb.initial_poles.row(sp.index(i, j)) = poles.row(j);
+  };
+  hold_row(0, row0.poles);
+  hold_row(nu - 1, row1.poles);
+  auto hermite = [&](const BSplineCurve& d, const char* name, const auto& c, double magnitude,
+                     const BSplineCurve& row, int i, double step) {
+    const double gap = (at(d, 0.0) - at(d, 1.0)).norm();
+    if (gap > std::max(o.tolerance, 1e-9 * length(d)))
+      throw InvalidInput(std::string(name) + " is open (its ends are " + fmt(gap) +
+                         " apart) beside a closed boundary curve: close it");
+    const Alignment ad = align(d, c, true);
+    const BSplineCurve dv = fit_closed_row(
+        [&](double s) -> Vec3 { return magnitude * (at(d, ad(s)) - c(s)); }, p, sp.knots_v, &error);
+    hold_row(i, row.poles + step * dv.poles);
+    rows.push_back(i);
+  };
+  if (b.d0.poles.size() != 0)
+    hermite(b.d0, "d0", u0, b.magnitude0, row0, 1, sp.knots_u[static_cast<size_t>(p + 1)] / p);
+  if (b.d1.poles.size() != 0)
+    hermite(b.d1, "d1", u1, b.magnitude1, row1, nu - 2,
+            -(1.0 - sp.knots_u[static_cast<size_t>(nu - 1)]) / p);
+  for (int i : rows)
+    for (int j = 0; j < nv; ++j) pb.fixed_poles.push_back(sp.index(i, j));
+  std::sort(pb.fixed_poles.begin(), pb.fixed_poles.end());
+  if (fit_error) *fit_error = error;
+  return pb;
 }
 
 }  // namespace
@@ -185,6 +343,16 @@ SheetProblem pde_surface_problem(const PdeBoundary& in, const PdeSurfaceOptions&
   b.u1 = oriented(normalized_3d(in.u1, "u1"), at(b.u0, 0.0), at(b.u0, 1.0));
   const double size = std::max(length(b.u0), length(b.u1));
   const double gap_tolerance = std::max(o.tolerance, 1e-9 * size);
+  const double open0 = (at(b.u0, 0.0) - at(b.u0, 1.0)).norm();
+  const double open1 = (at(b.u1, 0.0) - at(b.u1, 1.0)).norm();
+  if ((open0 <= gap_tolerance) != (open1 <= gap_tolerance))
+    throw InvalidInput(std::string(open0 <= gap_tolerance
+                                       ? "u0 is closed but u1 is open (its ends are "
+                                       : "u1 is closed but u0 is open (its ends are ") +
+                       fmt(std::max(open0, open1)) +
+                       " apart): a surface closed along v needs both boundary curves closed; close "
+                       "the open one, or use two open curves");
+  if (open0 <= gap_tolerance) return closed_problem(b, o, fit_error);
   auto derivative = [&](const BSplineCurve& d, const BSplineCurve& c, const char* name,
                         const char* of) {
     const BSplineCurve out = oriented(normalized_3d(d, name), at(c, 0.0), at(c, 1.0));
@@ -269,6 +437,8 @@ SheetProblem pde_surface_problem(const PdeBoundary& in, const PdeSurfaceOptions&
   SheetProblem pb;
   pb.space = SplineSpace::uniform(p, p, o.spans_u, o.spans_v);
   pb.pde = in.a;
+  // A side no curve holds needs the energy's plate form (PdeCoefficient::plate_form).
+  pb.pde->plate_form = !(coons0 && coons1);
   const SplineSpace& sp = pb.space;
   const int nu = sp.nu(), nv = sp.nv();
   double error = 0.0;

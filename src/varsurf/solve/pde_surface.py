@@ -85,11 +85,21 @@ def boundary(nat, settings: PdeSurfaceSettings, curves: Dict[str, object],
     unit = nat.SplineSpace.uniform(1, 1, 1, 1)
     painted = [nat.PaintedCoefficient(nat.Region(u0, u1, v0, v1), float(a)) for a, u0, u1, v0, v1 in settings.regions]
     b.a = nat.PdeCoefficient(a=float(settings.a), painted=painted, blend=float(settings.blend))
-    # Sides no curve holds need the energy's plate form (PdeCoefficient.plate_form): with the
-    # operator's own square they flare.
-    b.a.plate_form = curves.get("v0") is None or curves.get("v1") is None
     b.a.validate(unit)
     return b
+
+
+def _closed_seam(poles, space):
+    """The poles with the first and last column of every row (v = 0 and v = 1) replaced by their
+    mean: the solve ties them to rounding, OpenCASCADE sees a closed surface (one seam edge) only
+    when they are equal."""
+    import numpy as np
+
+    nv = len(space.knots_v) - space.degree_v - 1
+    grid = np.array(poles, dtype=float).reshape(-1, nv, 3)
+    mean = 0.5 * (grid[:, 0, :] + grid[:, -1, :])
+    grid[:, 0, :] = grid[:, -1, :] = mean
+    return grid.reshape(-1, 3)
 
 
 def solve(settings: PdeSurfaceSettings, curves: Dict[str, object], labels: Dict[str, str],
@@ -126,7 +136,10 @@ def solve(settings: PdeSurfaceSettings, curves: Dict[str, object], labels: Dict[
             raise SheetError(advised(str(error), "use fewer spans or a looser tolerance")) from error
         except nat.Cancelled as error:
             raise SheetError(CANCELLED) from error
-        surface = nat.BSplineSurface(problem.space, result.poles)
+        poles = result.poles
+        if problem.closed_v:  # the seam's two pole columns, tied to rounding, made one
+            poles = _closed_seam(poles, problem.space)
+        surface = nat.BSplineSurface(problem.space, poles)
         deviations = [float(d) for d in nat.max_deviations(surface, [c for _, c in measured], 200)]
         worst = max(deviations + [fit_error])
         if worst <= settings.tolerance or 2 * spans > settings.max_spans:

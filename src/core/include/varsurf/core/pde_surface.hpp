@@ -46,6 +46,11 @@ struct PdeSurfaceOptions {
   double tolerance = 1e-3;
 };
 
+// Closed boundary curves (both: one closed and the other open is refused) make the surface closed
+// along v: the rows are fitted closed, the curves paired by the seam shift and direction that best
+// match their shapes, and the sheet's seam tied (SheetProblem::closed_v); derivative curves must be
+// closed too. The energy's plate form (PdeCoefficient::plate_form) is set where a side is free
+// (no v0 or v1 on an open surface), the operator's own square elsewhere.
 // The curves oriented and checked, fitted, and the sheet to solve: space [0, 1]^2 of the options'
 // degree and spans, the fitted rows (and Hermite rows) as fixed poles, Gordon curves as curve
 // constraints, the PDE energy. `fit_error` (if given) receives the largest distance between a
