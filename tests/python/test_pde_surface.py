@@ -311,3 +311,35 @@ def test_closed_blend_from_a_cylinder_to_a_flange(doc, tmp_path, native):
     path = tmp_path / "flange.step"
     varsurf.export_step([blend], str(path))
     assert_reads_back(blend.Shape, path, native)
+
+
+def test_sculpting_tools_act_on_a_pde_surface(doc):
+    """Du & Qin's sculpting tools as Constraint objects on a PdeSurface: a point moved (4.7.1), the
+    normal set there (4.7.2), a frozen region (4.7.6) that keeps its shape; picked by the command."""
+    u0, u1, d0, d1 = hermite_scene(doc)
+    pde = varsurf.make_pde_surface((u0, "Edge1"), (u1, "Edge1"), derivative0=(d0, "Edge1"),
+                                   derivative1=(d1, "Edge1"), a=2.0, tolerance=1e-3)
+    doc.recompute()
+    before = pde.Shape.Faces[0].Surface
+    frozen_at = [before.value(0.8, 0.2 + 0.05 * k) for k in range(5)]
+    target = before.value(0.4, 0.5) + V(0, 0, 8)
+    pin = doc.addObject("Part::Vertex", "Pin")
+    pin.X, pin.Y, pin.Z = target.x, target.y, target.z
+    doc.recompute()
+    from varsurf.app.api import run_constraint_command
+
+    point = run_constraint_command("Point", [Sel(pde), Sel(pin, "Vertex1")])
+    assert point is not None and point in pde.Constraints
+    varsurf.make_constraint(pde, "Normal", uv=(0.4, 0.5), vector=(0.3, 0, 1))
+    varsurf.make_constraint(pde, "FrozenRegion", region=(0.7, 0.95, 0.1, 0.5))
+    doc.recompute()
+    assert pde.isValid(), pde.getStatusString()
+    face = pde.Shape.Faces[0]
+    assert face.distToShape(Part.Vertex(target))[0] < 1e-3
+    n = face.normalAt(0.4, 0.5)  # where the Normal was placed (u, v of the surface, 0..1)
+    want = V(0.3, 0, 1)
+    want.normalize()
+    assert math.degrees(n.getAngle(want)) < 0.5 or math.degrees(n.getAngle(want * -1)) < 0.5
+    after = face.Surface
+    assert max((after.value(0.8, 0.2 + 0.05 * k) - p).Length for k, p in enumerate(frozen_at)) < 1e-6
+    assert max(abs((after.value(0.4, 0.5) - before.value(0.4, 0.5)).z), 0) > 1.0

@@ -17,6 +17,7 @@ import dataclasses
 
 import Part
 
+from varsurf.app.constraint import spec_of
 from varsurf.app.feature import FeatureProxy, mark_failed, value
 from varsurf.app.view_link import attach as attach_view_provider
 from varsurf.solve import errors, settings, shapes
@@ -42,6 +43,7 @@ _PROPERTIES = [
     ("UCurveParameters", "App::PropertyFloatList", "Network", "Gordon: the u (0..1) of each of UCurves", False),
     ("VCurves", "App::PropertyLinkSubList", "Network", "Gordon: curves the surface contains at v = VCurveParameters, running from U0 to U1", False),
     ("VCurveParameters", "App::PropertyFloatList", "Network", "Gordon: the v (0..1) of each of VCurves", False),
+    ("Constraints", "App::PropertyLinkList", "Sculpting", "Constraint objects sculpting the surface (Du & Qin's tools: points, normals, tangents, frozen regions, attractors...), placed on the surface the boundary conditions alone give", False),
     ("PdeA", "App::PropertyFloatConstraint", "PDE", "The coefficient a of (d2/du2 + a^2 d2/dv2)^2 P = 0 where nothing is painted: large a shortens the length scale of changes along u (1/a of that along v)", False),
     ("PdeRegions", "App::PropertyFloatList", "PDE", "a painted on rectangles, five numbers each: a, u0, u1, v0, v1 (0..1; later regions over earlier ones)", False),
     ("PdeBlend", "App::PropertyFloat", "PDE", "Width of the band over which a blends across a painted region's border, a fraction of the domain (0: sharp; at most 0.5)", False),
@@ -204,7 +206,8 @@ def compute(obj) -> pde.PdeSurfaceOutcome:
         values = dataclasses.replace(values, **{f"magnitude{k}": 1.0})  # the curve carries it
     u_names, u_curves = _network(nat, obj, "UCurves", "UCurveParameters")
     v_names, v_curves = _network(nat, obj, "VCurves", "VCurveParameters")
-    return pde.solve(values, curves, pde.labels_for(labels, u_names, v_names), u_curves, v_curves)
+    specs = [spec_of(c) for c in (getattr(obj, "Constraints", None) or []) if c.Enabled]
+    return pde.solve(values, curves, pde.labels_for(labels, u_names, v_names), u_curves, v_curves, constraints=specs)
 
 
 class PdeSurfaceFeature(FeatureProxy):

@@ -78,6 +78,11 @@ def is_sheet(obj) -> bool:
     return getattr(getattr(obj, "Proxy", None), "Type", None) == "VarSurf::Sheet"
 
 
+def is_sculptable(obj) -> bool:
+    """True for the objects Constraint objects act on: Sheets and PdeSurfaces."""
+    return is_sheet(obj) or getattr(getattr(obj, "Proxy", None), "Type", None) == "VarSurf::PdeSurface"
+
+
 def is_solid(obj) -> bool:
     """True for VarSurf Solid objects."""
     return getattr(getattr(obj, "Proxy", None), "Type", None) == "VarSurf::Solid"

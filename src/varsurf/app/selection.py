@@ -152,7 +152,7 @@ def _split_selection(selection_ex, hint):
     for sel in selection_ex or []:
         obj = sel.Object
         subs = [s.split(".")[-1] for s in (getattr(sel, "SubElementNames", None) or ()) if s]
-        if references.is_sheet(obj):
+        if references.is_sculptable(obj):  # a Sheet or a PdeSurface
             if obj not in sheets:
                 sheets.append(obj)
             continue

@@ -215,6 +215,10 @@ class ViewProviderPdeSurface(_ViewProvider):
     TYPE = "VarSurf::ViewProviderPdeSurface"
     ICON = "VarSurf_PdeSurface.svg"
 
+    def claimChildren(self):
+        obj = getattr(self, "Object", None)
+        return list(getattr(obj, "Constraints", None) or []) if obj is not None else []
+
 
 class ViewProviderSpaceCurve(_ViewProvider):
     """Tree icon of a variational SpaceCurve, drawn thick so it reads as a handle-driven curve,

@@ -17,6 +17,7 @@ import time
 from dataclasses import dataclass, field
 from typing import Dict, List, Sequence, Tuple
 
+from varsurf.solve import constraints as constraint_specs
 from varsurf.solve.errors import CANCELLED, SheetError, advised
 from varsurf.solve.native import build, native
 
@@ -102,11 +103,25 @@ def _closed_seam(poles, space):
     return grid.reshape(-1, 3)
 
 
+def _place(nat, specs, problem, result):
+    """Constraint specs (Du & Qin's sculpting tools: points, normals, frozen regions, operators...)
+    placed on the surface the boundary conditions alone give."""
+    try:
+        return constraint_specs.place(list(specs), nat.BSplineSurface(problem.space, result.poles), nat)
+    except constraint_specs.ConstraintError as error:
+        raise SheetError(str(error)) from error
+    except (nat.InvalidInput, nat.GeometryError) as error:
+        raise SheetError(advised(f"a constraint cannot be placed on the surface: {error}",
+                                 "move its Location over the surface")) from error
+
+
 def solve(settings: PdeSurfaceSettings, curves: Dict[str, object], labels: Dict[str, str],
           u_curves: Sequence[Tuple[float, object]] = (), v_curves: Sequence[Tuple[float, object]] = (),
-          keep_going=None) -> PdeSurfaceOutcome:
+          keep_going=None, constraints: Sequence = ()) -> PdeSurfaceOutcome:
     """The PDE surface through the curves (native BSplineCurves by role; labels name them and the
-    Gordon curves, "u-curve 1", ... in messages). SheetError says what is wrong and what to do."""
+    Gordon curves, "u-curve 1", ... in messages), sculpted by the constraint specs (placed on the
+    surface the boundary conditions alone give, then held with them). SheetError says what is wrong
+    and what to do."""
     nat = native()
     started = time.monotonic()
     if curves.get("u0") is None or curves.get("u1") is None:
@@ -119,6 +134,7 @@ def solve(settings: PdeSurfaceSettings, curves: Dict[str, object], labels: Dict[
     measured += [(labels.get(f"u-curve {k + 1}", f"u-curve {k + 1}"), c) for k, (_, c) in enumerate(u_curves)]
     measured += [(labels.get(f"v-curve {k + 1}", f"v-curve {k + 1}"), c) for k, (_, c) in enumerate(v_curves)]
     spans = max(1, int(settings.min_spans))
+    placed = None
     while True:
         options = build(nat.PdeSurfaceOptions, degree=int(settings.degree), spans_u=spans, spans_v=spans,
                         tolerance=float(settings.tolerance))
@@ -128,6 +144,17 @@ def solve(settings: PdeSurfaceSettings, curves: Dict[str, object], labels: Dict[
             solve_options.keep_going = keep_going
         try:
             problem, fit_error = nat.pde_surface_problem(b, options)
+            if constraints:
+                # The boundary conditions' own surface: where the constraints are placed, and what
+                # a frozen region keeps.
+                free = nat.solve_sheet(problem, solve_options)
+                if placed is None:
+                    placed = _place(nat, constraints, problem, free)
+                problem.initial_poles = free.poles
+            if placed:
+                terms = constraint_specs.native_terms(placed, problem.space, nat)
+                terms.apply(problem)
+                problem.fixed_poles = sorted(set(problem.fixed_poles) | set(terms.frozen_poles))
             result = nat.solve_sheet(problem, solve_options)
         except nat.InvalidInput as error:
             raise SheetError(advised(_named(str(error), labels), "check the curves and their roles (boundary, "
