@@ -17,6 +17,7 @@ import traceback
 
 import FreeCAD as App
 import FreeCADGui as Gui
+import Part
 from PySide import QtCore, QtGui
 
 OUT = os.environ.get("VARSURF_GUI_OUT") or os.path.join(os.getcwd(), "out", "gui-smoke")
@@ -730,6 +731,20 @@ def run(result):
     curves = [o for o in hdoc.Objects if o.Name.startswith("SpaceCurve")]
     result["space_curve_ok"] = len(curves) == 1 and curves[0].isValid()
     result["space_curve_icon"] = curves[0].ViewObject.Proxy.getIcon() if curves else ""
+    # a PDE surface between two sketch-like edges and their derivative curves, by its command
+    for name, x, z in (("PdeU0", 0.0, 0.0), ("PdeU1", 60.0, 10.0), ("PdeD0", 15.0, 20.0), ("PdeD1", 75.0, 10.0)):
+        edge = hdoc.addObject("Part::Feature", name)
+        edge.Shape = Part.LineSegment(App.Vector(x, 100, z), App.Vector(x, 160, z)).toShape()
+    hdoc.recompute()
+    Gui.Selection.clearSelection()
+    for name in ("PdeU0", "PdeU1", "PdeD0", "PdeD1"):
+        Gui.Selection.addSelection(hdoc.Name, name, "Edge1")
+    result["pde_active"] = bool(Gui.Command.get("VarSurf_PdeSurface").isActive())
+    Gui.runCommand("VarSurf_PdeSurface")
+    pdes = [o for o in hdoc.Objects if o.Name.startswith("PdeSurface")]
+    result["pde_ok"] = [len(pdes) == 1 and pdes[0].isValid(), pdes[0].Kind if pdes else "",
+                        hdoc.UndoNames[:1]]
+    result["pde_icon"] = pdes[0].ViewObject.Proxy.getIcon() if pdes else ""
     result["hinge_image_stats"] = image_stats(snapshot("hinge.png"))
     # the Hinge's panel: a new angle, OK, one undoable step
     hinge = hsolid.Hinges[0]
@@ -982,6 +997,12 @@ arc.Shape = Part.Arc(FreeCAD.Vector(100, 20, 20), FreeCAD.Vector(130, 20, 26),
 doc.recompute()
 top = next(i for i, f in enumerate(box.Shape.Faces) if abs(f.CenterOfMass.z - 20) < 1e-9)
 varsurf.make_sheet((box, "Face%d" % (top + 1)), [(arc, "Edge1")], name="Lid")
+rim0 = doc.addObject("Part::Feature", "Rim0")
+rim0.Shape = Part.LineSegment(FreeCAD.Vector(0, 80, 0), FreeCAD.Vector(0, 140, 0)).toShape()
+rim1 = doc.addObject("Part::Feature", "Rim1")
+rim1.Shape = Part.LineSegment(FreeCAD.Vector(50, 80, 10), FreeCAD.Vector(50, 140, 10)).toShape()
+doc.recompute()
+varsurf.make_pde_surface((rim0, "Edge1"), (rim1, "Edge1"), a=2.0, name="Pde")
 doc.recompute()
 doc.saveAs({path!r})
 """

@@ -130,6 +130,9 @@ def test_constraint_commands_work_in_the_gui(smoke):
     assert smoke["hinge_icon"].endswith("VarSurf_Hinge.svg")
     assert smoke["space_curve_active"] and smoke["space_curve_ok"]
     assert smoke["space_curve_icon"].endswith("VarSurf_SpaceCurve.svg")
+    assert smoke["pde_active"], smoke
+    assert smoke["pde_ok"] == [True, "Hermite", ["Add VarSurf PDE surface"]], smoke["pde_ok"]
+    assert smoke["pde_icon"].endswith("VarSurf_PdeSurface.svg")
     assert smoke["hinge_image_stats"]["variance"] > 50.0, smoke["hinge_image_stats"]
 
 
@@ -316,7 +319,7 @@ def test_a_document_built_without_the_gui_opens_with_its_view_providers(smoke):
     assert code == 0, errors
     providers = smoke["headless_view_providers"]
     assert providers == {"Top": "ViewProviderSheet", "Bottom": "ViewProviderSheet", "Lid": "ViewProviderSheet",
-                         "Pillow": "ViewProviderSolid"}, providers
+                         "Pillow": "ViewProviderSolid", "Pde": "ViewProviderPdeSurface"}, providers
     assert all(icon.startswith("VarSurf") and icon.endswith(".svg") for icon in smoke["headless_icons"].values())
     visible = smoke["headless_visible"]
     hidden = [name for name in ("TopBase", "BottomBase", "Top", "Bottom") if visible[name]]
