@@ -343,3 +343,27 @@ def test_sculpting_tools_act_on_a_pde_surface(doc):
     after = face.Surface
     assert max((after.value(0.8, 0.2 + 0.05 * k) - p).Length for k, p in enumerate(frozen_at)) < 1e-6
     assert max(abs((after.value(0.4, 0.5) - before.value(0.4, 0.5)).z), 0) > 1.0
+
+
+@pytest.mark.parametrize("scale", [0.01, 100.0])
+def test_a_scene_scaled_gives_the_surface_scaled(doc, scale):
+    """The same Hermite scene at 1/100 and 100 times its size (0.6 mm and 6 m across): the surface
+    is the scaled one, to 1e-7 of its size."""
+    def build(factor, prefix):
+        curves = []
+        for name, pts in (("U0", _iso_u(0.0)), ("U1", _iso_u(1.0)),
+                          ("D0", [harmonic(0.0, k / 8) + harmonic_du(0.0, k / 8) * 0.25 for k in range(9)]),
+                          ("D1", [harmonic(1.0, k / 8) + harmonic_du(1.0, k / 8) * 0.25 for k in range(9)])):
+            curves.append(add_curve(doc, prefix + name, [p * factor for p in pts]))
+        doc.recompute()
+        pde = varsurf.make_pde_surface(*[(c, "Edge1") for c in curves[:2]], derivative0=(curves[2], "Edge1"),
+                                       derivative1=(curves[3], "Edge1"), magnitude0=4.0, magnitude1=4.0, a=A,
+                                       tolerance=1e-6 * factor * 60, name=prefix + "Pde")
+        doc.recompute()
+        assert pde.isValid(), pde.getStatusString()
+        return pde
+
+    plain, scaled = build(1.0, "Plain"), build(scale, "Scaled")
+    a, b = plain.Shape.Faces[0].Surface, scaled.Shape.Faces[0].Surface
+    worst = max((b.value(i / 8, j / 8) - a.value(i / 8, j / 8) * scale).Length for i in range(9) for j in range(9))
+    assert worst < 1e-7 * 60 * scale
