@@ -367,3 +367,25 @@ def test_a_scene_scaled_gives_the_surface_scaled(doc, scale):
     a, b = plain.Shape.Faces[0].Surface, scaled.Shape.Faces[0].Surface
     worst = max((b.value(i / 8, j / 8) - a.value(i / 8, j / 8) * scale).Length for i in range(9) for j in range(9))
     assert worst < 1e-7 * 60 * scale
+
+
+def test_surfaces_joined_by_a_shared_derivative_curve_are_c1(doc):
+    """Du & Qin 4.6 (their Fig. 7C-D, examples/pde_surfaces.py): two surfaces on three boundary curves
+    share the middle one's derivative curve, so the tangent across it is one: C1 there (the same
+    derivative vector on both sides), hence G1."""
+    from pde_surfaces import fig7
+
+    first, second = fig7(doc)
+    assert first.isValid() and second.isValid()
+    a, b = first.Shape.Faces[0].Surface, second.Shape.Faces[0].Surface
+    worst_gap = worst_derivative = worst_angle = 0.0
+    for k in range(21):
+        v = k / 20
+        pa, pb = a.value(1.0, v), b.value(0.0, v)
+        da, db = a.getDN(1.0, v, 1, 0), b.getDN(0.0, v, 1, 0)  # d/du on each side
+        worst_gap = max(worst_gap, (pa - pb).Length)
+        worst_derivative = max(worst_derivative, (da - db).Length / max(da.Length, 1e-12))
+        worst_angle = max(worst_angle, math.degrees(a.normal(1.0, v).getAngle(b.normal(0.0, v))))
+    assert worst_gap < 1e-6
+    assert worst_derivative < 1e-6
+    assert worst_angle < 1e-4
