@@ -9,6 +9,9 @@
 - fig8: Coons-like conditions (four boundary curves, 8A, 8B) and a Gordon-like network (curves at
   u = 0, 0.5, 1 and v = 0, 0.5, 1, 8C, 8D).
 - fig11: the coefficient a: 3 everywhere, 5 painted on a region, 5 everywhere.
+- fig12, fig13: sculpting tools: a point moved, a normal set; a frozen region.
+- fig16: PDE displacements of an existing face (a Sheet with Energy = PDE and its base as rest
+  shape): a point, a point beside a frozen region, a curve.
 - blend: Bloor & Wilson's blend, closed along v, from a cylinder (G1 to its side) to a flange.
 
 Each figure writes figN.FCStd, figN.step and figN.png (the FreeCAD GUI under Xvfb, when present)
@@ -126,7 +129,77 @@ def blend(doc):
     return [surface]
 
 
-FIGURES = {"fig7": fig7, "fig8": fig8, "fig11": fig11, "blend": blend}
+def _hermite_patch(doc, prefix, dx=0.0, a=2.0):
+    """Fig. 7's kind of surface, used by the sculpting figures: a wavy and a straight boundary with
+    their derivative curves, 100 mm long, at x = dx .. dx + 80."""
+    c0 = curve(doc, f"{prefix}Boundary0", along(lambda t: V(dx, 100 * t, 10 * math.sin(2 * math.pi * t))))
+    c1 = curve(doc, f"{prefix}Boundary1", along(lambda t: V(dx + 80, 100 * t, 0)))
+    d0 = curve(doc, f"{prefix}Derivative0", along(lambda t: V(dx + 15, 100 * t, 10 * math.sin(2 * math.pi * t) + 25)))
+    d1 = curve(doc, f"{prefix}Derivative1", along(lambda t: V(dx + 100, 100 * t, 10)))
+    doc.recompute()
+    return varsurf.make_pde_surface((c0, "Edge1"), (c1, "Edge1"), derivative0=(d0, "Edge1"),
+                                    derivative1=(d1, "Edge1"), a=a, name=prefix)
+
+
+def fig12(doc):
+    """Point and normal sculpting (12A, 12B): a surface point moved 15 mm up; the normal there
+    tilted by 30 degrees."""
+    moved = _hermite_patch(doc, "PointMoved")
+    tilted = _hermite_patch(doc, "NormalSet", dx=130.0)
+    doc.recompute()
+    target = moved.Shape.Faces[0].Surface.value(0.5, 0.5) + V(0, 0, 15)
+    varsurf.make_constraint(moved, "Point", uv=(0.5, 0.5), origin=(target.x, target.y, target.z))
+    varsurf.make_constraint(tilted, "Normal", uv=(0.5, 0.5), vector=(math.sin(math.radians(30)), 0,
+                                                                     math.cos(math.radians(30))))
+    doc.recompute()
+    return [moved, tilted]
+
+
+def fig13(doc):
+    """A frozen region (13A): the surface outside it is pulled 15 mm up, the region keeps its shape."""
+    frozen = _hermite_patch(doc, "Frozen")
+    doc.recompute()
+    target = frozen.Shape.Faces[0].Surface.value(0.5, 0.3) + V(0, 0, 15)
+    varsurf.make_constraint(frozen, "Point", uv=(0.5, 0.3), origin=(target.x, target.y, target.z))
+    varsurf.make_constraint(frozen, "FrozenRegion", region=(0.3, 0.8, 0.6, 0.95))
+    doc.recompute()
+    return [frozen]
+
+
+def fig16(doc):
+    """PDE displacements (Figs. 16-17): a Sheet on an existing face with Energy = PDE and the face
+    as rest shape; a point lifts it (16A), another with a frozen region beside it (16C), and a
+    curve above the face sculpts it (17A). The face itself is untouched."""
+    out = []
+    for k, name in enumerate(("DisplacedPoint", "DisplacedFrozen", "DisplacedCurve")):
+        base = doc.addObject("Part::Feature", f"{name}Base")
+        poles = [[V(130 * k + 20 * i, 20 * j, 6 * math.sin(math.pi * i / 5) * math.sin(math.pi * j / 5))
+                  for j in range(6)] for i in range(6)]
+        surface = Part.BSplineSurface()
+        knots, mults = [0.0, 1 / 3, 2 / 3, 1.0], [4, 1, 1, 4]
+        surface.buildFromPolesMultsKnots(poles, mults, mults, knots, knots, False, False, 3, 3)
+        base.Shape = surface.toShape()
+        curves = []
+        if name == "DisplacedCurve":
+            arc = doc.addObject("Part::Feature", f"{name}Arc")
+            arc.Shape = Part.Arc(V(130 * k + 20, 50, 15), V(130 * k + 50, 60, 22), V(130 * k + 80, 50, 15)).toShape()
+            curves = [(arc, "Edge1")]
+        doc.recompute()
+        sheet = varsurf.make_sheet((base, "Face1"), curves, energy="PDE", pde_a=2.0, name=name)
+        if name != "DisplacedCurve":
+            at = (0.35, 0.5) if name == "DisplacedFrozen" else (0.5, 0.5)
+            target = surface.value(*at) + V(0, 0, 12)
+            varsurf.make_constraint(sheet, "Point", uv=at, origin=(target.x, target.y, target.z))
+        if name == "DisplacedFrozen":
+            varsurf.make_constraint(sheet, "FrozenRegion", region=(0.65, 0.95, 0.1, 0.9))
+        base.Visibility = False
+        out.append(sheet)
+    doc.recompute()
+    return out
+
+
+FIGURES = {"fig7": fig7, "fig8": fig8, "fig11": fig11, "fig12": fig12, "fig13": fig13, "fig16": fig16,
+           "blend": blend}
 
 
 def main(out_dir="out/pde"):
