@@ -473,6 +473,83 @@ def dynamics(sides=(15, 30, 60), steps=300):
               f"{ms(static)} | {static / step:.0f}x |")
 
 
+# ------------------------------------------------------------------------------------------------
+# 9. multigrid against the direct solve
+
+
+def _held_sheet(nat, np, spans):
+    """A PDE sheet (a = 1.7) held by Hermite data all round (its two outer rings of poles), its
+    interior lifted 20 mm off the answer."""
+    n = spans + 3
+    g = np.linspace(0.0, 1.0, n)
+    poles = np.array([[100 * a, 80 * b, 10 * math.sin(3 * a) * math.cos(2 * b) + 5 * a * b] for a in g for b in g])
+    fixed = [i * n + j for i in range(n) for j in range(n) if min(i, j) < 2 or max(i, j) >= n - 2]
+    inner = np.ones(n * n, dtype=bool)
+    inner[fixed] = False
+    poles[inner, 2] += 20.0
+    problem = nat.SheetProblem(space=nat.SplineSpace.uniform(3, 3, spans, spans), initial_poles=poles,
+                               fixed_poles=fixed)
+    problem.pde = nat.PdeCoefficient(a=1.7)
+    return problem
+
+
+def multigrid(spans_list=(12, 32, 64, 128, 256, 512), direct_limit=256):
+    """Du & Qin's Tables 1-2 solve one PDE surface on grids of 15^2, 30^2, 60^2 samples (Gaussian
+    elimination 0.094 / 3.19 / 122 s, SOR 0.59 / 6 / 34 s, their multigrid-SOR 0.109 / 0.079 /
+    0.156 s on 2004 hardware). Here the B-spline sheet of about those sizes and on to 515^2 poles:
+    VarSurf's direct solve (solve_sheet: sparse factorization) against multigrid-preconditioned
+    conjugate gradients, in one process, with the peak memory each took (a process per case)."""
+    print("\n## 9. Multigrid against the direct solve: a PDE sheet held by Hermite data all round\n")
+    print("| poles | free poles | direct ms | direct peak MiB | multigrid ms (setup + solve) | levels | CG steps | "
+          "multigrid peak MiB | direct / multigrid | max pole difference mm |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
+    script = (
+        "import sys, json, math, time, resource\n"
+        f"sys.path.insert(0, {str(REPO / 'src')!r}); sys.path.insert(0, {str(REPO / 'bench')!r})\n"
+        "import numpy as np\n"
+        "from varsurf.solve.native import native\n"
+        "import run_bench\n"
+        "nat = native()\n"
+        "spans, how = int(sys.argv[1]), sys.argv[2]\n"
+        "problem = run_bench._held_sheet(nat, np, spans)\n"
+        "t = time.perf_counter()\n"
+        "if how == 'direct':\n"
+        "    poles = np.array(nat.solve_sheet(problem).poles); extra = {}\n"
+        "else:\n"
+        "    result, rep = nat.solve_sheet_multigrid(problem)\n"
+        "    poles = np.array(result.poles)\n"
+        "    extra = dict(levels=rep.levels, steps=rep.iterations)\n"
+        "seconds = time.perf_counter() - t\n"
+        "np.save(sys.argv[3], poles)\n"
+        "print(json.dumps(dict(seconds=seconds, peak=resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0,"
+        " free=len(problem.initial_poles) - len(problem.fixed_poles), **extra)))\n"
+    )
+    import tempfile
+
+    import numpy as np
+
+    with tempfile.TemporaryDirectory() as tmp:
+        for spans in spans_list:
+            runs = {}
+            for how in (("direct", "multigrid") if spans <= direct_limit else ("multigrid",)):
+                out = subprocess.run([sys.executable, "-c", script, str(spans), how, f"{tmp}/{how}.npy"],
+                                     capture_output=True, text=True, env=dict(os.environ, OPENBLAS_NUM_THREADS="1"))
+                if out.returncode != 0:
+                    sys.exit(f"multigrid bench {spans} {how}: {out.stderr[-2000:]}")
+                runs[how] = json.loads(out.stdout.strip().splitlines()[-1])
+            mg = runs["multigrid"]
+            if "direct" in runs:
+                d = runs["direct"]
+                diff = float(np.abs(np.load(f"{tmp}/direct.npy") - np.load(f"{tmp}/multigrid.npy")).max())
+                direct = f"{ms(d['seconds'])} | {d['peak']:.0f}"
+                ratio, diff_text = f"{d['seconds'] / mg['seconds']:.1f}x", f"{diff:.1g}"
+            else:
+                direct, ratio, diff_text = "not run | -", "-", "-"
+            n = spans + 3
+            print(f"| {n}x{n} | {mg['free']} | {direct} | {ms(mg['seconds'])} | {mg['levels']} | {mg['steps']} | "
+                  f"{mg['peak']:.0f} | {ratio} | {diff_text} |")
+
+
 def main():
     quick = "--quick" in sys.argv
     if not BENCH.exists():
@@ -489,6 +566,7 @@ def main():
 
     hole_bench.main()
     dynamics()
+    multigrid((12, 32, 64) if quick else (12, 32, 64, 128, 256, 512))
 
 
 def platform_line():

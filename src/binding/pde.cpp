@@ -5,6 +5,7 @@
 
 #include "binding.hpp"
 #include "varsurf/core/errors.hpp"
+#include "varsurf/core/multigrid.hpp"
 #include "varsurf/core/pde_coefficient.hpp"
 #include "varsurf/core/pde_energy.hpp"
 #include "varsurf/core/pde_surface.hpp"
@@ -149,6 +150,37 @@ void bind_pde(py::module_& m) {
       .def("potential_energy", &DynamicSheet::potential_energy)
       .def("equilibrium", &DynamicSheet::equilibrium,
            "Where the motion settles (A P = b with the springs).");
+
+  py::class_<MultigridOptions>(m, "MultigridOptions", "Smoothing sweeps, coarsest size, tolerance.")
+      .def(py::init<>())
+      .def_readwrite("smoothing", &MultigridOptions::smoothing)
+      .def_readwrite("coarsest_poles", &MultigridOptions::coarsest_poles)
+      .def_readwrite("tolerance", &MultigridOptions::tolerance)
+      .def_readwrite("max_iterations", &MultigridOptions::max_iterations);
+
+  py::class_<MultigridReport>(m, "MultigridReport", "Levels, steps, residual, timings, storage.")
+      .def(py::init<>())
+      .def_readonly("levels", &MultigridReport::levels)
+      .def_readonly("iterations", &MultigridReport::iterations)
+      .def_readonly("residual", &MultigridReport::residual)
+      .def_readonly("setup_seconds", &MultigridReport::setup_seconds)
+      .def_readonly("solve_seconds", &MultigridReport::solve_seconds)
+      .def_readonly("stored_entries", &MultigridReport::stored_entries);
+
+  m.def(
+      "solve_sheet_multigrid",
+      [](const SheetProblem& problem, const MultigridOptions& options) {
+        MultigridReport report;
+        SolveResult result;
+        {
+          py::gil_scoped_release release;  // the tuple below needs the interpreter again
+          result = solve_sheet_multigrid(problem, options, &report);
+        }
+        return py::make_tuple(std::move(result), report);
+      },
+      "problem"_a, "options"_a = MultigridOptions(),
+      "(SolveResult, MultigridReport) of a sheet held by its fixed poles alone, by "
+      "multigrid-preconditioned conjugate gradients on its B-spline levels.");
 }
 
 }  // namespace varsurf::binding

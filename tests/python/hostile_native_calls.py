@@ -293,6 +293,20 @@ def hostile_dynamics():
     return out
 
 
+def hostile_multigrid():
+    out = []
+    for k in hostile_ints():
+        for name in ("smoothing", "coarsest_poles", "max_iterations"):
+            o = nat.MultigridOptions()
+            setattr(o, name, k)
+            out.append(o)
+    for x in hostile_floats():
+        o = nat.MultigridOptions()
+        o.tolerance = x
+        out.append(o)
+    return out
+
+
 def held_problem():
     """problem() held by its boundary poles, without constraints: a sheet dynamics accepts."""
     p = nat.SheetProblem(space=space(), initial_poles=plane_poles(space()))
@@ -498,6 +512,7 @@ CLASS_VALUES = {
     "PdeCoefficient": (lambda: nat.PdeCoefficient(a=2.0), hostile_pde),
     "PdeBoundary": (pde_boundary, hostile_pde_boundaries),
     "DynamicsParameters": (nat.DynamicsParameters, hostile_dynamics),
+    "MultigridOptions": (nat.MultigridOptions, hostile_multigrid),
     "List[Spring]": (lambda: [nat.Spring(0.5, 0.5, np.array([1.0, 2.0, 3.0]), 1.0)],
                      lambda: [[]] + [[nat.Spring(x, 0.5, np.array([1.0, 2.0, 3.0]), 1.0)] for x in hostile_floats()]
                      + [[nat.Spring(0.5, 0.5, np.array([x, 2.0, 3.0]), x)] for x in hostile_floats()]),
@@ -590,6 +605,8 @@ def valid_and_hostile(pname, ptype):
         return [nat.JoinedSheet(surface(), [0, 1, 2, 3], square_loop(uv=True))], \
             [[], [nat.JoinedSheet(surface(), [7], [line2()])], [nat.JoinedSheet(surface(), [-1], [])]] + \
             [[nat.JoinedSheet(s, [0], [line2()])] for s in hostile_surfaces()[:8]]
+    if t.startswith("List[numpy.ndarray") and "[3, 1]" in t:  # 3D points (spring targets)
+        return [np.array([1.0, 2.0, 3.0])], [[], [np.array([NAN, 0.0, 0.0])], [np.array([1e308, 0.0, 0.0])] * 2]
     if t.startswith("List[numpy.ndarray"):
         return [np.array([0.1, 0.1]), np.array([0.9, 0.1]), np.array([0.5, 0.9])], \
             [[], [np.array([NAN, 0.5])] * 3, [np.array([1e308, 0.0])] * 3]
