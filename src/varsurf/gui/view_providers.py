@@ -209,11 +209,14 @@ class ViewProviderFillHole(_EditedInPanel, _ViewProvider):
         return [base[0]] if base else []
 
 
-class ViewProviderPdeSurface(_ViewProvider):
-    """Tree icon of a PdeSurface (a surface from boundary curves and the Bloor-Wilson PDE)."""
+class ViewProviderPdeSurface(_EditedInPanel, _ViewProvider):
+    """Tree icon of a PdeSurface (a surface from boundary curves and the Bloor-Wilson PDE), with
+    its Constraints as children; double click opens its panel."""
 
     TYPE = "VarSurf::ViewProviderPdeSurface"
     ICON = "VarSurf_PdeSurface.svg"
+    PANEL = ("varsurf.gui.task_pde_surface", "TaskPanelPdeSurface")
+    EDIT_TEXT = QT_TRANSLATE_NOOP("VarSurf", "Edit PDE surface")
 
     def claimChildren(self):
         obj = getattr(self, "Object", None)
