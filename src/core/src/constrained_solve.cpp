@@ -19,6 +19,7 @@
 #include <utility>
 
 #include "factor_correction.hpp"
+#include "free_block.hpp"
 #include "penalty_drag.hpp"
 #include "solve_limits.hpp"
 #include "stopwatch.hpp"
@@ -300,12 +301,11 @@ ConstrainedSolve::ConstrainedSolve(const Quadratic& pb, const SolveOptions& opt,
   }
   const std::vector<ConstraintSamples> shifted = m.shifted(pb.blocks);
   const std::vector<ConstraintSamples>& blocks = m.shift.size() ? shifted : pb.blocks;
-  m.free_index.assign(static_cast<size_t>(total), -1);
-  for (int k = 0; k < total; ++k)
-    if (!pb.fixed[static_cast<size_t>(k)]) {
-      m.free_index[static_cast<size_t>(k)] = static_cast<int>(m.free_cols.size());
-      m.free_cols.push_back(k);
-    }
+  {
+    FreeUnknowns f = free_unknowns(pb.fixed);
+    m.free_index = std::move(f.slot);
+    m.free_cols = std::move(f.free);
+  }
   m.n = static_cast<int>(m.free_cols.size());
   rep.unknowns = m.n;
 
@@ -344,34 +344,17 @@ ConstrainedSolve::ConstrainedSolve(const Quadratic& pb, const SolveOptions& opt,
   auto t = Clock::now();
   m.x0_free.resize(m.n, m.width);
   for (int i = 0; i < m.n; ++i) m.x0_free.row(i) = m.x0.row(m.free_cols[static_cast<size_t>(i)]);
-  // Free indices keep the columns' order, so Q_ff's columns are Q's free columns with their free
-  // rows, already sorted: written straight into compressed storage (collecting triplets and
-  // sorting them took 90 ms at 256 x 256 poles).
-  m.q_ff.resize(m.n, m.n);
-  m.q_ff.resizeNonZeros(pb.q.nonZeros());  // at most; trimmed below
-  int* outer = m.q_ff.outerIndexPtr();
-  int* inner = m.q_ff.innerIndexPtr();
-  double* values = m.q_ff.valuePtr();
-  int kept = 0;
-  outer[0] = 0;
+  m.q_ff = free_block(pb.q, FreeUnknowns{m.free_index, m.free_cols});
+  // Q_fc x_c: the energy's pull from the held columns.
   m.coupling = Eigen::MatrixXd::Zero(m.n, m.width);
-  double diag_mean = 0.0;
   for (int col = 0; col < pb.q.outerSize(); ++col) {
-    const int fc = m.free_index[static_cast<size_t>(col)];
+    if (m.free_index[static_cast<size_t>(col)] >= 0) continue;
     for (Sparse::InnerIterator it(pb.q, col); it; ++it) {
       const int fr = m.free_index[static_cast<size_t>(it.row())];
-      if (fr < 0) continue;
-      if (fc >= 0) {
-        inner[kept] = fr;
-        values[kept++] = it.value();
-        if (fr == fc) diag_mean += it.value();
-      } else {
-        m.coupling.row(fr) += it.value() * m.x0.row(col);
-      }
+      if (fr >= 0) m.coupling.row(fr) += it.value() * m.x0.row(col);
     }
-    if (fc >= 0) outer[fc + 1] = kept;
   }
-  m.q_ff.resizeNonZeros(kept);
+  double diag_mean = m.q_ff.diagonal().sum();
   diag_mean /= m.n;
   if (!std::isfinite(diag_mean))
     throw SolveFailure("the energy matrix is not finite (poles or weights too large)");

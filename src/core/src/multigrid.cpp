@@ -6,6 +6,7 @@
 #include <cmath>
 #include <string>
 
+#include "free_block.hpp"
 #include "stopwatch.hpp"
 #include "varsurf/core/errors.hpp"
 #include "varsurf/core/knot_refinement.hpp"
@@ -88,17 +89,8 @@ Eigen::MatrixX3d solve_multigrid(const SplineSpace& space, const Sparse& q,
         "multigrid: smoothing 1..100 sweeps, a coarsest size above 0, 1..100000 "
         "iterations and a tolerance in (0, 1)");
   const auto started = Clock::now();
-  std::vector<int> slot(static_cast<size_t>(n), 0);
-  for (int k : fixed) {
-    if (k < 0 || k >= n) throw InvalidInput("multigrid: a fixed pole index is out of range");
-    slot[static_cast<size_t>(k)] = -1;
-  }
-  std::vector<int> free;
-  for (int k = 0; k < n; ++k)
-    if (slot[static_cast<size_t>(k)] >= 0) {
-      slot[static_cast<size_t>(k)] = static_cast<int>(free.size());
-      free.push_back(k);
-    }
+  const FreeUnknowns unknowns = free_unknowns(n, fixed, "multigrid");
+  const std::vector<int>& free = unknowns.free;
   const Eigen::Index nf = static_cast<Eigen::Index>(free.size());
   if (nf == 0) return x0;
   // The fine system on the free poles: Q_FF x_F = f_F - Q_FX x0_X.
@@ -106,17 +98,8 @@ Eigen::MatrixX3d solve_multigrid(const SplineSpace& space, const Sparse& q,
   for (int k : free) held.row(k).setZero();
   const Eigen::MatrixX3d right = f - q * held;
   Eigen::MatrixX3d b(nf, 3);
-  std::vector<Eigen::Triplet<double>> trip;
-  for (int col = 0; col < n; ++col) {
-    const int c = slot[static_cast<size_t>(col)];
-    if (c < 0) continue;
-    b.row(c) = right.row(col);
-    for (Sparse::InnerIterator it(q, col); it; ++it)
-      if (slot[static_cast<size_t>(it.row())] >= 0)
-        trip.emplace_back(slot[static_cast<size_t>(it.row())], c, it.value());
-  }
-  Sparse a(nf, nf);
-  a.setFromTriplets(trip.begin(), trip.end());
+  for (Eigen::Index k = 0; k < nf; ++k) b.row(k) = right.row(free[static_cast<size_t>(k)]);
+  const Sparse a = free_block(q, unknowns);
 
   Hierarchy h;
   h.sweeps = o.smoothing;

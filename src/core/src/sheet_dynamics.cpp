@@ -5,6 +5,7 @@
 #include <cmath>
 #include <string>
 
+#include "free_block.hpp"
 #include "serial_openmp.hpp"
 #include "span_quadrature.hpp"
 #include "varsurf/core/errors.hpp"
@@ -50,8 +51,7 @@ struct DynamicSheet::Impl {
   Sparse energy;          // stiffness * the sheet's energy, all poles
   Eigen::MatrixX3d rest;  // energy * rest poles: the force that holds a rest shape
   Eigen::VectorXd mass, damping;
-  std::vector<int> free;  // free poles in order
-  std::vector<int> slot;  // pole -> index among the free ones, or -1
+  FreeUnknowns poles_free;  // the poles not held
   Eigen::MatrixX3d p, v;
   std::vector<Spring> springs;
   Sparse spring_matrix;  // sum k N N^T
@@ -77,25 +77,11 @@ struct DynamicSheet::Impl {
     return b;
   }
 
-  Sparse free_block(const Sparse& a) const {
-    std::vector<Eigen::Triplet<double>> trip;
-    for (int col = 0; col < a.outerSize(); ++col) {
-      if (slot[static_cast<size_t>(col)] < 0) continue;
-      for (Sparse::InnerIterator it(a, col); it; ++it)
-        if (slot[static_cast<size_t>(it.row())] >= 0)
-          trip.emplace_back(slot[static_cast<size_t>(it.row())], slot[static_cast<size_t>(col)],
-                            it.value());
-    }
-    Sparse out(static_cast<Eigen::Index>(free.size()), static_cast<Eigen::Index>(free.size()));
-    out.setFromTriplets(trip.begin(), trip.end());
-    return out;
-  }
-
   void refactor() {
-    Sparse s = free_block(stiffness()) * (h * h);
-    for (size_t k = 0; k < free.size(); ++k)
+    Sparse s = free_block(stiffness(), poles_free) * (h * h);
+    for (size_t k = 0; k < poles_free.free.size(); ++k)
       s.coeffRef(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(k)) +=
-          mass(free[k]) + h * damping(free[k]);
+          mass(poles_free.free[k]) + h * damping(poles_free.free[k]);
     SerialOpenMp serial;
 #ifdef VARSURF_HAVE_CHOLMOD
     // Simplicial: a step is one back-substitution, and the supernodal factor's took longer
@@ -153,17 +139,9 @@ DynamicSheet::DynamicSheet(const SheetProblem& pb, const DynamicsParameters& par
   }
   m.mass = lumped(pb.space, par.mass);
   m.damping = zero_density(par.damping) ? Eigen::VectorXd::Zero(n) : lumped(pb.space, par.damping);
-  m.slot.assign(static_cast<size_t>(n), 0);
-  for (int k : pb.fixed_poles) {
-    if (k < 0 || k >= n) throw InvalidInput("dynamics: a fixed pole index is out of range");
-    m.slot[static_cast<size_t>(k)] = -1;
-  }
-  for (int k = 0; k < n; ++k)
-    if (m.slot[static_cast<size_t>(k)] >= 0) {
-      m.slot[static_cast<size_t>(k)] = static_cast<int>(m.free.size());
-      m.free.push_back(k);
-    }
-  if (m.free.empty()) throw InvalidInput("dynamics: every pole is fixed; nothing can move");
+  m.poles_free = free_unknowns(n, pb.fixed_poles, "dynamics");
+  if (m.poles_free.free.empty())
+    throw InvalidInput("dynamics: every pole is fixed; nothing can move");
   m.p = pb.initial_poles;
   m.v = Eigen::MatrixX3d::Zero(n, 3);
   m.spring_matrix = Sparse(n, n);
@@ -213,15 +191,15 @@ void DynamicSheet::step(int count) {
   // Backward Euler, (M + h D + h^2 A) V+ = M V - h (A P - b) with P+ = P + h V+, written for P+:
   // S P+ = (M + h D) P + h M V + h^2 (b - A_FX P_X). Per step: one back-substitution and diagonal
   // products, no product with A (measured at 60 x 60 poles: 1.31 ms a step with it).
-  const Eigen::Index nf = static_cast<Eigen::Index>(m.free.size());
+  const Eigen::Index nf = static_cast<Eigen::Index>(m.poles_free.free.size());
   const Eigen::MatrixX3d b = m.forces();
   Eigen::MatrixX3d held = m.p;
-  for (int k : m.free) held.row(k).setZero();
+  for (int k : m.poles_free.free) held.row(k).setZero();
   const Eigen::MatrixX3d outer = b - m.stiffness() * held;  // free rows: b_F - A_FX P_X
   Eigen::MatrixX3d pf(nf, 3), vf(nf, 3), load(nf, 3);
   Eigen::VectorXd keep(nf), push(nf);
   for (Eigen::Index k = 0; k < nf; ++k) {
-    const int pole = m.free[static_cast<size_t>(k)];
+    const int pole = m.poles_free.free[static_cast<size_t>(k)];
     pf.row(k) = m.p.row(pole);
     vf.row(k) = m.v.row(pole);
     load.row(k) = (m.h * m.h) * outer.row(pole);
@@ -240,7 +218,7 @@ void DynamicSheet::step(int count) {
     m.t += m.h;
   }
   for (Eigen::Index k = 0; k < nf; ++k) {
-    const int pole = m.free[static_cast<size_t>(k)];
+    const int pole = m.poles_free.free[static_cast<size_t>(k)];
     m.p.row(pole) = pf.row(k);
     m.v.row(pole) = vf.row(k);
   }
@@ -275,20 +253,20 @@ Eigen::MatrixX3d DynamicSheet::equilibrium() const {
   const Eigen::MatrixX3d b = m.forces();
   // A_FF P_F = b_F - A_FX P_X: the fixed poles' share moved to the right.
   Eigen::MatrixX3d held = m.p;
-  for (int k : m.free) held.row(k).setZero();
+  for (int k : m.poles_free.free) held.row(k).setZero();
   const Eigen::MatrixX3d right = b - a * held;
-  Eigen::MatrixX3d rf(static_cast<Eigen::Index>(m.free.size()), 3);
-  for (size_t k = 0; k < m.free.size(); ++k)
-    rf.row(static_cast<Eigen::Index>(k)) = right.row(m.free[k]);
-  Eigen::SimplicialLDLT<Sparse> ldlt(m.free_block(a));
+  Eigen::MatrixX3d rf(static_cast<Eigen::Index>(m.poles_free.free.size()), 3);
+  for (size_t k = 0; k < m.poles_free.free.size(); ++k)
+    rf.row(static_cast<Eigen::Index>(k)) = right.row(m.poles_free.free[k]);
+  Eigen::SimplicialLDLT<Sparse> ldlt(free_block(a, m.poles_free));
   if (ldlt.info() != Eigen::Success)
     throw SolveFailure(
         "dynamics: the equilibrium is not determined (the fixed poles do not hold "
         "the sheet)");
   const Eigen::MatrixX3d pf = ldlt.solve(rf);
   Eigen::MatrixX3d out = m.p;
-  for (size_t k = 0; k < m.free.size(); ++k)
-    out.row(m.free[k]) = pf.row(static_cast<Eigen::Index>(k));
+  for (size_t k = 0; k < m.poles_free.free.size(); ++k)
+    out.row(m.poles_free.free[k]) = pf.row(static_cast<Eigen::Index>(k));
   return out;
 }
 
