@@ -36,6 +36,19 @@ Vec3 at(const BSplineCurve& c, double s) {
   return c.evaluate(c.first() + std::clamp(s, 0.0, 1.0) * (c.last() - c.first()));
 }
 
+// The poles of the straight blend between two rows of poles along v, placed at the Greville
+// abscissae in u: where the energy starts, before it moves the free poles.
+Eigen::MatrixX3d straight_blend(const SplineSpace& sp, const BSplineCurve& row0,
+                                const BSplineCurve& row1) {
+  const std::vector<double> gu = greville(sp.knots_u, sp.degree_u);
+  Eigen::MatrixX3d out(sp.size(), 3);
+  for (int i = 0; i < sp.nu(); ++i)
+    for (int j = 0; j < sp.nv(); ++j)
+      out.row(sp.index(i, j)) = (1.0 - gu[static_cast<size_t>(i)]) * row0.poles.row(j) +
+                                gu[static_cast<size_t>(i)] * row1.poles.row(j);
+  return out;
+}
+
 double length(const BSplineCurve& c) {
   double sum = 0.0;
   Vec3 prev = at(c, 0.0);
@@ -274,13 +287,7 @@ SheetProblem closed_problem(const PdeBoundary& b, const PdeSurfaceOptions& o, do
   double error = 0.0;
   const BSplineCurve row0 = fit_closed_row(u0, p, sp.knots_v, &error);
   const BSplineCurve row1 = fit_closed_row(u1, p, sp.knots_v, &error);
-  const std::vector<double> gu = greville(sp.knots_u, p);
-  pb.initial_poles.resize(sp.size(), 3);
-  for (int i = 0; i < nu; ++i)
-    for (int j = 0; j < nv; ++j)
-      pb.initial_poles.row(sp.index(i, j)) =
-          (1.0 - gu[static_cast<size_t>(i)]) * row0.poles.row(j) +
-          gu[static_cast<size_t>(i)] * row1.poles.row(j);
+  pb.initial_poles = straight_blend(sp, row0, row1);
   std::vector<int> rows{0, nu - 1};
   auto hold_row = [&](int i, const Eigen::MatrixXd& poles) {
     for (int j = 0; j < nv; ++j) pb.initial_poles.row(sp.index(i, j)) = poles.row(j);
@@ -447,13 +454,7 @@ SheetProblem pde_surface_problem(const PdeBoundary& in, const PdeSurfaceOptions&
   };
   const BSplineCurve row0 = row_of(along_v[0]), row1 = row_of(along_v[1]);
   // Start: the straight blend of the two boundary rows (the energy moves the free poles from it).
-  const std::vector<double> gu = greville(sp.knots_u, p);
-  pb.initial_poles.resize(sp.size(), 3);
-  for (int i = 0; i < nu; ++i)
-    for (int j = 0; j < nv; ++j)
-      pb.initial_poles.row(sp.index(i, j)) =
-          (1.0 - gu[static_cast<size_t>(i)]) * row0.poles.row(j) +
-          gu[static_cast<size_t>(i)] * row1.poles.row(j);
+  pb.initial_poles = straight_blend(sp, row0, row1);
   std::vector<bool> fixed(static_cast<size_t>(sp.size()), false);
   auto hold = [&](int i, int j, const Eigen::RowVector3d& x) {
     pb.initial_poles.row(sp.index(i, j)) = x;
