@@ -11,6 +11,7 @@ Writes $VARSURF_GUI_OUT/pde_panel.json and quits.
 
 import json
 import os
+import sys
 import traceback
 
 import FreeCAD as App
@@ -18,62 +19,19 @@ import FreeCADGui as Gui
 import Part
 from PySide import QtCore, QtGui
 
+import varsurf  # the Mod link puts VarSurf on the path
+
+# The helpers the GUI scripts share live beside this one.
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(varsurf.__file__)))),
+                                "tests", "gui"))
+from gui_helpers import clipped_widgets, press_task_button, task_widgets, window_shot  # noqa: E402
+
 OUT = os.environ.get("VARSURF_GUI_OUT") or os.path.join(os.getcwd(), "out", "gui-pde-panel")
 os.makedirs(OUT, exist_ok=True)
 
 
-def widgets():
-    forms = [w for w in QtGui.QApplication.allWidgets() if w.objectName() == "VarSurfPdeSurface" and w.isVisible()]
-    if not forms:
-        raise RuntimeError("no visible PDE surface panel")
-    return {w.objectName(): w for w in forms[-1].findChildren(QtGui.QWidget) if w.objectName()}
-
-
-def press(which):
-    for widget in QtGui.QApplication.allWidgets():
-        if isinstance(widget, QtGui.QDialogButtonBox):
-            button = widget.button(which)
-            if button is not None and button.isVisible():
-                button.click()
-                break
-    Gui.updateGui()
-
-
-def clipped():
-    """Named widgets of the panel reaching beyond the task view's visible width."""
-    forms = [w for w in QtGui.QApplication.allWidgets() if w.objectName() == "VarSurfPdeSurface" and w.isVisible()]
-    scroll = forms[-1].parentWidget()
-    while scroll is not None and not isinstance(scroll, QtGui.QScrollArea):
-        scroll = scroll.parentWidget()
-    viewport = scroll.viewport()
-    return sorted(w.objectName() for w in forms[-1].findChildren(QtGui.QWidget)
-                  if w.isVisible() and w.objectName() and not w.objectName().startswith("qt_")
-                  and w.mapTo(viewport, QtCore.QPoint(w.width(), 0)).x() > viewport.width() + 1)
-
-
-def window_shot(path):
-    """The main window with its 3D view: Qt's grab() leaves the OpenGL view blank under Xvfb, so
-    the view is rendered offscreen (saveImage) and painted over it."""
-    Gui.updateGui()
-    window = Gui.getMainWindow()
-    picture = window.grab()
-    area = window.findChild(QtGui.QMdiArea)
-    sub = area.activeSubWindow() if area is not None else None
-    views = [w for w in sub.widget().findChildren(QtGui.QWidget)
-             if w.metaObject().className() == "QOpenGLWidget" and w.isVisible()] if sub is not None else []
-    if views:
-        rendered = path + ".view.png"
-        Gui.ActiveDocument.ActiveView.saveImage(rendered, views[0].width(), views[0].height(), "Current")
-        painter = QtGui.QPainter(picture)
-        painter.drawImage(views[0].mapTo(window, QtCore.QPoint(0, 0)), QtGui.QImage(rendered))
-        painter.end()
-        os.remove(rendered)
-    picture.save(path)
-
-
 def run(result):
     Gui.activateWorkbench("VarSurfWorkbench")
-    import varsurf
 
     doc = App.newDocument("PdePanel")
     doc.UndoMode = 1
@@ -93,31 +51,31 @@ def run(result):
     before = [p for row in pde.Shape.Faces[0].Surface.getPoles() for p in row]
     pde.ViewObject.Proxy.doubleClicked(pde.ViewObject)
     Gui.updateGui()
-    w = widgets()
+    w = task_widgets("VarSurfPdeSurface")
     result["shown"] = [w["kindValue"].text(), w["aSpin"].value(), w["regionTable"].rowCount()]
     w["aSpin"].setValue(2.5)
     w["addRegionButton"].click()
     w["updateButton"].click()
     Gui.updateGui()
     result["previewed"] = [round(float(pde.PdeA), 4), list(pde.PdeRegions), pde.isValid()]
-    result["clipped"] = clipped()
+    result["clipped"] = clipped_widgets("VarSurfPdeSurface")
     shot = os.path.join(OUT, "pde_panel.png")
     window_shot(shot)
     result["shot"] = shot
-    press(QtGui.QDialogButtonBox.Ok)
+    press_task_button(QtGui.QDialogButtonBox.Ok)
     after = [p for row in pde.Shape.Faces[0].Surface.getPoles() for p in row]
     result["ok"] = [round(float(pde.PdeA), 4), len(pde.PdeRegions), pde.isValid(), doc.UndoNames[:1],
                     max((p - q).Length for p, q in zip(before, after)) > 1e-3]
     # Opened again, changed, cancelled: the change is undone.
     pde.ViewObject.Proxy.doubleClicked(pde.ViewObject)
     Gui.updateGui()
-    w = widgets()
+    w = task_widgets("VarSurfPdeSurface")
     result["reloaded"] = [round(w["aSpin"].value(), 4), w["regionTable"].rowCount()]
     w["aSpin"].setValue(7.0)
     w["removeRegionButton"].click()
     w["updateButton"].click()
     Gui.updateGui()
-    press(QtGui.QDialogButtonBox.Cancel)
+    press_task_button(QtGui.QDialogButtonBox.Cancel)
     result["cancelled"] = [round(float(pde.PdeA), 4), len(pde.PdeRegions), pde.isValid()]
 
 
