@@ -262,6 +262,8 @@ void bind_core_types(py::module_& m) {
       .def_readwrite("line_points", &SheetProblem::line_points)
       .def_readwrite("ribbons", &SheetProblem::ribbons)
       .def_readwrite("curvatures", &SheetProblem::curvatures, "G2 conditions (iterated).")
+      .def_readwrite("point_curvatures", &SheetProblem::point_curvatures,
+                     "Normal curvatures at points (iterated with the G2 conditions).")
       .def_readwrite("closed_u", &SheetProblem::closed_u,
                      "The space's u ends are one seam (the displacement from the start tied "
                      "smooth across it): a sheet closed along u.")

@@ -7,6 +7,7 @@
 #include "varsurf/core/curvature_constraint.hpp"
 #include "varsurf/core/external_energy.hpp"
 #include "varsurf/core/point_constraints.hpp"
+#include "varsurf/core/point_curvature.hpp"
 #include "varsurf/core/ribbon_constraint.hpp"
 #include "varsurf/core/seam_ties.hpp"
 
@@ -110,6 +111,32 @@ void bind_operators(py::module_& m) {
       "space"_a, "poles"_a, "curvature"_a, "floor"_a, "samples"_a = 200,
       "Largest relative jump between the sheet's and the neighbour's normal curvature across the "
       "pre-image, relative to max(|k|, floor).");
+
+  py::class_<PointCurvatureConstraint>(
+      m, "PointCurvatureConstraint",
+      "The sheet's normal curvatures at (u, v) along u and v are kappa_u and kappa_v (signed: "
+      "positive bends toward the normal w_u x w_v); along_u/along_v say which are asked. Not "
+      "linear: solve_sheet iterates.")
+      .def(py::init([](double u, double v, double kappa_u, double kappa_v, bool along_u,
+                       bool along_v, double weight) {
+             return PointCurvatureConstraint{u, v, kappa_u, kappa_v, along_u, along_v, weight};
+           }),
+           "u"_a = 0.0, "v"_a = 0.0, "kappa_u"_a = 0.0, "kappa_v"_a = 0.0, "along_u"_a = true,
+           "along_v"_a = true, "weight"_a = 1.0)
+      .def_readwrite("u", &PointCurvatureConstraint::u)
+      .def_readwrite("v", &PointCurvatureConstraint::v)
+      .def_readwrite("kappa_u", &PointCurvatureConstraint::kappa_u)
+      .def_readwrite("kappa_v", &PointCurvatureConstraint::kappa_v)
+      .def_readwrite("along_u", &PointCurvatureConstraint::along_u)
+      .def_readwrite("along_v", &PointCurvatureConstraint::along_v)
+      .def_readwrite("weight", &PointCurvatureConstraint::weight);
+
+  m.def("normal_curvatures", &normal_curvatures, "space"_a, "poles"_a, "u"_a, "v"_a,
+        "The sheet's normal curvatures (kappa_u, kappa_v) at (u, v), signed along w_u x w_v.");
+
+  m.def("point_curvature_error", &point_curvature_error, "space"_a, "poles"_a, "curvature"_a,
+        "floor"_a,
+        "Largest |kappa - target| over the asked directions, relative to max(|target|, floor).");
 
   m.def(
       "seam_mismatch",

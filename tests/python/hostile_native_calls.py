@@ -344,6 +344,9 @@ def hostile_problems():
                                           np.array([0.0, 0.0, 1.0]), x)])
         variant(directors=[nat.Director(nat.Region(), np.array([0.0, x, 1.0]), 1.0)])
         variant(repellers=[nat.Repeller(nat.Region(), np.array([5.0, 5.0, x]), x)])
+        variant(point_curvatures=[nat.PointCurvatureConstraint(0.5, x, x, 0.01, True, True, 1.0)])
+        variant(point_curvatures=[nat.PointCurvatureConstraint(0.5, 0.5, 0.01, 0.01, True, False, x)])
+    variant(point_curvatures=[nat.PointCurvatureConstraint(0.5, 0.5, 0.01, 0.01, False, False, 1.0)])
     for k in hostile_ints():
         variant(fixed_poles=[k])
         variant(tangents=[nat.TangentConstraint(0.5, 0.5, k, np.array([1.0, 0.0, 0.0]), 1.0)])
@@ -527,6 +530,8 @@ CLASS_VALUES = {
     "RibbonConstraint": (lambda: nat.RibbonConstraint(line2(), normals3(), 1.0), lambda: hostile_ribbons()),
     "CurvatureConstraint": (lambda: nat.CurvatureConstraint(line2(), normals3(), shape6(), 1.0),
                             lambda: hostile_curvatures()),
+    "PointCurvatureConstraint": (lambda: nat.PointCurvatureConstraint(0.5, 0.5, 0.01, 0.01, True, True, 1.0),
+                                 lambda: hostile_point_curvatures()),
     "CurveConstraint": (lambda: problem().curves[0], lambda: hostile_curve_constraints()),
     "List[CurveConstraint]": (lambda: problem().curves, lambda: [[]] + [[c] for c in hostile_curve_constraints()]),
     "List[PointConstraint]": (lambda: [nat.PointConstraint(0.5, 0.5, np.array([5.0, 5.0, 1.0]), 1.0)],
@@ -553,6 +558,14 @@ def hostile_curvatures():
     out += [nat.CurvatureConstraint(line2(), c, shape6(), 1.0) for c in hostile_curves()]
     out += [nat.CurvatureConstraint(line2(), normals3(), c, 1.0) for c in hostile_curves()]
     out += [nat.CurvatureConstraint(line2(), normals3(), shape6(), x) for x in hostile_floats()]
+    return out
+
+
+def hostile_point_curvatures():
+    out = [nat.PointCurvatureConstraint(x, 0.5, 0.01, 0.01, True, True, 1.0) for x in hostile_floats()]
+    out += [nat.PointCurvatureConstraint(0.5, 0.5, x, x, True, True, 1.0) for x in hostile_floats()]
+    out += [nat.PointCurvatureConstraint(0.5, 0.5, 0.01, 0.01, True, True, x) for x in hostile_floats()]
+    out.append(nat.PointCurvatureConstraint(0.5, 0.5, 0.01, 0.01, False, False, 1.0))
     return out
 
 

@@ -217,9 +217,9 @@ SolveResult solve_sheet_multigrid(const SheetProblem& pb, const MultigridOptions
                                   MultigridReport* report) {
   if (!pb.points.empty() || !pb.curves.empty() || !pb.tangents.empty() || !pb.normals.empty() ||
       !pb.plane_points.empty() || !pb.line_points.empty() || !pb.ribbons.empty() ||
-      !pb.curvatures.empty() || !pb.attractors.empty() || !pb.directors.empty() ||
-      !pb.repellers.empty() || !pb.shape_attractors.empty() || pb.pressure != 0.0 || pb.closed_u ||
-      pb.closed_v || pb.kept_region)
+      !pb.curvatures.empty() || !pb.point_curvatures.empty() || !pb.attractors.empty() ||
+      !pb.directors.empty() || !pb.repellers.empty() || !pb.shape_attractors.empty() ||
+      pb.pressure != 0.0 || pb.closed_u || pb.closed_v || pb.kept_region)
     throw InvalidInput(
         "multigrid: only a sheet held by its fixed poles (its boundary conditions) "
         "is solved by multigrid; solve the others with solve_sheet");

@@ -105,9 +105,9 @@ DynamicSheet::DynamicSheet(const SheetProblem& pb, const DynamicsParameters& par
     throw InvalidInput("dynamics: the start poles do not match the space (or are not finite)");
   if (!pb.points.empty() || !pb.curves.empty() || !pb.tangents.empty() || !pb.normals.empty() ||
       !pb.plane_points.empty() || !pb.line_points.empty() || !pb.ribbons.empty() ||
-      !pb.curvatures.empty() || !pb.attractors.empty() || !pb.directors.empty() ||
-      !pb.repellers.empty() || !pb.shape_attractors.empty() || pb.pressure != 0.0 || pb.closed_u ||
-      pb.closed_v)
+      !pb.curvatures.empty() || !pb.point_curvatures.empty() || !pb.attractors.empty() ||
+      !pb.directors.empty() || !pb.repellers.empty() || !pb.shape_attractors.empty() ||
+      pb.pressure != 0.0 || pb.closed_u || pb.closed_v)
     throw InvalidInput(
         "dynamics: only fixed poles hold a dynamic sheet (its boundary conditions); "
         "remove its curve, point and operator constraints, or sculpt it statically");

@@ -22,6 +22,7 @@
 #include "varsurf/core/lcurve.hpp"
 #include "varsurf/core/pde_coefficient.hpp"
 #include "varsurf/core/point_constraints.hpp"
+#include "varsurf/core/point_curvature.hpp"
 #include "varsurf/core/ribbon_constraint.hpp"
 #include "varsurf/core/seam_ties.hpp"
 #include "varsurf/core/spline_space.hpp"
@@ -57,6 +58,8 @@ struct SheetProblem {
   // G2 along curves the sheet also contains with G1: not linear, so Newton iterations on the
   // whole constrained solve (each linearized at the last poles); couples x, y, z.
   std::vector<CurvatureConstraint> curvatures;
+  // Normal curvatures at points (Du & Qin 4.7.3): iterated with the G2 conditions.
+  std::vector<PointCurvatureConstraint> point_curvatures;
   std::vector<Attractor> attractors;             // plane and line kinds couple x, y, z
   std::vector<Director> directors;               // couples x, y, z
   std::vector<Repeller> repellers;               // not quadratic: iterated, couples x, y, z
