@@ -9,7 +9,8 @@
 - fig8: Coons-like conditions (four boundary curves, 8A, 8B) and a Gordon-like network (curves at
   u = 0, 0.5, 1 and v = 0, 0.5, 1, 8C, 8D).
 - fig11: the coefficient a: 3 everywhere, 5 painted on a region, 5 everywhere.
-- fig12, fig13: sculpting tools: a point moved, a normal set; a frozen region.
+- fig12, fig13: sculpting tools: a point moved, a normal set, a curvature set; a frozen region.
+- fig14: a non-isoparametric curve constraint: a curve on the surface mapped onto another.
 - fig16: PDE displacements of an existing face (a Sheet with Energy = PDE and its base as rest
   shape): a point, a point beside a frozen region, a curve.
 - blend: Bloor & Wilson's blend, closed along v, from a cylinder (G1 to its side) to a flange.
@@ -142,17 +143,20 @@ def _hermite_patch(doc, prefix, dx=0.0, a=2.0):
 
 
 def fig12(doc):
-    """Point and normal sculpting (12A, 12B): a surface point moved 15 mm up; the normal there
-    tilted by 30 degrees."""
+    """Point, normal and curvature sculpting (12A, 12B, 12C): a surface point moved 15 mm up; the
+    normal there tilted by 30 degrees; the curvature there across the surface (along u) set to
+    1/25 mm, bending toward +z, and along v to 0."""
     moved = _hermite_patch(doc, "PointMoved")
     tilted = _hermite_patch(doc, "NormalSet", dx=130.0)
+    bent = _hermite_patch(doc, "CurvatureSet", dx=260.0)
     doc.recompute()
+    varsurf.make_constraint(bent, "Curvature", uv=(0.5, 0.5), vector=(0, 0, 1), curvature=(1 / 25.0, 0.0))
     target = moved.Shape.Faces[0].Surface.value(0.5, 0.5) + V(0, 0, 15)
     varsurf.make_constraint(moved, "Point", uv=(0.5, 0.5), origin=(target.x, target.y, target.z))
     varsurf.make_constraint(tilted, "Normal", uv=(0.5, 0.5), vector=(math.sin(math.radians(30)), 0,
                                                                      math.cos(math.radians(30))))
     doc.recompute()
-    return [moved, tilted]
+    return [moved, tilted, bent]
 
 
 def fig13(doc):
@@ -164,6 +168,25 @@ def fig13(doc):
     varsurf.make_constraint(frozen, "FrozenRegion", region=(0.3, 0.8, 0.6, 0.95))
     doc.recompute()
     return [frozen]
+
+
+def fig14(doc):
+    """A non-isoparametric curve constraint (Fig. 14): a diagonal curve drawn on the surface is
+    mapped onto a destination curve that rises 20 mm in its middle (a CurveMap); the boundary
+    conditions hold."""
+    patch = _hermite_patch(doc, "Mapped")
+    doc.recompute()
+    surface = patch.Shape.Faces[0].Surface
+    u0, u1, v0, v1 = surface.bounds()
+    diagonal = [surface.value(u0 + (u1 - u0) * (0.2 + 0.6 * t), v0 + (v1 - v0) * (0.15 + 0.7 * t))
+                for t in (i / 8 for i in range(9))]
+    source = curve(doc, "MappedSource", diagonal)
+    destination = curve(doc, "MappedDestination",
+                        [p + V(0, 0, 20 * math.sin(math.pi * i / 8)) for i, p in enumerate(diagonal)])
+    doc.recompute()
+    varsurf.make_constraint(patch, "CurveMap", curve=(source, "Edge1"), reference=(destination, "Edge1"))
+    doc.recompute()
+    return [patch]
 
 
 def fig16(doc):
@@ -198,7 +221,7 @@ def fig16(doc):
     return out
 
 
-FIGURES = {"fig7": fig7, "fig8": fig8, "fig11": fig11, "fig12": fig12, "fig13": fig13, "fig16": fig16,
+FIGURES = {"fig7": fig7, "fig8": fig8, "fig11": fig11, "fig12": fig12, "fig13": fig13, "fig14": fig14, "fig16": fig16,
            "blend": blend}
 
 

@@ -738,8 +738,10 @@ def every_constraint_command(result, doc, sheet, surface, rail):
         Gui.Selection.addSelection(doc.Name, sheet.Name)
         if kind == "Point":
             Gui.Selection.addSelection(doc.Name, vertex.Name, "Vertex1")
-        if kind in constraints.CURVE_KINDS or kind in ("G0", "CurveAttractor"):
+        if kind in constraints.CURVE_KINDS or kind in ("G0", "CurveAttractor", "CurveMap"):
             Gui.Selection.addSelection(doc.Name, rail.Name, "Edge1")
+        if kind == "CurveMap":  # the destination, picked after the source
+            Gui.Selection.addSelection(doc.Name, surface.Name, "Edge1")
         if kind in ("G1", "G2", "SurfaceAttractor"):
             Gui.Selection.addSelection(doc.Name, surface.Name, "Face1")
         active = bool(Gui.Command.get(name).isActive())

@@ -23,7 +23,7 @@ def sheet(doc, native):
 
 @pytest.mark.parametrize("kind", [k for k in constraints.KINDS if k not in selection.VERTEX_KINDS
                                   and k not in constraints.CURVE_KINDS and k not in constraints.SHAPE_KINDS
-                                  and k != "G0"])
+                                  and k not in ("G0", "CurveMap")])
 def test_every_kind_from_a_selected_sheet(sheet, kind):
     doc = sheet.Document
     lines = []
@@ -44,6 +44,23 @@ def test_every_kind_from_a_selected_sheet(sheet, kind):
     name = c.Name
     doc.undo()
     assert name not in [o.Name for o in doc.Objects]
+
+
+def test_curve_map_from_a_sheet_and_two_edges_in_picking_order(sheet):
+    import Part
+
+    doc = sheet.Document
+    source, destination = doc.addObject("Part::Feature", "Source"), doc.addObject("Part::Feature", "Destination")
+    source.Shape = Part.LineSegment(FreeCAD.Vector(50, 40, 0), FreeCAD.Vector(80, 60, 0)).toShape()
+    destination.Shape = Part.Arc(FreeCAD.Vector(50, 40, 3), FreeCAD.Vector(65, 52, 9),
+                                 FreeCAD.Vector(80, 60, 3)).toShape()
+    doc.recompute()
+    with pytest.raises(ValueError, match="exactly two edges"):
+        selection.constraint_selection_to_args("CurveMap", [Sel(sheet), Sel(source, "Edge1")])
+    c = actions.run_constraint_command("CurveMap", [Sel(sheet), Sel(source, "Edge1"), Sel(destination, "Edge1")])
+    assert c is not None and c.Curve[0] == source and c.Reference[0] == destination
+    assert sheet.isValid(), sheet.getStatusString()
+    assert sheet.ConstraintResiduals[list(sheet.ConstraintNames).index(c.Label)] < float(sheet.Tolerance)
 
 
 def test_point_from_a_sheet_and_a_vertex(sheet):

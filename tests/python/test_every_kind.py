@@ -39,6 +39,7 @@ VALID = {
     "Normal": lambda o: dict(uv=(0.65, 0.55), vector=(0.3, -0.2, 1.0)),
     "PointInPlane": lambda o: dict(uv=(0.65, 0.55), vector=(0.2, 0.1, 1.0), origin=(0, 0, 7)),
     "PointOnLine": lambda o: dict(uv=(0.65, 0.55), vector=(0, 0.3, 1), origin=(70, 40, 0)),
+    "Curvature": lambda o: dict(uv=(0.65, 0.55), vector=(0, 0, 1), curvature=(0.004, -0.002)),
     "PointAttractor": lambda o: dict(origin=(60, 40, 10), region=(0.5, 0.7, 0.4, 0.6)),
     "PlaneAttractor": lambda o: dict(origin=(60, 40, 10), vector=(0, 0, 1), region=(0.5, 0.7, 0.4, 0.6)),
     "LineAttractor": lambda o: dict(origin=(60, 40, 10), vector=(1, 0, 0), region=(0.5, 0.7, 0.4, 0.6)),
@@ -51,6 +52,7 @@ VALID = {
     "G1": lambda o: dict(curve=(o["seam"], "Edge1"), reference=(o["flat"], "Face1")),
     "G0": lambda o: dict(curve=(o["lifted"], "Edge1")),
     "G2": lambda o: dict(curve=(o["seam"], "Edge1"), reference=(o["flat"], "Face1")),
+    "CurveMap": lambda o: dict(curve=(o["seam"], "Edge1"), reference=(o["second"], "Edge1")),
 }
 
 
@@ -98,6 +100,9 @@ BAD = [
     ("Normal", dict(Weight=NAN), "weight"),
     ("PointInPlane", dict(Vector=V(0, 0, 0)), "non-zero direction"),
     ("PointOnLine", dict(Vector=V(0, 0, 0)), "non-zero direction"),
+    ("Curvature", dict(CurvatureU=NAN), "must be finite"),
+    ("Curvature", dict(Vector=V(1, 0, 0)), "names no side"),
+    ("Curvature", dict(Vector=V(0, 0, 0)), "non-zero direction"),
     ("PointAttractor", dict(RegionU1=1.5), "region"),
     ("PointAttractor", dict(Weight=NAN), "weight"),
     ("PlaneAttractor", dict(Vector=V(0, 0, 0)), "non-zero direction"),
@@ -119,6 +124,9 @@ BAD = [
     ("G2", dict(Reference=None), "needs a Curve (an edge) and a Reference"),
     ("G2", dict(Reference="roof"), "from its reference face"),
     ("G0", dict(Curve=None), "needs a Curve"),
+    ("CurveMap", dict(Reference=None), "needs a Curve (the source"),
+    ("CurveMap", dict(Reference="roof"), "must be an edge"),
+    ("CurveMap", dict(Curve="beyond"), "beyond"),
     ("G0", dict(Curve="beyond"), "beyond"),
 ]
 

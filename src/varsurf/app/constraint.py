@@ -33,9 +33,12 @@ _PROPERTIES = [
     ("RegionV1", "App::PropertyFloat", "Region", "Normalized region end along v"),
     ("Weight", "App::PropertyFloat", "Constraint", "Weight of a constraint, or strength of an operator (>= 0)"),
     ("RegionLoop", "App::PropertyLinkSub", "Region", "Closed edges (e.g. a sketch): the region is the part of the sheet they enclose, projected onto the base; overrides RegionU0..V1"),
-    ("Curve", "App::PropertyLinkSub", "Ribbon", "Ribbon, G1 and G2: the edge along which the sheet's orientation is set; CurveAttractor: the edge pulled onto"),
-    ("Reference", "App::PropertyLinkSub", "Ribbon", "G1, G2, Ribbon: the face whose normal (G2: and curvature) the sheet follows along Curve (Ribbon: or a second edge; empty: the base's normal); SurfaceAttractor: the face pulled onto"),
+    ("Curve", "App::PropertyLinkSub", "Ribbon", "Ribbon, G1 and G2: the edge along which the sheet's orientation is set; CurveAttractor: the edge pulled onto; CurveMap: the source curve on the sheet"),
+    ("Reference", "App::PropertyLinkSub", "Ribbon", "G1, G2, Ribbon: the face whose normal (G2: and curvature) the sheet follows along Curve (Ribbon: or a second edge; empty: the base's normal); SurfaceAttractor: the face pulled onto; CurveMap: the destination edge"),
     ("Angle", "App::PropertyAngle", "Ribbon", "Ribbon: the sheet's normal is the Reference's turned by this angle about Curve"),
+    ("CurvatureU", "App::PropertyFloat", "Curvature", "Curvature: the sheet's normal curvature along u at the point, in 1/mm (1 / radius; positive: it bends toward the side Vector points to)"),
+    ("CurvatureV", "App::PropertyFloat", "Curvature", "Curvature: the sheet's normal curvature along v at the point, in 1/mm"),
+    ("CurvatureDirections", "App::PropertyEnumeration", "Curvature", "Curvature: which of CurvatureU and CurvatureV the sheet must have (the other is left to its energy)"),
 ]
 
 
@@ -48,6 +51,7 @@ _DEFAULTS = {
     "RegionU1": 1.0,
     "RegionV1": 1.0,
     "Weight": 1.0,
+    "CurvatureDirections": list(constraints.CURVATURE_DIRECTIONS),
 }
 
 
@@ -120,6 +124,8 @@ def spec_of(obj) -> constraints.ConstraintSpec:
         reference=_sub_shape(obj, "Reference", ("Face", "Edge")),
         angle=float(value(obj, "Angle")),
         region_loop=_loop_shape(obj),
+        curvature=(float(obj.CurvatureU), float(obj.CurvatureV)),
+        curvature_directions=str(obj.CurvatureDirections),
     )
     spec.validate()
     return spec

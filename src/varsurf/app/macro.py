@@ -72,11 +72,39 @@ def constraint_command_lines(kind: str, sheet, args) -> List[str]:
         parts.append(f"origin=({centre[0]:.6g}, {centre[1]:.6g}, {centre[2]:.6g})")
     if kind in constraints.REGION_KINDS and "region_loop" not in args:
         parts.append("region=(0.25, 0.75, 0.25, 0.75)")  # the sheet's middle
+    if kind == "Curvature":
+        # The sheet's own normal and curvatures at the point: nothing changes until they are edited.
+        normal, kappa = _curvature_now(sheet, args)
+        parts.append(f"vector=({normal[0]:.6g}, {normal[1]:.6g}, {normal[2]:.6g})")
+        parts.append(f"curvature=({kappa[0]:.6g}, {kappa[1]:.6g})")
     return [
         "import varsurf",
         f"_constraint = varsurf.make_constraint({', '.join(parts)})",
         f"App.getDocument({sheet.Document.Name!r}).recompute()",
     ]
+
+
+def _curvature_now(sheet, args):
+    """The sheet's unit normal and its normal curvatures along u and v (1/mm) at the constraint's
+    place (the location's projection, else the middle); (0, 0, 1) and (0, 0) without a face."""
+    face = sheet.Shape.Faces[0] if not sheet.Shape.isNull() and sheet.Shape.Faces else None
+    if face is None:
+        return (0.0, 0.0, 1.0), (0.0, 0.0)
+    surface = face.Surface
+    u0, u1, v0, v1 = surface.bounds()
+    u, v = 0.5 * (u0 + u1), 0.5 * (v0 + v1)
+    if "location" in args:
+        obj, sub = args["location"]
+        point = obj.getSubObject(sub).Vertexes[0].Point
+        u, v = surface.parameter(point)
+    du, dv = surface.getDN(u, v, 1, 0), surface.getDN(u, v, 0, 1)
+    normal = du.cross(dv)
+    if normal.Length < 1e-12 or du.Length < 1e-12 or dv.Length < 1e-12:
+        return (0.0, 0.0, 1.0), (0.0, 0.0)
+    normal.normalize()
+    kappa = (normal.dot(surface.getDN(u, v, 2, 0)) / du.Length ** 2,
+             normal.dot(surface.getDN(u, v, 0, 2)) / dv.Length ** 2)
+    return (normal.x, normal.y, normal.z), kappa
 
 
 def _sheet_centre(sheet):

@@ -131,6 +131,8 @@ def make_constraint(
     reference=None,
     angle: float = 0.0,
     region_loop=None,
+    curvature=None,
+    curvature_directions: str = "U and V",
 ):
     """Add a Constraint of ``kind`` (see ``varsurf.solve.constraints.KINDS``) to ``sheet``.
 
@@ -145,6 +147,8 @@ def make_constraint(
         CurveAttractor: curve is the edge pulled onto; SurfaceAttractor: reference is the face.
     region_loop: (object, ["Edge1", ...]) or (object, []) for all its edges: a closed loop whose
         projection onto the base is the region (instead of the rectangle `region`).
+    curvature, curvature_directions: Curvature: (kappa_u, kappa_v) in 1/mm (positive: the sheet bends
+        toward the side `vector` points to) and which of them are asked ("U and V", "U" or "V").
     """
     if kind not in constraints.KINDS:
         raise ValueError(f"unknown constraint kind {kind!r}: give one of {', '.join(constraints.KINDS)}")
@@ -173,6 +177,9 @@ def make_constraint(
     if region_loop is not None:
         link, subs = region_loop
         obj.RegionLoop = (link, list(subs) if not isinstance(subs, str) else [subs])
+    if curvature is not None:
+        obj.CurvatureU, obj.CurvatureV = float(curvature[0]), float(curvature[1])
+    obj.CurvatureDirections = curvature_directions
     sheet.Constraints = list(sheet.Constraints) + [obj]
     attach_view_provider(obj, "ViewProviderConstraint")
     return obj

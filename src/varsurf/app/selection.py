@@ -135,6 +135,8 @@ SELECTION_HINTS = {
     "G1": "Select a Sheet, the edge along which it joins, and the face it must follow there.",
     "G2": "Select a Sheet, the edge along which it joins, and the face whose curvature it must continue there.",
     "G0": "Select a Sheet and the edge it must contain (e.g. the edge of the neighbouring face).",
+    "CurveMap": ("Select a Sheet, then the source edge (a curve on the sheet) and then the destination edge it is "
+                 "mapped onto."),
 }
 #: Kinds that need a picked vertex from the GUI (their target is a location).
 VERTEX_KINDS = ("Point",)
@@ -201,6 +203,11 @@ def constraint_selection_to_args(kind: str, selection_ex: Sequence):
             args["location"] = of["Vertex"][0]
         return sheet, args
     refuse("Vertex")
+    if kind == "CurveMap":
+        if len(of["Edge"]) != 2 or of["Face"]:
+            raise ValueError(f"a CurveMap needs exactly two edges: the source, then the destination. {hint}")
+        args["curve"], args["reference"] = of["Edge"]
+        return sheet, args
     if kind in constraints.CURVE_KINDS or kind in ("CurveAttractor", "G0"):
         edges, faces = of["Edge"], of["Face"]
         if kind in constraints.JOIN_KINDS and (len(edges) != 1 or len(faces) != 1):

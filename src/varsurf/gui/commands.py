@@ -195,6 +195,10 @@ CONSTRAINT_COMMANDS = [
     ("VarSurf_PointOnLine", "PointOnLine",
      QT_TRANSLATE_NOOP("VarSurf_PointOnLine", "Point on line"),
      QT_TRANSLATE_NOOP("VarSurf_PointOnLine", "Keep a point of the sheet on a line.\nSelect a Sheet (and optionally a vertex for the point).")),
+    ("VarSurf_Curvature", "Curvature",
+     QT_TRANSLATE_NOOP("VarSurf_Curvature", "Curvature at a point"),
+     QT_TRANSLATE_NOOP("VarSurf_Curvature", "Prescribe the sheet's normal curvatures along u and v at a point (1 / radius;\n"
+                       "they start as the sheet's own). Select a Sheet (and optionally a vertex for the point).")),
     ("VarSurf_PointAttractor", "PointAttractor",
      QT_TRANSLATE_NOOP("VarSurf_PointAttractor", "Point attractor"),
      QT_TRANSLATE_NOOP("VarSurf_PointAttractor", "Pull a region of the sheet toward a point.\nSelect a Sheet and, optionally, closed edges (e.g. a sketch) bounding the region.")),
@@ -222,6 +226,10 @@ CONSTRAINT_COMMANDS = [
     ("VarSurf_G2", "G2",
      QT_TRANSLATE_NOOP("VarSurf_G2", "G2 join"),
      QT_TRANSLATE_NOOP("VarSurf_G2", "The sheet contains an edge and joins a face there curvature-continuously (iterated).\nSelect a Sheet (degree 3 or more), the shared edge and the neighbouring face.")),
+    ("VarSurf_CurveMap", "CurveMap",
+     QT_TRANSLATE_NOOP("VarSurf_CurveMap", "Curve map"),
+     QT_TRANSLATE_NOOP("VarSurf_CurveMap", "Map a source curve on the sheet onto a destination curve, point for point.\n"
+                       "Select a Sheet, then the source edge and then the destination edge.")),
     ("VarSurf_SurfaceAttractor", "SurfaceAttractor",
      QT_TRANSLATE_NOOP("VarSurf_SurfaceAttractor", "Surface attractor"),
      QT_TRANSLATE_NOOP("VarSurf_SurfaceAttractor", "Pull a region of the sheet onto another face.\nSelect a Sheet, the face and, optionally, closed edges bounding the region.")),
@@ -341,12 +349,13 @@ CONSTRAINTS = [name for name, _kind, _menu, _tip in CONSTRAINT_COMMANDS]
 CONSTRAINT_GROUPS = [
     ("VarSurf_PointConstraints", QT_TRANSLATE_NOOP("VarSurf_PointConstraints", "Point constraints"),
      QT_TRANSLATE_NOOP("VarSurf_PointConstraints", "Constraints at a point of the sheet: position, tangents, normal,\n"
-                       "in a plane, on a line"),
+                       "in a plane, on a line, curvature"),
      ["VarSurf_Point", "VarSurf_TangentU", "VarSurf_TangentV", "VarSurf_Normal", "VarSurf_PointInPlane",
-      "VarSurf_PointOnLine"]),
+      "VarSurf_PointOnLine", "VarSurf_Curvature"]),
     ("VarSurf_CurveJoins", QT_TRANSLATE_NOOP("VarSurf_CurveJoins", "Joins along curves"),
-     QT_TRANSLATE_NOOP("VarSurf_CurveJoins", "Joins along an edge: G0, G1, G2 to a neighbouring face, or a ribbon"),
-     ["VarSurf_G1", "VarSurf_G0", "VarSurf_G2", "VarSurf_Ribbon"]),
+     QT_TRANSLATE_NOOP("VarSurf_CurveJoins", "Joins along an edge: G0, G1, G2 to a neighbouring face, a ribbon, or a curve mapped\n"
+                       "onto another"),
+     ["VarSurf_G1", "VarSurf_G0", "VarSurf_G2", "VarSurf_Ribbon", "VarSurf_CurveMap"]),
     ("VarSurf_Operators", QT_TRANSLATE_NOOP("VarSurf_Operators", "Shape operators"),
      QT_TRANSLATE_NOOP("VarSurf_Operators", "Operators on a region of the sheet: attractors to a point, plane, line,\n"
                        "face or edge, a repeller, a director, a frozen region"),

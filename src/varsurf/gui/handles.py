@@ -9,6 +9,8 @@ releasing it commits one undoable step.
 
 from __future__ import annotations
 
+import math
+
 import FreeCAD as App
 import FreeCADGui as Gui
 import Part
@@ -25,10 +27,15 @@ ARROW = (0.1, 0.45, 0.9)
 ATTRACT = (0.1, 0.65, 0.25)
 REPEL = (0.85, 0.1, 0.1)
 RIBBON = (0.55, 0.2, 0.75)
+CURVATURE = (0.85, 0.35, 0.6)
 #: Handles are this fraction of the sheet's diagonal.
 HANDLE_SIZE = 0.03
 #: Ticks drawn along a ribbon's curve.
 RIBBON_TICKS = 12
+#: Points on each half of a Curvature constraint's arcs.
+CURVATURE_POINTS = 16
+#: Points on a CurveMap's curves (every quarter of them joined source to destination).
+CURVE_MAP_POINTS = 65
 
 _dragging = []  # the ConstraintHandles whose pin is being dragged (at most one)
 #: Kinds whose Origin is drawn as a draggable pin.
@@ -221,6 +228,63 @@ class ConstraintHandles:
             _arrow(self.root, face.valueAt(u, v), V(c.Vector), 4 * size, ARROW)
         elif kind in ("Ribbon", "G1", "G2") and c.Curve is not None:
             self._ribbon(c, sheet, size)
+        elif kind == "Curvature":
+            self._curvature(c, sheet, size)
+        elif kind == "CurveMap" and c.Curve is not None and c.Reference is not None:
+            self._curve_map(c)
+
+    def _curve_map(self, c):
+        """The source and destination curves and, between them, where points go."""
+        edges = []
+        for link in (c.Curve, c.Reference):
+            target, subs = link
+            subs = [s for s in subs if s]
+            edges.append(Part.getShape(target, subs[0], needSubElement=True) if subs else target.Shape.Edges[0])
+        source, destination = (e.discretize(CURVE_MAP_POINTS) for e in edges)
+        if (destination[0] - source[0]).Length + (destination[-1] - source[-1]).Length > \
+                (destination[-1] - source[0]).Length + (destination[0] - source[-1]).Length:
+            destination.reverse()  # as the solver turns it: its start is the end nearer the source's start
+        _line(self.root, source, RIBBON, 3.0)
+        _line(self.root, destination, CURVATURE, 3.0)
+        for a, b in list(zip(source, destination))[::(CURVE_MAP_POINTS - 1) // 4]:
+            _line(self.root, [a, b], ARROW, 1.5)
+
+    def _curvature(self, c, sheet, size):
+        """Vector (the side positive curvature bends to) and the arcs of the asked curvatures the
+        sheet must follow through the point along u and v (straight for 0)."""
+        at, _normal = _on_sheet(sheet, c)
+        side = V(c.Vector)
+        if at is None or side.Length == 0:
+            return
+        side.normalize()
+        _arrow(self.root, at, side, 4 * size, ARROW)
+        surface = sheet.Shape.Faces[0].Surface
+        u, v = surface.parameter(at)
+        normal = surface.getDN(u, v, 1, 0).cross(surface.getDN(u, v, 0, 1))
+        if normal.Length == 0:
+            return
+        normal.normalize()
+        if normal.dot(side) < 0:
+            normal = -normal
+        asked = str(c.CurvatureDirections)
+        for (du, dv), kappa, name in (((1, 0), float(c.CurvatureU), "U"), ((0, 1), float(c.CurvatureV), "V")):
+            if asked not in ("U and V", name):
+                continue
+            t = surface.getDN(u, v, du, dv)
+            t = t - normal * normal.dot(t)
+            if t.Length == 0:
+                continue
+            t.normalize()
+            reach = min(6 * size, 0.5 * math.pi / abs(kappa)) if kappa else 6 * size
+            points = []
+            for i in range(-CURVATURE_POINTS, CURVATURE_POINTS + 1):
+                s_ = reach * i / CURVATURE_POINTS
+                if abs(kappa * reach) < 1e-9:
+                    points.append(at + t * s_)
+                else:
+                    bend = (1 - math.cos(kappa * s_)) / kappa
+                    points.append(at + t * (math.sin(kappa * s_) / kappa) + normal * bend)
+            _line(self.root, points, CURVATURE, 3.0)
 
     def _ribbon(self, c, sheet, size):
         link, subs = c.Curve

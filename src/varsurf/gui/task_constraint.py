@@ -15,7 +15,7 @@ from varsurf.solve import constraints
 
 _LINKS = {"location": ("Location", ("Vertex",)), "curve": ("Curve", ("Edge",)),
           "reference": ("Reference", ("Face", "Edge"))}
-_VECTOR_KINDS = ("TangentU", "TangentV", "Normal", "PointInPlane", "PointOnLine", "PlaneAttractor",
+_VECTOR_KINDS = ("TangentU", "TangentV", "Normal", "PointInPlane", "PointOnLine", "Curvature", "PlaneAttractor",
                  "LineAttractor", "Director")
 _ORIGIN_KINDS = ("Point", "PointInPlane", "PointOnLine", "PointAttractor", "PlaneAttractor",
                  "LineAttractor", "Repeller")
@@ -34,7 +34,8 @@ class TaskPanelConstraint(PropertyTaskPanel):
     ICON = "VarSurf_Constraint.svg"
     TRANSACTION = "Edit VarSurf constraint"
     EDITABLE = ("Kind", "Enabled", "Weight", "Location", "U", "V", "Vector", "Origin", "UseOrigin",
-                "RegionU0", "RegionU1", "RegionV0", "RegionV1", "Curve", "Reference", "Angle")
+                "RegionU0", "RegionU1", "RegionV0", "RegionV1", "Curve", "Reference", "Angle", "CurvatureU",
+                "CurvatureV", "CurvatureDirections")
 
     def __init__(self, obj):
         super().__init__(obj)
@@ -50,6 +51,9 @@ class TaskPanelConstraint(PropertyTaskPanel):
         self.use_origin = c(QtGui.QCheckBox, "useOriginCheck")
         self.region = [c(QtGui.QDoubleSpinBox, f"region{n}Spin") for n in ("U0", "U1", "V0", "V1")]
         self.angle = c(QtGui.QDoubleSpinBox, "angleSpin")
+        self.curvature = [c(QtGui.QDoubleSpinBox, "curvatureUSpin"), c(QtGui.QDoubleSpinBox, "curvatureVSpin")]
+        self.curvature_directions = c(QtGui.QComboBox, "curvatureDirectionsCombo")
+        self.curvature_directions.addItems(list(constraints.CURVATURE_DIRECTIONS))
         self.residual = c(QtGui.QLabel, "residualValue")
         self.links = {}  # prefix -> (property, kinds, line edit, value)
         for prefix, (prop, kinds) in _LINKS.items():
@@ -95,10 +99,13 @@ class TaskPanelConstraint(PropertyTaskPanel):
         self.use_origin.setEnabled(kind == "Point")
         for w in self.region:
             w.setEnabled(kind in constraints.REGION_KINDS)
-        curve_kind = kind in constraints.CURVE_KINDS or kind in ("G0", "CurveAttractor")
+        curve_kind = kind in constraints.CURVE_KINDS or kind in ("G0", "CurveAttractor", "CurveMap")
         self.child(QtGui.QPushButton, "curvePick").setEnabled(curve_kind)
-        self.child(QtGui.QPushButton, "referencePick").setEnabled(kind in ("Ribbon", "G1", "G2", "SurfaceAttractor"))
+        references = ("Ribbon", "G1", "G2", "SurfaceAttractor", "CurveMap")
+        self.child(QtGui.QPushButton, "referencePick").setEnabled(kind in references)
         self.angle.setEnabled(kind == "Ribbon")
+        for w in self.curvature + [self.curvature_directions]:
+            w.setEnabled(kind == "Curvature")
 
     def load(self):
         o = self.obj
@@ -115,6 +122,10 @@ class TaskPanelConstraint(PropertyTaskPanel):
         for w, name in zip(self.region, ("RegionU0", "RegionU1", "RegionV0", "RegionV1")):
             w.setValue(float(getattr(o, name)))
         self.angle.setValue(float(o.Angle.Value if hasattr(o.Angle, "Value") else o.Angle))
+        for w, name in zip(self.curvature, ("CurvatureU", "CurvatureV")):
+            w.setValue(float(getattr(o, name)))
+        self.shown["Curvature"] = [w.value() for w in self.curvature]
+        self.curvature_directions.setCurrentText(str(o.CurvatureDirections))
         for prefix, (prop, _kinds, _edit, _value) in self.links.items():
             self.set_link(prefix, getattr(o, prop))
         self.enable_fields()
@@ -134,6 +145,11 @@ class TaskPanelConstraint(PropertyTaskPanel):
         for w, name in zip(self.region, ("RegionU0", "RegionU1", "RegionV0", "RegionV1")):
             setattr(o, name, w.value())
         o.Angle = self.angle.value()
+        values = [w.value() for w in self.curvature]
+        if values != self.shown["Curvature"]:  # shown rounded to 6 decimals: unchanged keeps the exact values
+            o.CurvatureU, o.CurvatureV = values
+            self.shown["Curvature"] = values
+        o.CurvatureDirections = self.curvature_directions.currentText()
         for prefix, (prop, _kinds, _edit, value) in self.links.items():
             if getattr(o, prop) != value:
                 setattr(o, prop, value)

@@ -29,6 +29,9 @@ KINDS: Dict[str, Tuple[str, str]] = {
     "Normal": ("the normal at (u, v) is parallel to Vector", "deg"),
     "PointInPlane": ("the point at (u, v) lies in the plane (Origin, normal Vector)", "mm"),
     "PointOnLine": ("the point at (u, v) lies on the line (Origin, direction Vector)", "mm"),
+    "Curvature": ("the sheet's normal curvatures at (u, v) along u and v are CurvatureU and CurvatureV (1/mm; "
+                  "positive: it bends toward the side Vector points to; CurvatureDirections says which are "
+                  "asked; not linear: iterated; residual: the largest difference)", "1/mm"),
     "PointAttractor": ("the region is pulled toward Origin with strength Weight", "mm"),
     "PlaneAttractor": ("the region is pulled onto the plane (Origin, normal Vector)", "mm"),
     "LineAttractor": ("the region is pulled onto the line (Origin, direction Vector)", "mm"),
@@ -42,10 +45,15 @@ KINDS: Dict[str, Tuple[str, str]] = {
                "edge; without Reference the base's own normal), turned by Angle", "deg"),
     "G0": ("the sheet contains Curve: position continuity with the face it bounds (residual: max distance)", "mm"),
     "G1": ("the sheet contains Curve and joins Reference there tangent-continuously", "deg"),
+    "CurveMap": ("the source curve Curve (on the sheet: its projection onto the base) is mapped onto the "
+                 "destination curve Reference (an edge), point for point at the same normalized parameter "
+                 "(residual: max distance)", "mm"),
     "G2": ("the sheet contains Curve and joins Reference there curvature-continuously (not linear: iterated; "
            "residual: the largest relative jump of the normal curvature across Curve)", "%"),
 }
-POINT_KINDS = ("Point", "TangentU", "TangentV", "Normal", "PointInPlane", "PointOnLine")
+POINT_KINDS = ("Point", "TangentU", "TangentV", "Normal", "PointInPlane", "PointOnLine", "Curvature")
+#: Which normal curvatures a Curvature constraint asks for.
+CURVATURE_DIRECTIONS = ("U and V", "U", "V")
 CURVE_KINDS = ("Ribbon", "G1", "G2")
 #: Curve kinds that join a Reference face (the sheet contains the curve).
 JOIN_KINDS = ("G1", "G2")
@@ -79,6 +87,8 @@ class ConstraintSpec:
     reference: object = None  # Part.Face (G1, Ribbon, SurfaceAttractor) or Part.Edge (Ribbon)
     angle: float = 0.0  # degrees, Ribbon
     region_loop: object = None  # Part shape whose edges form one closed loop: the region
+    curvature: Tuple[float, float] = (0.0, 0.0)  # 1/mm along u and v, Curvature
+    curvature_directions: str = "U and V"  # which of the two, Curvature
 
     def validate(self):
         fail = lambda why: ConstraintError(f"{self.name}: {why}")  # noqa: E731
@@ -108,6 +118,16 @@ class ConstraintSpec:
             if self.weight == 0.0:
                 raise fail("a constraint's weight must be > 0: set its Weight above 0, or disable it")
             return
+        if self.kind == "CurveMap":
+            if not (_is_shape(self.edge, "Edge") and self.reference is not None):
+                raise fail("needs a Curve (the source, an edge on the sheet) and a Reference (the destination "
+                           "edge): link both edges")
+            if not _is_shape(self.reference, "Edge"):
+                raise fail(f"the destination (Reference) must be an edge (got a {self.reference.ShapeType.lower()}): "
+                           "link the destination edge (EdgeN) as its Reference")
+            if self.weight == 0.0:
+                raise fail("a constraint's weight must be > 0: set its Weight above 0, or disable it")
+            return
         if self.kind == "CurveAttractor":
             if not _is_shape(self.edge, "Edge"):
                 raise fail("needs a Curve (an edge) to pull the region onto: link an edge (EdgeN) as its Curve")
@@ -127,6 +147,13 @@ class ConstraintSpec:
             if self.weight == 0.0:
                 raise fail("a constraint's weight must be > 0: set its Weight above 0, or disable it")
             return
+        if self.kind == "Curvature":
+            if not all(math.isfinite(k) for k in self.curvature):
+                raise fail(f"CurvatureU and CurvatureV must be finite (got {tuple(self.curvature)}): set them in 1/mm "
+                           "(1 / the radius of curvature)")
+            if self.curvature_directions not in CURVATURE_DIRECTIONS:
+                raise fail(f"CurvatureDirections must be one of {', '.join(CURVATURE_DIRECTIONS)} "
+                           f"(got {self.curvature_directions!r})")
         needs_vector = self.kind not in ("Point", "PointAttractor", "Repeller", "FrozenRegion")
         vec = self.vector
         if needs_vector and not (all(math.isfinite(c) for c in vec) and math.hypot(*vec) > 0.0):
@@ -159,6 +186,7 @@ class PlacedSpec:
     curvature: object = None  # native CurvatureConstraint of a G2
     loop: object = None  # the region's closed loop in the sheet's (u, v), or None
     target: object = None  # native ClosestPointTarget of a shape attractor
+    side: float = 1.0  # Curvature: +1 where the sheet's normal w_u x w_v points to Vector's side, else -1
 
     @property
     def origin(self):
@@ -181,9 +209,11 @@ def place(specs: Sequence[ConstraintSpec], base, nat) -> List[PlacedSpec]:
                 p.u, p.v, p.start_distance = hit.u, hit.v, hit.distance
             else:
                 p.u, p.v = uf + spec.uv[0] * (ul - uf), vf + spec.uv[1] * (vl - vf)
+        if spec.kind == "Curvature":
+            p.side = _side(spec, base, p.u, p.v)
         if spec.kind in CURVE_KINDS:
             _place_curve(p, base, nat)
-        if spec.kind == "G0":
+        if spec.kind in ("G0", "CurveMap"):
             _place_incidence(p, base, nat)
         if spec.kind in SHAPE_KINDS:
             target = spec.reference if spec.kind == "SurfaceAttractor" else spec.edge
@@ -197,6 +227,18 @@ def place(specs: Sequence[ConstraintSpec], base, nat) -> List[PlacedSpec]:
         p.region = (uf + u0 * (ul - uf), uf + u1 * (ul - uf), vf + v0 * (vl - vf), vf + v1 * (vl - vf))
         placed.append(p)
     return placed
+
+
+def _side(spec: ConstraintSpec, base, u: float, v: float) -> float:
+    """+1 if the base's normal w_u x w_v at (u, v) points to the side of ``spec.vector``, -1 if away;
+    ConstraintError if Vector lies in the tangent plane there (no side is named)."""
+    d = base.derivatives(u, v, 1)
+    normal = _unit(_cross(list(d[1]), list(d[2])))
+    along = _dot(normal, _unit(spec.vector))
+    if abs(along) < 1e-3:
+        raise ConstraintError(f"{spec.name}: Vector lies in the sheet's tangent plane at the point, so it names no "
+                              "side to bend toward: point it to one side of the sheet (e.g. along its normal)")
+    return 1.0 if along > 0.0 else -1.0
 
 
 #: How far (mm) a ribbon's curve may pass from its reference face.
@@ -248,14 +290,39 @@ def _place_loop(spec: ConstraintSpec, base, nat):
 
 
 def _place_incidence(p: PlacedSpec, base, nat):
-    """A G0 join: the curve's pre-image on the base and an incidence constraint."""
+    """A G0 join or a curve map: the curve's pre-image on the base and an incidence constraint
+    (onto the curve itself, or onto the destination curve at the same normalized parameter)."""
     s = p.spec
     try:
         curve = nat.curve_from_edge_brep(s.edge.exportBrepToString())
         pre = nat.project_curve(base, curve)
+        target = curve
+        if s.kind == "CurveMap":
+            target = mapped_destination(curve, nat.curve_from_edge_brep(s.reference.exportBrepToString()), nat)
     except (nat.InvalidInput, nat.GeometryError) as error:
         raise ConstraintError(advised(f"{s.name}: {error}", CURVE_REMEDY)) from error
-    p.curve = nat.CurveConstraint(preimage=pre.curve, target=curve, weight=s.weight)
+    p.curve = nat.CurveConstraint(preimage=pre.curve, target=target, weight=s.weight)
+
+
+def mapped_destination(source, destination, nat):
+    """The destination curve on the source's parameter range, exactly (its knots mapped affinely),
+    turned so that it starts at the end nearer the source's start: the point of the destination
+    at the source's normalized parameter."""
+    def at(c, s):
+        return [float(x) for x in c.evaluate(c.first() + s * (c.last() - c.first()))]
+    along = _norm(_sub(at(destination, 0), at(source, 0))) + _norm(_sub(at(destination, 1), at(source, 1)))
+    across = _norm(_sub(at(destination, 1), at(source, 0))) + _norm(_sub(at(destination, 0), at(source, 1)))
+    knots = [float(k) for k in destination.knots]
+    poles = [list(row) for row in destination.poles]
+    weights = [float(w) for w in destination.weights]
+    d0, d1, t0, t1 = knots[0], knots[-1], source.first(), source.last()
+    if across < along:
+        knots = [d0 + d1 - k for k in reversed(knots)]
+        poles, weights = poles[::-1], weights[::-1]
+    knots = [t0 + (k - d0) / (d1 - d0) * (t1 - t0) for k in knots]
+    if weights:
+        return nat.BSplineCurve(degree=destination.degree, knots=knots, poles=poles, weights=weights)
+    return nat.BSplineCurve(degree=destination.degree, knots=knots, poles=poles)
 
 
 def _place_curve(p: PlacedSpec, base, nat):
@@ -325,11 +392,13 @@ class NativeTerms:
     shape_attractors: list = field(default_factory=list)
     curves: list = field(default_factory=list)
     curvatures: list = field(default_factory=list)
+    point_curvatures: list = field(default_factory=list)
     frozen_poles: list = field(default_factory=list)
 
     def apply(self, problem):
         for name in ("points", "tangents", "normals", "plane_points", "line_points", "attractors", "directors",
-                     "repellers", "ribbons", "curves", "shape_attractors", "curvatures"):
+                     "repellers", "ribbons", "curves", "shape_attractors", "curvatures",
+                     "point_curvatures"):
             setattr(problem, name, list(getattr(problem, name)) + getattr(self, name))
 
 
@@ -358,6 +427,11 @@ def native_terms(placed: Sequence[PlacedSpec], space, nat) -> NativeTerms:
                               "LineAttractor": nat.AttractorKind.line}[kind]
             out.attractors.append(nat.Attractor(kind=attractor_kind, region=region, origin=list(p.origin),
                                                 direction=vec, strength=s.weight))
+        elif kind == "Curvature":
+            ku, kv = (p.side * k for k in s.curvature)
+            out.point_curvatures.append(nat.PointCurvatureConstraint(
+                u=p.u, v=p.v, kappa_u=ku, kappa_v=kv, along_u=s.curvature_directions != "V",
+                along_v=s.curvature_directions != "U", weight=s.weight))
         elif kind == "Director":
             out.directors.append(nat.Director(region=region, direction=vec, strength=s.weight))
         elif kind in CURVE_KINDS:
@@ -366,7 +440,7 @@ def native_terms(placed: Sequence[PlacedSpec], space, nat) -> NativeTerms:
                 out.curves.append(p.curve)
             if p.curvature is not None:
                 out.curvatures.append(p.curvature)
-        elif kind == "G0":
+        elif kind in ("G0", "CurveMap"):
             out.curves.append(p.curve)
         elif kind in SHAPE_KINDS:
             out.shape_attractors.append(nat.ShapeAttractor(region=region, target=p.target, strength=s.weight))
@@ -425,11 +499,18 @@ def residual(p: PlacedSpec, surface, base) -> float:
     s, kind = p.spec, p.spec.kind
     if kind == "G0":
         return native().max_deviation(surface, p.curve.target)
+    if kind == "CurveMap":  # through the pre-image: the same parameter, not the nearest point
+        return native().incidence_error(surface.space, surface.poles, p.curve, 200)
     if kind == "G2":
         return 100.0 * native().curvature_jump(surface.space, surface.poles, p.curvature,
                                                1.0 / max(p.spec.reference.BoundBox.DiagonalLength, 1e-300))
     if kind in CURVE_KINDS:
         return math.degrees(native().ribbon_angle_error(surface.space, surface.poles, p.ribbon))
+    if kind == "Curvature":
+        ku, kv = (p.side * float(k) for k in native().normal_curvatures(surface.space, surface.poles, p.u, p.v))
+        asked = [(ku, s.curvature[0])] if s.curvature_directions == "U" else \
+            [(kv, s.curvature[1])] if s.curvature_directions == "V" else [(ku, s.curvature[0]), (kv, s.curvature[1])]
+        return max(abs(k - target) for k, target in asked)
     if kind in POINT_KINDS:
         d = surface.derivatives(p.u, p.v, 1)
         w, wu, wv = list(d[0]), list(d[1]), list(d[2])
