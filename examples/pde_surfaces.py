@@ -11,6 +11,7 @@
 - fig11: the coefficient a: 3 everywhere, 5 painted on a region, 5 everywhere.
 - fig12, fig13: sculpting tools: a point moved, a normal set, a curvature set; a frozen region.
 - fig14: a non-isoparametric curve constraint: a curve on the surface mapped onto another.
+- fig15: region manipulation: a rectangle of the surface mapped onto a destination patch.
 - fig16: PDE displacements of an existing face (a Sheet with Energy = PDE and its base as rest
   shape): a point, a point beside a frozen region, a curve.
 - blend: Bloor & Wilson's blend, closed along v, from a cylinder (G1 to its side) to a flange.
@@ -189,6 +190,23 @@ def fig14(doc):
     return [patch]
 
 
+def fig15(doc):
+    """Region manipulation (Fig. 15): a rectangle of the surface's (u, v) mapped onto a destination
+    B-spline patch, a dome 25 mm above the surface's middle."""
+    patch = _hermite_patch(doc, "RegionMapped")
+    doc.recompute()
+    poles = [[V(20 + 40 * i / 3, 30 + 40 * j / 3, 25 + (12 if 0 < i < 3 and 0 < j < 3 else 0)) for j in range(4)]
+             for i in range(4)]
+    surface = Part.BSplineSurface()
+    surface.buildFromPolesMultsKnots(poles, [4, 4], [4, 4], [0.0, 1.0], [0.0, 1.0], False, False, 3, 3)
+    dome = doc.addObject("Part::Feature", "RegionMappedDome")
+    dome.Shape = surface.toShape()
+    doc.recompute()
+    varsurf.make_constraint(patch, "RegionMap", reference=(dome, "Face1"), region=(0.3, 0.7, 0.3, 0.7))
+    doc.recompute()
+    return [patch]
+
+
 def fig16(doc):
     """PDE displacements (Figs. 16-17): a Sheet on an existing face with Energy = PDE and the face
     as rest shape; a point lifts it (16A), another with a frozen region beside it (16C), and a
@@ -221,7 +239,8 @@ def fig16(doc):
     return out
 
 
-FIGURES = {"fig7": fig7, "fig8": fig8, "fig11": fig11, "fig12": fig12, "fig13": fig13, "fig14": fig14, "fig16": fig16,
+FIGURES = {"fig7": fig7, "fig8": fig8, "fig11": fig11, "fig12": fig12, "fig13": fig13, "fig14": fig14, "fig15": fig15,
+           "fig16": fig16,
            "blend": blend}
 
 

@@ -742,7 +742,7 @@ def every_constraint_command(result, doc, sheet, surface, rail):
             Gui.Selection.addSelection(doc.Name, rail.Name, "Edge1")
         if kind == "CurveMap":  # the destination, picked after the source
             Gui.Selection.addSelection(doc.Name, surface.Name, "Edge1")
-        if kind in ("G1", "G2", "SurfaceAttractor"):
+        if kind in ("G1", "G2", "SurfaceAttractor", "RegionMap"):
             Gui.Selection.addSelection(doc.Name, surface.Name, "Face1")
         active = bool(Gui.Command.get(name).isActive())
         began = time.perf_counter()

@@ -23,7 +23,7 @@ def sheet(doc, native):
 
 @pytest.mark.parametrize("kind", [k for k in constraints.KINDS if k not in selection.VERTEX_KINDS
                                   and k not in constraints.CURVE_KINDS and k not in constraints.SHAPE_KINDS
-                                  and k not in ("G0", "CurveMap")])
+                                  and k not in ("G0", "CurveMap", "RegionMap")])
 def test_every_kind_from_a_selected_sheet(sheet, kind):
     doc = sheet.Document
     lines = []
@@ -61,6 +61,26 @@ def test_curve_map_from_a_sheet_and_two_edges_in_picking_order(sheet):
     assert c is not None and c.Curve[0] == source and c.Reference[0] == destination
     assert sheet.isValid(), sheet.getStatusString()
     assert sheet.ConstraintResiduals[list(sheet.ConstraintNames).index(c.Label)] < float(sheet.Tolerance)
+
+
+def test_region_map_from_a_sheet_and_a_face(sheet):
+    import Part
+
+    doc = sheet.Document
+    patch = doc.addObject("Part::Feature", "Patch")
+    patch.Shape = Part.makePlane(30.0, 20.0, FreeCAD.Vector(40.0, 30.0, 4.0))
+    doc.recompute()
+    with pytest.raises(ValueError, match="exactly one face"):
+        selection.constraint_selection_to_args("RegionMap", [Sel(sheet), Sel(patch, "Edge1")])
+    lines = []
+    c = actions.run_constraint_command("RegionMap", [Sel(sheet), Sel(patch, "Face1")],
+                                       do_command=lambda line: (lines.append(line), macro.exec_line(line)))
+    assert c is not None and c.Reference[0] == patch
+    assert any("region=(0.25, 0.75, 0.25, 0.75)" in line for line in lines), lines
+    # The middle half of the sheet, mapped onto a 30 x 20 mm plane 4 mm up, cannot also hold the
+    # rail 5 mm up that crosses it: the Sheet names the contradiction and the constraint.
+    assert not sheet.isValid()
+    assert "contradict" in sheet.getStatusString() and c.Label in sheet.getStatusString()
 
 
 def test_point_from_a_sheet_and_a_vertex(sheet):

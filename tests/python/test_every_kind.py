@@ -53,6 +53,7 @@ VALID = {
     "G0": lambda o: dict(curve=(o["lifted"], "Edge1")),
     "G2": lambda o: dict(curve=(o["seam"], "Edge1"), reference=(o["flat"], "Face1")),
     "CurveMap": lambda o: dict(curve=(o["seam"], "Edge1"), reference=(o["second"], "Edge1")),
+    "RegionMap": lambda o: dict(reference=(o["roof"], "Face1"), region=(0.55, 0.8, 0.4, 0.7)),
 }
 
 
@@ -127,6 +128,9 @@ BAD = [
     ("CurveMap", dict(Reference=None), "needs a Curve (the source"),
     ("CurveMap", dict(Reference="roof"), "must be an edge"),
     ("CurveMap", dict(Curve="beyond"), "beyond"),
+    ("RegionMap", dict(Reference=None), "needs a Reference face"),
+    ("RegionMap", dict(Reference="edge"), "needs a Reference face"),
+    ("RegionMap", dict(RegionV0=0.9, RegionV1=0.1), "region"),
     ("G0", dict(Curve="beyond"), "beyond"),
 ]
 

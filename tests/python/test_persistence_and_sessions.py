@@ -302,7 +302,7 @@ def _constraint_picks(kind, sheet, pin, o):
                "G0": [Sel(o.second, "Edge1")], "G1": [Sel(o.second, "Edge1"), Sel(o.flat, "Face1")],
                "G2": [Sel(o.second, "Edge1"), Sel(o.flat, "Face1")],
                "SurfaceAttractor": [Sel(o.roof, "Face1")], "FrozenRegion": LOOP_EDGES(o),
-               "CurveMap": [Sel(o.seam, "Edge1"), Sel(o.second, "Edge1")]}
+               "CurveMap": [Sel(o.seam, "Edge1"), Sel(o.second, "Edge1")], "RegionMap": [Sel(o.roof, "Face1")]}
     if kind in special:
         return [Sel(sheet)] + special[kind]
     assert kind not in constraints.CURVE_KINDS and kind not in constraints.SHAPE_KINDS, kind

@@ -70,7 +70,7 @@ def constraint_command_lines(kind: str, sheet, args) -> List[str]:
         # planes, lines and attracting points start through the sheet's middle
         centre = _sheet_centre(sheet)
         parts.append(f"origin=({centre[0]:.6g}, {centre[1]:.6g}, {centre[2]:.6g})")
-    if kind in constraints.REGION_KINDS and "region_loop" not in args:
+    if (kind in constraints.REGION_KINDS or kind == "RegionMap") and "region_loop" not in args:
         parts.append("region=(0.25, 0.75, 0.25, 0.75)")  # the sheet's middle
     if kind == "Curvature":
         # The sheet's own normal and curvatures at the point: nothing changes until they are edited.

@@ -135,6 +135,7 @@ SELECTION_HINTS = {
     "G1": "Select a Sheet, the edge along which it joins, and the face it must follow there.",
     "G2": "Select a Sheet, the edge along which it joins, and the face whose curvature it must continue there.",
     "G0": "Select a Sheet and the edge it must contain (e.g. the edge of the neighbouring face).",
+    "RegionMap": "Select a Sheet and the face (the destination patch) its region is mapped onto.",
     "CurveMap": ("Select a Sheet, then the source edge (a curve on the sheet) and then the destination edge it is "
                  "mapped onto."),
 }
@@ -203,6 +204,11 @@ def constraint_selection_to_args(kind: str, selection_ex: Sequence):
             args["location"] = of["Vertex"][0]
         return sheet, args
     refuse("Vertex")
+    if kind == "RegionMap":
+        if len(of["Face"]) != 1 or of["Edge"]:
+            raise ValueError(f"a RegionMap needs exactly one face: the destination patch. {hint}")
+        args["reference"] = of["Face"][0]
+        return sheet, args
     if kind == "CurveMap":
         if len(of["Edge"]) != 2 or of["Face"]:
             raise ValueError(f"a CurveMap needs exactly two edges: the source, then the destination. {hint}")

@@ -230,6 +230,10 @@ CONSTRAINT_COMMANDS = [
      QT_TRANSLATE_NOOP("VarSurf_CurveMap", "Curve map"),
      QT_TRANSLATE_NOOP("VarSurf_CurveMap", "Map a source curve on the sheet onto a destination curve, point for point.\n"
                        "Select a Sheet, then the source edge and then the destination edge.")),
+    ("VarSurf_RegionMap", "RegionMap",
+     QT_TRANSLATE_NOOP("VarSurf_RegionMap", "Region map"),
+     QT_TRANSLATE_NOOP("VarSurf_RegionMap", "Map a rectangle of the sheet's (u, v) onto a destination face, point for point.\n"
+                       "Select a Sheet and the destination face.")),
     ("VarSurf_SurfaceAttractor", "SurfaceAttractor",
      QT_TRANSLATE_NOOP("VarSurf_SurfaceAttractor", "Surface attractor"),
      QT_TRANSLATE_NOOP("VarSurf_SurfaceAttractor", "Pull a region of the sheet onto another face.\nSelect a Sheet, the face and, optionally, closed edges bounding the region.")),
@@ -358,9 +362,9 @@ CONSTRAINT_GROUPS = [
      ["VarSurf_G1", "VarSurf_G0", "VarSurf_G2", "VarSurf_Ribbon", "VarSurf_CurveMap"]),
     ("VarSurf_Operators", QT_TRANSLATE_NOOP("VarSurf_Operators", "Shape operators"),
      QT_TRANSLATE_NOOP("VarSurf_Operators", "Operators on a region of the sheet: attractors to a point, plane, line,\n"
-                       "face or edge, a repeller, a director, a frozen region"),
+                       "face or edge, a repeller, a director, a frozen region, a region mapped onto a face"),
      ["VarSurf_PointAttractor", "VarSurf_PlaneAttractor", "VarSurf_LineAttractor", "VarSurf_SurfaceAttractor",
-      "VarSurf_CurveAttractor", "VarSurf_Repeller", "VarSurf_Director", "VarSurf_FrozenRegion"]),
+      "VarSurf_CurveAttractor", "VarSurf_Repeller", "VarSurf_Director", "VarSurf_FrozenRegion", "VarSurf_RegionMap"]),
 ]
 CONSTRAINT_TOOLBAR = [name for name, *_rest in CONSTRAINT_GROUPS]
 

@@ -232,6 +232,27 @@ class ConstraintHandles:
             self._curvature(c, sheet, size)
         elif kind == "CurveMap" and c.Curve is not None and c.Reference is not None:
             self._curve_map(c)
+        elif kind == "RegionMap" and c.Reference is not None and sheet is not None and not sheet.Shape.isNull():
+            self._region_map(c, sheet)
+
+    def _region_map(self, c, sheet):
+        """The region's outline on the sheet, the destination face's, and where the corners go."""
+        surface = sheet.Shape.Faces[0].Surface
+        u0, u1, v0, v1 = surface.bounds()
+        box = [(c.RegionU0, c.RegionV0), (c.RegionU1, c.RegionV0), (c.RegionU1, c.RegionV1), (c.RegionU0, c.RegionV1)]
+        region = []
+        for (a, b), (e, f) in zip(box, box[1:] + box[:1]):
+            region += [surface.value(u0 + (a + (e - a) * k / 16) * (u1 - u0), v0 + (b + (f - b) * k / 16) * (v1 - v0))
+                       for k in range(16)]
+        _line(self.root, region + region[:1], RIBBON, 3.0)
+        target, subs = c.Reference
+        subs = [s for s in subs if s]
+        face = Part.getShape(target, subs[0], needSubElement=True) if subs else target.Shape.Faces[0]
+        a0, a1, b0, b1 = face.ParameterRange
+        corners = [face.valueAt(a0 + x * (a1 - a0), b0 + y * (b1 - b0)) for x, y in ((0, 0), (1, 0), (1, 1), (0, 1))]
+        _line(self.root, corners + corners[:1], CURVATURE, 3.0)
+        for k in range(4):
+            _line(self.root, [region[16 * k], corners[k]], ARROW, 1.5)
 
     def _curve_map(self, c):
         """The source and destination curves and, between them, where points go."""

@@ -98,10 +98,10 @@ class TaskPanelConstraint(PropertyTaskPanel):
             w.setEnabled(kind in _ORIGIN_KINDS)
         self.use_origin.setEnabled(kind == "Point")
         for w in self.region:
-            w.setEnabled(kind in constraints.REGION_KINDS)
+            w.setEnabled(kind in constraints.REGION_KINDS or kind == "RegionMap")
         curve_kind = kind in constraints.CURVE_KINDS or kind in ("G0", "CurveAttractor", "CurveMap")
         self.child(QtGui.QPushButton, "curvePick").setEnabled(curve_kind)
-        references = ("Ribbon", "G1", "G2", "SurfaceAttractor", "CurveMap")
+        references = ("Ribbon", "G1", "G2", "SurfaceAttractor", "CurveMap", "RegionMap")
         self.child(QtGui.QPushButton, "referencePick").setEnabled(kind in references)
         self.angle.setEnabled(kind == "Ribbon")
         for w in self.curvature + [self.curvature_directions]:

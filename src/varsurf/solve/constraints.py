@@ -48,6 +48,9 @@ KINDS: Dict[str, Tuple[str, str]] = {
     "CurveMap": ("the source curve Curve (on the sheet: its projection onto the base) is mapped onto the "
                  "destination curve Reference (an edge), point for point at the same normalized parameter "
                  "(residual: max distance)", "mm"),
+    "RegionMap": ("the sheet over the region (RegionU0..V1) is mapped onto Reference (a face, the destination "
+                  "patch), point for point: the region's normalized (u, v) onto the face's parameter rectangle "
+                  "(residual: max distance)", "mm"),
     "G2": ("the sheet contains Curve and joins Reference there curvature-continuously (not linear: iterated; "
            "residual: the largest relative jump of the normal curvature across Curve)", "%"),
 }
@@ -115,6 +118,16 @@ class ConstraintSpec:
         if self.kind == "G0":
             if not _is_shape(self.edge, "Edge"):
                 raise fail("needs a Curve (an edge) for the sheet to contain: link an edge (EdgeN) as its Curve")
+            if self.weight == 0.0:
+                raise fail("a constraint's weight must be > 0: set its Weight above 0, or disable it")
+            return
+        if self.kind == "RegionMap":
+            if not _is_shape(self.reference, "Face"):
+                raise fail("needs a Reference face (the destination patch): link a face (FaceN) as its Reference")
+            u0, u1, v0, v1 = self.region
+            if not (0.0 <= u0 < u1 <= 1.0 and 0.0 <= v0 < v1 <= 1.0):
+                raise fail(f"the region must satisfy 0 <= u0 < u1 <= 1 and 0 <= v0 < v1 <= 1 (got {self.region}): set "
+                           "its Region inside the sheet")
             if self.weight == 0.0:
                 raise fail("a constraint's weight must be > 0: set its Weight above 0, or disable it")
             return
@@ -186,6 +199,7 @@ class PlacedSpec:
     curvature: object = None  # native CurvatureConstraint of a G2
     loop: object = None  # the region's closed loop in the sheet's (u, v), or None
     target: object = None  # native ClosestPointTarget of a shape attractor
+    map_curves: list = field(default_factory=list)  # RegionMap: native CurveConstraints across the region
     side: float = 1.0  # Curvature: +1 where the sheet's normal w_u x w_v points to Vector's side, else -1
 
     @property
@@ -215,6 +229,8 @@ def place(specs: Sequence[ConstraintSpec], base, nat) -> List[PlacedSpec]:
             _place_curve(p, base, nat)
         if spec.kind in ("G0", "CurveMap"):
             _place_incidence(p, base, nat)
+        if spec.kind == "RegionMap":
+            p.map_curves = _place_region_map(spec, base, nat)
         if spec.kind in SHAPE_KINDS:
             target = spec.reference if spec.kind == "SurfaceAttractor" else spec.edge
             try:
@@ -304,6 +320,69 @@ def _place_incidence(p: PlacedSpec, base, nat):
     p.curve = nat.CurveConstraint(preimage=pre.curve, target=target, weight=s.weight)
 
 
+def _place_region_map(spec: ConstraintSpec, base, nat):
+    """A region map: lines along u across the region, at the Gauss points of each of its knot spans
+    in v (as many as a polynomial of the sheet's degree needs, so a destination the space holds is
+    met exactly), each an incidence condition onto the destination face's iso-curve at the mapped
+    v, taken exactly (a B-spline segment of the face's surface)."""
+    import numpy
+
+    space = base.space
+    uf, ul = space.knots_u[0], space.knots_u[-1]
+    vf, vl = space.knots_v[0], space.knots_v[-1]
+    u0, u1, v0, v1 = spec.region
+    ua, ub = uf + u0 * (ul - uf), uf + u1 * (ul - uf)
+    va, vb = vf + v0 * (vl - vf), vf + v1 * (vl - vf)
+    try:
+        face = spec.reference.toNurbs().Faces[0]
+        surface = face.Surface
+        a0, a1, b0, b1 = face.ParameterRange
+    except Exception as error:  # OCCT's conversion (Part.OCCError: Part is not imported here)
+        raise ConstraintError(f"{spec.name}: the destination face cannot be converted to a B-spline ({error}): "
+                              "link another face as its Reference") from error
+
+    def incidence(iso, first, last, pre_start, pre_end, weight):
+        """The line pre_start -> pre_end of (u, v) onto the iso-curve's segment [first, last]."""
+        iso.segment(first, last)
+        try:
+            target = nat.curve_from_edge_brep(iso.toShape().exportBrepToString())
+        except (nat.InvalidInput, nat.GeometryError) as error:
+            raise ConstraintError(f"{spec.name}: {error}") from error
+        line = nat.BSplineCurve(degree=1, knots=[0.0, 0.0, 1.0, 1.0], poles=[list(pre_start), list(pre_end)])
+        return nat.CurveConstraint(preimage=line, target=_on_range(target, 0.0, 1.0, False, nat), weight=weight)
+
+    breaks = sorted({va, vb} | {float(k) for k in space.knots_v if va < k < vb})
+    nodes, rule = numpy.polynomial.legendre.leggauss(space.degree_v + 1)
+    out = []
+    for lo, hi in zip(breaks, breaks[1:]):
+        for x, w in zip(nodes, rule):
+            v = 0.5 * (lo + hi) + 0.5 * (hi - lo) * float(x)
+            share = 0.5 * (hi - lo) * float(w) / (vb - va)
+            out.append(incidence(surface.vIso(b0 + (v - va) / (vb - va) * (b1 - b0)), a0, a1, (ua, v), (ub, v),
+                                 spec.weight * share))
+    # The region's four sides too: the Gauss lines leave its border (and corners) to the energy.
+    side = spec.weight / len(out)
+    out += [incidence(surface.vIso(b0), a0, a1, (ua, va), (ub, va), side),
+            incidence(surface.vIso(b1), a0, a1, (ua, vb), (ub, vb), side),
+            incidence(surface.uIso(a0), b0, b1, (ua, va), (ua, vb), side),
+            incidence(surface.uIso(a1), b0, b1, (ub, va), (ub, vb), side)]
+    return out
+
+
+def _on_range(curve, t0, t1, reverse, nat):
+    """The same curve (optionally reversed) on the parameter range [t0, t1]: knots mapped
+    affinely, exactly."""
+    knots = [float(k) for k in curve.knots]
+    poles = [list(row) for row in curve.poles]
+    weights = [float(w) for w in curve.weights]
+    d0, d1 = knots[0], knots[-1]
+    if reverse:
+        knots = [d0 + d1 - k for k in reversed(knots)]
+        poles, weights = poles[::-1], weights[::-1]
+    knots = [t0 + (k - d0) / (d1 - d0) * (t1 - t0) for k in knots]
+    return nat.BSplineCurve(degree=curve.degree, knots=knots, poles=poles, weights=weights)
+
+
 def mapped_destination(source, destination, nat):
     """The destination curve on the source's parameter range, exactly (its knots mapped affinely),
     turned so that it starts at the end nearer the source's start: the point of the destination
@@ -312,17 +391,7 @@ def mapped_destination(source, destination, nat):
         return [float(x) for x in c.evaluate(c.first() + s * (c.last() - c.first()))]
     along = _norm(_sub(at(destination, 0), at(source, 0))) + _norm(_sub(at(destination, 1), at(source, 1)))
     across = _norm(_sub(at(destination, 1), at(source, 0))) + _norm(_sub(at(destination, 0), at(source, 1)))
-    knots = [float(k) for k in destination.knots]
-    poles = [list(row) for row in destination.poles]
-    weights = [float(w) for w in destination.weights]
-    d0, d1, t0, t1 = knots[0], knots[-1], source.first(), source.last()
-    if across < along:
-        knots = [d0 + d1 - k for k in reversed(knots)]
-        poles, weights = poles[::-1], weights[::-1]
-    knots = [t0 + (k - d0) / (d1 - d0) * (t1 - t0) for k in knots]
-    if weights:
-        return nat.BSplineCurve(degree=destination.degree, knots=knots, poles=poles, weights=weights)
-    return nat.BSplineCurve(degree=destination.degree, knots=knots, poles=poles)
+    return _on_range(destination, source.first(), source.last(), across < along, nat)
 
 
 def _place_curve(p: PlacedSpec, base, nat):
@@ -442,6 +511,8 @@ def native_terms(placed: Sequence[PlacedSpec], space, nat) -> NativeTerms:
                 out.curvatures.append(p.curvature)
         elif kind in ("G0", "CurveMap"):
             out.curves.append(p.curve)
+        elif kind == "RegionMap":
+            out.curves.extend(p.map_curves)
         elif kind in SHAPE_KINDS:
             out.shape_attractors.append(nat.ShapeAttractor(region=region, target=p.target, strength=s.weight))
         elif kind == "Repeller":
@@ -501,6 +572,8 @@ def residual(p: PlacedSpec, surface, base) -> float:
         return native().max_deviation(surface, p.curve.target)
     if kind == "CurveMap":  # through the pre-image: the same parameter, not the nearest point
         return native().incidence_error(surface.space, surface.poles, p.curve, 200)
+    if kind == "RegionMap":
+        return max(native().incidence_error(surface.space, surface.poles, c, 50) for c in p.map_curves)
     if kind == "G2":
         return 100.0 * native().curvature_jump(surface.space, surface.poles, p.curvature,
                                                1.0 / max(p.spec.reference.BoundBox.DiagonalLength, 1e-300))
