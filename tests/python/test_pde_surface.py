@@ -389,3 +389,27 @@ def test_surfaces_joined_by_a_shared_derivative_curve_are_c1(doc):
     assert worst_gap < 1e-6
     assert worst_derivative < 1e-6
     assert worst_angle < 1e-4
+
+
+def test_a_point_on_a_pde_surface_is_dragged_by_recomputing(doc):
+    """The pin of a Point on a PdeSurface: no prepared solve to update (the Sheets' fast drag), so
+    the handle recomputes the surface as it moves; the release is one undoable step and the surface
+    passes through the new target."""
+    from pde_surfaces import _hermite_patch
+    from varsurf.app import drag
+
+    doc.UndoMode = 1
+    pde = _hermite_patch(doc, "Dragged")
+    doc.recompute()
+    start = pde.Shape.Faces[0].Surface.value(0.5, 0.5)
+    c = varsurf.make_constraint(pde, "Point", uv=(0.5, 0.5), origin=(start.x, start.y, start.z + 5.0))
+    doc.recompute()
+    with pytest.raises(drag.NotQuadratic):
+        drag.PointDrag(pde, c)
+    session = drag.TargetDrag(pde, c)
+    for dz in (8.0, 11.0, 14.0):
+        session.move(start + V(0, 0, dz))
+    session.finish(start + V(0, 0, 15.0))
+    assert pde.isValid(), pde.getStatusString()
+    assert pde.Shape.distToShape(Part.Vertex(start + V(0, 0, 15.0)))[0] < 1e-6
+    assert doc.UndoNames[:1] == [drag.TargetDrag.TRANSACTION]

@@ -19,6 +19,7 @@ import time
 import FreeCAD
 import Part
 
+from varsurf.app import references
 from varsurf.app import sheet as sheet_feature
 from varsurf.app import space_curve as space_curve_feature
 from varsurf.app.macro import exec_line, ref
@@ -103,6 +104,8 @@ class PointDrag:
         self.sheet, self.constraint, self.doc = sheet, constraint, sheet.Document
         if not sheet.isValid():
             raise DragError(f"{sheet.Label} is in error: fix it before dragging")
+        if not references.is_sheet(sheet):  # a PdeSurface keeps no prepared solve to update
+            raise NotQuadratic(f"{sheet.Label} is not a Sheet: it is dragged by recomputing")
         outcome = sheet_feature.outcome_of(sheet)
         self.problem = copy.copy(outcome.problem)
         self.index = _point_index(sheet, constraint)
