@@ -283,7 +283,8 @@ void bind_core_types(py::module_& m) {
       .value("penalty", SolveMode::penalty)
       .value("cg", SolveMode::cg)
       .value("tsvd", SolveMode::tsvd)
-      .value("mtsvd", SolveMode::mtsvd);
+      .value("mtsvd", SolveMode::mtsvd)
+      .value("multigrid", SolveMode::multigrid);
 
   py::class_<LCurve>(m, "LCurve",
                      "The L-curve of a TSVD/MTSVD solve: per truncation k the "
@@ -371,7 +372,10 @@ void bind_core_types(py::module_& m) {
                      "to reach fit_tolerance within penalty_steps (for a caller that refines).")
       .def_readwrite("cluster_limit", &SolveOptions::cluster_limit,
                      "Automatic mode: larger groups of interacting constraints use the penalty "
-                     "mode.");
+                     "mode.")
+      .def_readwrite("multigrid_from", &SolveOptions::multigrid_from,
+                     "Automatic mode: a sheet held by its fixed poles alone with at least this "
+                     "many free poles (and a coarser B-spline level) is solved by multigrid.");
 
   py::class_<SolveReport>(m, "SolveReport", "Sizes, residuals and timings of a solve.")
       .def(py::init<>())

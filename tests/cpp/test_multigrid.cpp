@@ -43,7 +43,10 @@ TEST(Multigrid, GivesTheDirectSolvesPoles) {
     const SheetProblem pb = held(32, pde);
     MultigridReport report;
     const SolveResult mg = solve_sheet_multigrid(pb, MultigridOptions(), &report);
-    const SolveResult direct = solve_sheet(pb);
+    SolveOptions exact;
+    exact.mode = SolveMode::exact;
+    const SolveResult direct = solve_sheet(pb, exact);
+    EXPECT_EQ(direct.report.mode, SolveMode::exact);
     EXPECT_LT((mg.poles - direct.poles).cwiseAbs().maxCoeff(), 1e-8)
         << (pde ? "PDE" : "thin plate");
     EXPECT_GE(report.levels, 2);
@@ -72,4 +75,67 @@ TEST(Multigrid, OnlySheetsHeldByFixedPolesAreTaken) {
   MultigridOptions bad;
   bad.tolerance = 0.0;
   EXPECT_THROW(solve_sheet_multigrid(held(8, true), bad), InvalidInput);
+}
+
+namespace {
+
+SolveOptions mode(SolveMode m) {
+  SolveOptions o;
+  o.mode = m;
+  return o;
+}
+
+}  // namespace
+
+TEST(Multigrid, AutomaticTakesItForLargeSheetsHeldByFixedPoles) {
+  // 67 x 67 poles, 3969 free: above multigrid_from, with three levels; with a rest shape too
+  // (the PDE displacement of an existing face).
+  for (bool rest : {false, true}) {
+    SheetProblem pb = held(64, true);
+    if (rest) {
+      pb.rest_poles = pb.initial_poles;
+      for (int k = 0; k < pb.space.size(); ++k) pb.rest_poles(k, 2) += 3.0 * std::sin(0.01 * k);
+    }
+    const SolveResult automatic = solve_sheet(pb);
+    const SolveResult direct = solve_sheet(pb, mode(SolveMode::exact));
+    EXPECT_EQ(automatic.report.mode, SolveMode::multigrid);
+    EXPECT_NE(automatic.report.mode_reason.find("multigrid"), std::string::npos);
+    EXPECT_EQ(direct.report.mode, SolveMode::exact);
+    EXPECT_LT((automatic.poles - direct.poles).cwiseAbs().maxCoeff(), 1e-8) << rest;
+    EXPECT_EQ(automatic.report.unknowns, 63 * 63);
+    // The fixed poles stay where they were given.
+    for (int k : pb.fixed_poles) EXPECT_EQ(automatic.poles.row(k), pb.initial_poles.row(k));
+  }
+}
+
+TEST(Multigrid, AutomaticKeepsTheDirectSolveElsewhere) {
+  // Below the threshold (13 x 13 free poles), with a constraint, with nothing to coarsen to (odd
+  // spans).
+  EXPECT_NE(solve_sheet(held(16, true)).report.mode, SolveMode::multigrid);
+  SheetProblem pb = held(64, true);
+  pb.points.push_back({0.5, 0.5, Eigen::Vector3d(50, 40, 30), 1.0});
+  const SolveResult pinned = solve_sheet(pb);
+  EXPECT_NE(pinned.report.mode, SolveMode::multigrid);
+  EXPECT_THROW(solve_sheet(pb, mode(SolveMode::multigrid)), InvalidInput);
+  EXPECT_NE(solve_sheet(held(63, true)).report.mode, SolveMode::multigrid);
+  // Asked of a joined or prepared solve, which multigrid does not do: refused.
+  EXPECT_THROW(PreparedSheet(held(16, true), mode(SolveMode::multigrid)), InvalidInput);
+}
+
+TEST(Multigrid, AutomaticFallsBackWhenTheFixedPolesDoNotHoldTheSheet) {
+  // Bending alone with two corner poles held: an affine motion vanishing on their diagonal costs
+  // nothing. Multigrid declines (a singular coarsest level) and the direct solve keeps that
+  // motion where it started.
+  SheetProblem pb = held(64, false);
+  pb.energy = ThinPlateWeights::isotropic(0.0, 1.0);
+  pb.fixed_poles = {0, pb.space.size() - 1};
+  SolveOptions o;
+  o.multigrid_from = 0;
+  const SolveResult automatic = solve_sheet(pb, o);
+  EXPECT_NE(automatic.report.mode, SolveMode::multigrid);
+  EXPECT_NE(automatic.report.mode_reason.find("multigrid declined"), std::string::npos)
+      << automatic.report.mode_reason;
+  const SolveResult direct = solve_sheet(pb, mode(SolveMode::exact));
+  EXPECT_LT((automatic.poles - direct.poles).cwiseAbs().maxCoeff(), 1e-9);
+  EXPECT_THROW(solve_sheet(pb, mode(SolveMode::multigrid)), SolveFailure);
 }

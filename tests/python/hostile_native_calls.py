@@ -378,7 +378,7 @@ def hostile_options():
                 continue
             out.append(o)
     for name in ("refinement_steps", "max_unknowns", "max_iterations", "direct_limit", "krylov_limit",
-                 "penalty_steps", "cluster_limit"):
+                 "penalty_steps", "cluster_limit", "multigrid_from"):
         for k in (-1, 0, 1, 2 ** 31 - 1):
             o = nat.SolveOptions()
             try:

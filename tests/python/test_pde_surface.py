@@ -71,6 +71,41 @@ def test_hermite_conditions_reproduce_a_pde_solution(doc):
     assert worst(pde) > 0.1
 
 
+def test_a_fine_surface_is_solved_by_multigrid(doc, native, monkeypatch):
+    """At 64 x 64 spans the boundary conditions alone hold 3 969 free poles: Automatic solves them by
+    multigrid, and the surface is the solution's as at the coarser default."""
+    modes = []
+    solve_sheet = native.solve_sheet
+
+    def recording(*args):
+        result = solve_sheet(*args)
+        modes.append(result.report.mode)
+        return result
+
+    monkeypatch.setattr(native, "solve_sheet", recording)
+    u0, u1, d0, d1 = hermite_scene(doc)
+    v0 = add_curve(doc, "V0", _iso_v(0.0))
+    v1 = add_curve(doc, "V1", _iso_v(1.0))
+    doc.recompute()
+    pde = varsurf.make_pde_surface((u0, "Edge1"), (u1, "Edge1"), derivative0=(d0, "Edge1"),
+                                   derivative1=(d1, "Edge1"), v0=(v0, "Edge1"), v1=(v1, "Edge1"),
+                                   magnitude0=4.0, magnitude1=4.0, a=A, tolerance=1e-4)
+    pde.MinSpans = pde.MaxSpans = 64
+    doc.recompute()
+    assert pde.isValid() and pde.Status.startswith("OK"), pde.Status
+    assert modes == [native.SolveMode.multigrid]
+    assert worst(pde) < 1e-3
+    assert max(pde.MaxDeviations) < 1e-4
+    # Coarser, the direct solve: the same surface.
+    fine = pde.Shape.Faces[0].Surface
+    pde.MinSpans = pde.MaxSpans = 16
+    doc.recompute()
+    assert modes[-1] != native.SolveMode.multigrid
+    coarse = pde.Shape.Faces[0].Surface
+    assert max((coarse.value(i / 10, j / 10) - fine.value(i / 10, j / 10)).Length
+               for i in range(11) for j in range(11)) < 1e-3
+
+
 def test_free_sides_hold_like_a_free_plate(doc):
     """Hermite data alone (the v sides free): P = (60 u, 40 v + 10 u v, cubic(u) + v linear(u))
     solves the PDE with a free plate's conditions on the open sides, and comes back."""

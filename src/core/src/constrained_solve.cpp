@@ -73,6 +73,8 @@ const char* to_string(SolveMode mode) {
       return "tsvd";
     case SolveMode::mtsvd:
       return "mtsvd";
+    case SolveMode::multigrid:
+      return "multigrid";
   }
   return "unknown";
 }
@@ -287,6 +289,10 @@ struct ConstrainedSolve::Impl {
 ConstrainedSolve::ConstrainedSolve(const Quadratic& pb, const SolveOptions& opt, SolveReport& rep,
                                    const ConstrainedSolve* earlier)
     : impl_(new Impl) {
+  if (opt.mode == SolveMode::multigrid)
+    throw InvalidInput(
+        "multigrid solves a single sheet held by its fixed poles alone (solve_sheet); choose "
+        "another solve mode for constraints, joined sheets, refinement and drags");
   Impl& m = *impl_;
   m.opt = opt;
   const int total = static_cast<int>(pb.q.rows());
@@ -1189,6 +1195,7 @@ Eigen::MatrixXd ConstrainedSolve::solve(const Eigen::MatrixXd& f, const Eigen::M
         break;
       case SolveMode::tsvd:
       case SolveMode::automatic:
+      case SolveMode::multigrid:  // refused by the constructor
         // Michalik & Bruderlin eq. 3-4: F = F_k + V_{k+1} V_{k+1}^T F_0, i.e. the start moved
         // by the least change that meets the kept rows.
         sol = m.x0_free;

@@ -4,13 +4,16 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <optional>
 #include <string>
 
 #include "constrained_solve.hpp"
+#include "free_block.hpp"
 #include "sheet_assembly.hpp"
 #include "solve_limits.hpp"
 #include "stopwatch.hpp"
 #include "varsurf/core/errors.hpp"
+#include "varsurf/core/multigrid.hpp"
 #include "varsurf/core/pde_energy.hpp"
 
 namespace varsurf {
@@ -453,10 +456,49 @@ Quadratic sheet_quadratic(const SheetProblem& pb, const SolveOptions& opt, bool 
   return std::move(as.quad);
 }
 
+namespace {
+
+// Multigrid when asked, or in Automatic mode for a large sheet held by its fixed poles alone with
+// a coarser level (see SolveOptions::multigrid_from); empty to solve directly. Automatic falls
+// back to the direct solve (saying why) when multigrid fails: an energy the fixed poles do not
+// hold, or conjugate gradients that stall.
+std::optional<SolveResult> solve_by_multigrid(const SheetProblem& pb, const SolveOptions& opt,
+                                              std::string& declined) {
+  const bool asked = opt.mode == SolveMode::multigrid;
+  if (asked && !held_by_fixed_poles_alone(pb))
+    throw InvalidInput(
+        "multigrid solves a non-rational sheet held by its fixed poles alone (its boundary "
+        "conditions); this one has constraints, operators, pressure, a closure or a kept region: "
+        "choose another solve mode");
+  if (!asked) {
+    if (opt.mode != SolveMode::automatic || !held_by_fixed_poles_alone(pb) ||
+        !has_coarser_level(pb.space))
+      return std::nullopt;
+    if (free_unknowns(pb.space.size(), pb.fixed_poles, "the sheet").size() < opt.multigrid_from)
+      return std::nullopt;
+  }
+  MultigridOptions mo;
+  mo.keep_going = opt.keep_going;
+  try {
+    return solve_sheet_multigrid(pb, mo);
+  } catch (const SolveFailure& failure) {
+    if (asked) throw;
+    declined = std::string(" (multigrid declined: ") + failure.what() + ")";
+    return std::nullopt;
+  }
+}
+
+}  // namespace
+
 SolveResult solve_sheet(const SheetProblem& pb, const SolveOptions& opt) {
   const auto start = Clock::now();
   const SolveBudget budget(opt);
   validate_problem(pb, opt);
+  std::string declined;
+  if (std::optional<SolveResult> mg = solve_by_multigrid(pb, opt, declined)) {
+    mg->report.total_seconds = seconds_since(start);
+    return std::move(*mg);
+  }
   SolveResult result;
   SolveReport& rep = result.report;
   auto t = Clock::now();
@@ -466,6 +508,7 @@ SolveResult solve_sheet(const SheetProblem& pb, const SolveOptions& opt) {
   if (as.nonlinear) x = iterate_nonlinear(pb, opt, as.scales, as.quad, x, rep);
   if (has_curvature_conditions(pb)) x = iterate_curvature(pb, opt, as, x, rep);
   result.poles = to_poles(x, rep.coupled);
+  rep.mode_reason += declined;
   rep.total_seconds = seconds_since(start);
   return result;
 }

@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <functional>
 #include <vector>
 
 #include "varsurf/core/sheet_solver.hpp"
@@ -20,6 +21,8 @@ struct MultigridOptions {
   int coarsest_poles = 400;  // levels are added down to about this many free poles
   double tolerance = 1e-12;  // relative residual at which conjugate gradients stop
   int max_iterations = 500;
+  // Asked between conjugate gradient steps; false stops the solve with Cancelled. Empty: never.
+  std::function<bool()> keep_going;
 };
 
 struct MultigridReport {
@@ -39,8 +42,16 @@ Eigen::MatrixX3d solve_multigrid(const SplineSpace& space, const Eigen::SparseMa
                                  const std::vector<int>& fixed, const MultigridOptions& options,
                                  MultigridReport* report = nullptr);
 
-// A sheet held by its fixed poles alone (no constraint rows, no operators; a rest shape allowed):
-// its energy minimized by solve_multigrid. InvalidInput for other problems.
+// Whether the problem is a sheet held by its fixed poles alone (no constraint rows, operators,
+// pressure, closure or kept region; a rest shape allowed) on a non-rational space.
+bool held_by_fixed_poles_alone(const SheetProblem& problem);
+
+// Whether the space has a coarser level (simple interior knots, an even count of at least 4
+// spans in both directions): without one multigrid is a direct solve.
+bool has_coarser_level(const SplineSpace& space);
+
+// A sheet held by its fixed poles alone: its energy minimized by solve_multigrid. InvalidInput
+// for other problems.
 SolveResult solve_sheet_multigrid(const SheetProblem& problem, const MultigridOptions& options,
                                   MultigridReport* report = nullptr);
 
