@@ -8,6 +8,7 @@
 #include "binding.hpp"
 #include "varsurf/core/constraints.hpp"
 #include "varsurf/core/curve_loop.hpp"
+#include "varsurf/core/curve_orientation.hpp"
 #include "varsurf/core/errors.hpp"
 #include "varsurf/core/knot_vector.hpp"
 #include "varsurf/core/sheet_solver.hpp"
@@ -51,6 +52,14 @@ void bind_core_functions(py::module_& m) {
         "mode"_a = SolveMode::automatic,
         "Bytes a solve in `mode` of `unknowns` unknowns, each coupled to `row_nonzeros` others, "
         "needs at most (what SolveOptions.memory_limit is compared with).");
+
+  m.def("reversed_curve", &reversed, "curve"_a,
+        "The curve with its parameter reversed (the same points on the same range).");
+  m.def("curve_on_range", &on_range, "curve"_a, "t0"_a, "t1"_a,
+        "The same points on the parameter range [t0, t1] (knots mapped affinely: exact).");
+  m.def("oriented_curve", &oriented, "curve"_a, "start"_a, "end"_a,
+        "The curve, or it reversed, whichever pairs its start with `start` and its end with "
+        "`end` better (the smaller sum of the two distances).");
 
   m.def("chain_loop", &chain_loop, "curves"_a, "gap"_a,
         "Order 2D curves end to start into one closed loop (ends within `gap` join); "

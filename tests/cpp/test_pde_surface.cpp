@@ -10,6 +10,7 @@
 #include <string>
 
 #include "varsurf/core/curve_fit.hpp"
+#include "varsurf/core/curve_orientation.hpp"
 #include "varsurf/core/errors.hpp"
 #include "varsurf/core/knot_vector.hpp"
 #include "varsurf/core/pde_surface.hpp"

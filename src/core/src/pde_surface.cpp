@@ -10,6 +10,7 @@
 #include <string>
 
 #include "varsurf/core/curve_fit.hpp"
+#include "varsurf/core/curve_orientation.hpp"
 #include "varsurf/core/errors.hpp"
 #include "varsurf/core/knot_vector.hpp"
 #include "varsurf/core/seam_ties.hpp"
@@ -109,13 +110,6 @@ BSplineCurve normalized_3d(const BSplineCurve& c, const std::string& name) {
   if (!(length(c) > 0.0))
     throw InvalidInput(name + " has no length: give a curve that is not a point");
   return c;
-}
-
-// c reversed if that pairs its start with `start` and its end with `end` better.
-BSplineCurve oriented(const BSplineCurve& c, const Vec3& start, const Vec3& end) {
-  const double kept = (at(c, 0.0) - start).norm() + (at(c, 1.0) - end).norm();
-  const double turned = (at(c, 1.0) - start).norm() + (at(c, 0.0) - end).norm();
-  return turned < kept ? reversed(c) : c;
 }
 
 // A monotone piecewise-linear map from the surface's parameter (0..1 along the curve) to the
@@ -319,15 +313,6 @@ SheetProblem closed_problem(const PdeBoundary& b, const PdeSurfaceOptions& o, do
 }
 
 }  // namespace
-
-BSplineCurve reversed(const BSplineCurve& c) {
-  BSplineCurve r = c;
-  const double a = c.first(), b = c.last();
-  for (size_t k = 0; k < c.knots.size(); ++k) r.knots[k] = a + b - c.knots[c.knots.size() - 1 - k];
-  r.poles = c.poles.colwise().reverse();
-  if (c.rational()) r.weights = c.weights.reverse();
-  return r;
-}
 
 SheetProblem pde_surface_problem(const PdeBoundary& in, const PdeSurfaceOptions& o,
                                  double* fit_error) {

@@ -17,6 +17,8 @@ import Part
 from pivy import coin
 
 from varsurf.app import drag
+from varsurf.solve import constraints
+from varsurf.solve.native import native
 from varsurf.gui.coin_lines import add_polyline
 from varsurf.gui.scene_roots import own_root
 from varsurf.gui.drag_preview import DragPreview
@@ -255,19 +257,27 @@ class ConstraintHandles:
             _line(self.root, [region[16 * k], corners[k]], ARROW, 1.5)
 
     def _curve_map(self, c):
-        """The source and destination curves and, between them, where points go."""
-        edges = []
+        """The source and destination curves and, between them, where points go: the
+        destination as the solver maps it (constraints.mapped_destination), point for point by
+        parameter."""
+        nat = native()
+        curves = []
         for link in (c.Curve, c.Reference):
             target, subs = link
             subs = [s for s in subs if s]
-            edges.append(Part.getShape(target, subs[0], needSubElement=True) if subs else target.Shape.Edges[0])
-        source, destination = (e.discretize(CURVE_MAP_POINTS) for e in edges)
-        if (destination[0] - source[0]).Length + (destination[-1] - source[-1]).Length > \
-                (destination[-1] - source[0]).Length + (destination[0] - source[-1]).Length:
-            destination.reverse()  # as the solver turns it: its start is the end nearer the source's start
-        _line(self.root, source, RIBBON, 3.0)
-        _line(self.root, destination, CURVATURE, 3.0)
-        for a, b in list(zip(source, destination))[::(CURVE_MAP_POINTS - 1) // 4]:
+            edge = Part.getShape(target, subs[0], needSubElement=True) if subs else target.Shape.Edges[0]
+            try:
+                curves.append(nat.curve_from_edge_brep(edge.exportBrepToString()))
+            except (nat.InvalidInput, nat.GeometryError):
+                return  # the recompute reports it
+        source = curves[0]
+        destination = constraints.mapped_destination(source, curves[1], nat)
+        t0, t1 = source.first(), source.last()
+        ts = [t0 + (t1 - t0) * k / (CURVE_MAP_POINTS - 1) for k in range(CURVE_MAP_POINTS)]
+        points = [[V(*map(float, curve.evaluate(t))) for t in ts] for curve in (source, destination)]
+        _line(self.root, points[0], RIBBON, 3.0)
+        _line(self.root, points[1], CURVATURE, 3.0)
+        for a, b in list(zip(*points))[::(CURVE_MAP_POINTS - 1) // 4]:
             _line(self.root, [a, b], ARROW, 1.5)
 
     def _curvature(self, c, sheet, size):

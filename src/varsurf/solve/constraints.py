@@ -64,6 +64,9 @@ REGION_KINDS = ("PointAttractor", "PlaneAttractor", "LineAttractor", "Director",
                 "FrozenRegion", "SurfaceAttractor", "CurveAttractor")
 #: Region kinds pulled onto another shape (closest points, iterated).
 SHAPE_KINDS = ("SurfaceAttractor", "CurveAttractor")
+#: Kinds whose Weight is a condition's importance: 0 would hold nothing (a region kind's weight is
+#: its strength, which may be 0).
+HELD_KINDS = POINT_KINDS + CURVE_KINDS + ("G0", "CurveMap", "RegionMap")
 #: Most points a region's residual is measured on.
 REGION_SAMPLES = 400
 
@@ -99,18 +102,19 @@ class ConstraintSpec:
             raise fail(f"unknown kind {self.kind!r}: give one of {', '.join(KINDS)}")
         if not (math.isfinite(self.weight) and self.weight >= 0.0):
             raise fail(f"weight/strength must be finite and >= 0 (got {self.weight}): set its Weight to 0 or more")
+        if self.kind in HELD_KINDS and self.weight == 0.0:
+            raise fail("a constraint's weight must be > 0: set its Weight above 0, or disable it")
         if self.kind in POINT_KINDS:
-            if self.weight == 0.0:
-                raise fail("a constraint's weight must be > 0: set its Weight above 0, or disable it")
             if self.location is None and self.uv is None:
                 raise fail("needs a location (a vertex) or (u, v): link a vertex as its Location")
             if self.uv is not None and not all(0.0 <= t <= 1.0 for t in self.uv):
                 raise fail(f"(u, v) must lie in [0, 1] x [0, 1] (got {self.uv}): give a place on the sheet")
-        if self.kind in REGION_KINDS and self.region_loop is None:
+        if (self.kind in REGION_KINDS and self.region_loop is None) or self.kind == "RegionMap":
             u0, u1, v0, v1 = self.region
             if not (0.0 <= u0 < u1 <= 1.0 and 0.0 <= v0 < v1 <= 1.0):
+                loop = "" if self.kind == "RegionMap" else ", or link a RegionLoop"
                 raise fail(f"the region must satisfy 0 <= u0 < u1 <= 1 and 0 <= v0 < v1 <= 1 (got {self.region}): set "
-                           "its Region inside the sheet, or link a RegionLoop")
+                           f"its Region inside the sheet{loop}")
         if self.kind == "SurfaceAttractor":
             if not _is_shape(self.reference, "Face"):
                 raise fail("needs a Reference face to pull the region onto: link a face (FaceN) as its Reference")
@@ -118,18 +122,10 @@ class ConstraintSpec:
         if self.kind == "G0":
             if not _is_shape(self.edge, "Edge"):
                 raise fail("needs a Curve (an edge) for the sheet to contain: link an edge (EdgeN) as its Curve")
-            if self.weight == 0.0:
-                raise fail("a constraint's weight must be > 0: set its Weight above 0, or disable it")
             return
         if self.kind == "RegionMap":
             if not _is_shape(self.reference, "Face"):
                 raise fail("needs a Reference face (the destination patch): link a face (FaceN) as its Reference")
-            u0, u1, v0, v1 = self.region
-            if not (0.0 <= u0 < u1 <= 1.0 and 0.0 <= v0 < v1 <= 1.0):
-                raise fail(f"the region must satisfy 0 <= u0 < u1 <= 1 and 0 <= v0 < v1 <= 1 (got {self.region}): set "
-                           "its Region inside the sheet")
-            if self.weight == 0.0:
-                raise fail("a constraint's weight must be > 0: set its Weight above 0, or disable it")
             return
         if self.kind == "CurveMap":
             if not (_is_shape(self.edge, "Edge") and self.reference is not None):
@@ -138,8 +134,6 @@ class ConstraintSpec:
             if not _is_shape(self.reference, "Edge"):
                 raise fail(f"the destination (Reference) must be an edge (got a {self.reference.ShapeType.lower()}): "
                            "link the destination edge (EdgeN) as its Reference")
-            if self.weight == 0.0:
-                raise fail("a constraint's weight must be > 0: set its Weight above 0, or disable it")
             return
         if self.kind == "CurveAttractor":
             if not _is_shape(self.edge, "Edge"):
@@ -157,8 +151,6 @@ class ConstraintSpec:
                 raise fail("Reference must be a face or a second edge: link one (FaceN or EdgeN) as its Reference")
             if not math.isfinite(self.angle):
                 raise fail(f"Angle must be finite (got {self.angle}): set its Angle in degrees")
-            if self.weight == 0.0:
-                raise fail("a constraint's weight must be > 0: set its Weight above 0, or disable it")
             return
         if self.kind == "Curvature":
             if not all(math.isfinite(k) for k in self.curvature):
@@ -349,7 +341,7 @@ def _place_region_map(spec: ConstraintSpec, base, nat):
         except (nat.InvalidInput, nat.GeometryError) as error:
             raise ConstraintError(f"{spec.name}: {error}") from error
         line = nat.BSplineCurve(degree=1, knots=[0.0, 0.0, 1.0, 1.0], poles=[list(pre_start), list(pre_end)])
-        return nat.CurveConstraint(preimage=line, target=_on_range(target, 0.0, 1.0, False, nat), weight=weight)
+        return nat.CurveConstraint(preimage=line, target=nat.curve_on_range(target, 0.0, 1.0), weight=weight)
 
     breaks = sorted({va, vb} | {float(k) for k in space.knots_v if va < k < vb})
     nodes, rule = numpy.polynomial.legendre.leggauss(space.degree_v + 1)
@@ -369,29 +361,13 @@ def _place_region_map(spec: ConstraintSpec, base, nat):
     return out
 
 
-def _on_range(curve, t0, t1, reverse, nat):
-    """The same curve (optionally reversed) on the parameter range [t0, t1]: knots mapped
-    affinely, exactly."""
-    knots = [float(k) for k in curve.knots]
-    poles = [list(row) for row in curve.poles]
-    weights = [float(w) for w in curve.weights]
-    d0, d1 = knots[0], knots[-1]
-    if reverse:
-        knots = [d0 + d1 - k for k in reversed(knots)]
-        poles, weights = poles[::-1], weights[::-1]
-    knots = [t0 + (k - d0) / (d1 - d0) * (t1 - t0) for k in knots]
-    return nat.BSplineCurve(degree=curve.degree, knots=knots, poles=poles, weights=weights)
-
-
 def mapped_destination(source, destination, nat):
     """The destination curve on the source's parameter range, exactly (its knots mapped affinely),
     turned so that it starts at the end nearer the source's start: the point of the destination
     at the source's normalized parameter."""
-    def at(c, s):
-        return [float(x) for x in c.evaluate(c.first() + s * (c.last() - c.first()))]
-    along = _norm(_sub(at(destination, 0), at(source, 0))) + _norm(_sub(at(destination, 1), at(source, 1)))
-    across = _norm(_sub(at(destination, 1), at(source, 0))) + _norm(_sub(at(destination, 0), at(source, 1)))
-    return _on_range(destination, source.first(), source.last(), across < along, nat)
+    t0, t1 = source.first(), source.last()
+    turned = nat.oriented_curve(destination, source.evaluate(t0), source.evaluate(t1))
+    return nat.curve_on_range(turned, t0, t1)
 
 
 def _place_curve(p: PlacedSpec, base, nat):

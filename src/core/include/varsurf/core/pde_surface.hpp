@@ -61,7 +61,4 @@ struct PdeSurfaceOptions {
 SheetProblem pde_surface_problem(const PdeBoundary& b, const PdeSurfaceOptions& o,
                                  double* fit_error = nullptr);
 
-// The curve with its parameter reversed (same points).
-BSplineCurve reversed(const BSplineCurve& c);
-
 }  // namespace varsurf
