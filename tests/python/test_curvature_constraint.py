@@ -13,6 +13,7 @@ import pytest
 import varsurf
 from varsurf.app import macro
 from scenes import add_face, add_line_sketch, flat_face, poles_of
+from step_check import assert_reads_back
 
 V = FreeCAD.Vector
 #: The solver iterates the curvature to 1e-4 of its value (SolveOptions.curvature_tolerance).
@@ -130,3 +131,20 @@ def test_on_a_cylinder_the_command_starts_from_the_sheets_own_curvature(doc, nat
     got = measured(sheet, (0.5, 0.5), tuple(c.Vector))
     assert got[around] == pytest.approx(target[around], rel=REL)
     assert got[1 - around] == pytest.approx(target[1 - around], abs=REL * abs(target[around]))
+
+
+def test_the_curvature_survives_step(doc, native, tmp_path):
+    """The sheet written to STEP reads back sound, with the asked curvatures at the point."""
+    sheet = flat_sheet(doc)
+    varsurf.make_constraint(sheet, "Curvature", uv=(0.4, 0.55), vector=(0, 0, 1), curvature=(0.015, -0.01))
+    doc.recompute()
+    assert sheet.isValid(), sheet.getStatusString()
+    path = tmp_path / "curvature.step"
+    varsurf.export_step(sheet, str(path))
+    back = assert_reads_back(sheet.Shape, path, native)
+
+    class Read:  # measured() reads the face from .Shape
+        Shape = back
+
+    ku, kv = measured(Read, (0.4, 0.55), (0, 0, 1))
+    assert ku == pytest.approx(0.015, rel=REL) and kv == pytest.approx(-0.01, rel=REL)

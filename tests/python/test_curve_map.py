@@ -10,7 +10,8 @@ import math
 import FreeCAD
 import Part
 import varsurf
-from scenes import add_face, flat_face, poles_of
+from scenes import add_face, add_line_sketch, flat_face, poles_of
+from step_check import assert_reads_back
 
 V = FreeCAD.Vector
 
@@ -111,3 +112,30 @@ def test_bad_links_are_reported_on_the_constraint(doc, native, console_errors):
     c.Reference = (box, "Face1")
     doc.recompute()
     assert not c.isValid() and "destination" in c.getStatusString(), c.getStatusString()
+
+
+def test_sketch_edges_map_and_the_sheet_survives_step(doc, native, tmp_path):
+    """The source a sketch's line on the base, the destination a B-spline drawn in a second sketch
+    tilted 25 degrees above it (FreeCAD's own sketch geometry, not a scene made for the solver);
+    the sheet written to STEP reads back sound and still maps the source."""
+    base = add_face(doc, flat_face(100.0, 80.0))
+    source = add_line_sketch(doc, "SourceSketch", 0.0, (20.0, 30.0), (80.0, 45.0))
+    above = doc.addObject("Sketcher::SketchObject", "DestinationSketch")
+    above.Placement = FreeCAD.Placement(V(0, 0, 6), FreeCAD.Rotation(V(1, 0, 0), 25))
+    spline = Part.BSplineCurve()
+    spline.interpolate([V(22, 28, 0), V(40, 22, 0), V(60, 40, 0), V(78, 36, 0)])
+    above.addGeometry(spline, False)
+    doc.recompute()
+    sheet = varsurf.make_sheet((base, "Face1"), [])
+    c = varsurf.make_constraint(sheet, "CurveMap", curve=(source, "Edge1"), reference=(above, "Edge1"))
+    doc.recompute()
+    assert sheet.isValid() and c.isValid(), sheet.getStatusString()
+    assert image_error(sheet, source, above) < float(sheet.Tolerance)
+    path = tmp_path / "curve_map.step"
+    varsurf.export_step(sheet, str(path))
+    back = assert_reads_back(sheet.Shape, path, native)
+    a, b = sheet.Shape.Faces[0].Surface, back.Faces[0].Surface
+    u0, u1, v0, v1 = a.bounds()
+    assert max((a.value(u0 + (u1 - u0) * i / 8, v0 + (v1 - v0) * j / 8)
+                - b.value(u0 + (u1 - u0) * i / 8, v0 + (v1 - v0) * j / 8)).Length
+               for i in range(9) for j in range(9)) < 1e-9

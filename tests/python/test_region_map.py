@@ -14,6 +14,7 @@ import pytest
 
 import varsurf
 from scenes import add_face, flat_face, poles_of
+from step_check import assert_reads_back
 
 V = FreeCAD.Vector
 REGION = (0.3, 0.7, 0.25, 0.75)
@@ -101,3 +102,43 @@ def test_bad_links_and_regions_are_reported_on_the_constraint(doc, native, conso
     c.RegionU0, c.RegionU1 = 0.3, 0.7
     doc.recompute()
     assert c.isValid() and sheet.isValid()
+
+
+def test_a_fillet_face_as_destination_survives_step(doc, native, tmp_path):
+    """The destination one of the fillets of a Part box's four top edges (a cylindrical face OCCT
+    made, converted to a B-spline for the map): the one whose parameters run along the sheet's
+    (u along +x, v along +y), so the map asks for no twist. The region dips onto it, and the sheet
+    written to STEP reads back sound."""
+    box = doc.addObject("Part::Box", "Box")
+    box.Length, box.Width, box.Height = 40.0, 40.0, 20.0
+    box.Placement.Base = V(20.0, 20.0, -25.0)
+    doc.recompute()
+    fillet = doc.addObject("Part::Fillet", "Fillet")
+    fillet.Base = box
+    fillet.Edges = [(k, 8.0, 8.0) for k, e in enumerate(box.Shape.Edges, 1)
+                    if all(abs(v.Point.z + 5.0) < 1e-9 for v in e.Vertexes)]
+    box.Visibility = False
+    doc.recompute()
+
+    def aligned(f):
+        a0, a1, b0, b1 = f.ParameterRange
+        start = f.valueAt(a0, b0)
+        return (f.Surface.TypeId == "Part::GeomCylinder" and f.valueAt(a1, b0).x - start.x > 5.0
+                and f.valueAt(a0, b1).y - start.y > 30.0)
+
+    face = next(k for k, f in enumerate(fillet.Shape.Faces, 1) if aligned(f))
+    base = add_face(doc, flat_face(100.0, 80.0))
+    doc.recompute()
+    sheet = varsurf.make_sheet((base, "Face1"), [], tolerance=0.01)
+    c = varsurf.make_constraint(sheet, "RegionMap", reference=(fillet, f"Face{face}"), region=REGION)
+    doc.recompute()
+    assert sheet.isValid() and c.isValid(), sheet.getStatusString()
+
+    class Patch:  # mapped_error reads the destination's face from .Shape
+        Shape = fillet.Shape.Faces[face - 1].toNurbs()
+
+    assert mapped_error(sheet, Patch) < 2.0 * 0.01
+    assert sheet.Shape.BoundBox.ZMin < -12.0  # it reached down to the fillet
+    path = tmp_path / "region_map.step"
+    varsurf.export_step(sheet, str(path))
+    assert_reads_back(sheet.Shape, path, native)
