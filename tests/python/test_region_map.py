@@ -142,3 +142,27 @@ def test_a_fillet_face_as_destination_survives_step(doc, native, tmp_path):
     path = tmp_path / "region_map.step"
     varsurf.export_step(sheet, str(path))
     assert_reads_back(sheet.Shape, path, native)
+
+
+def test_a_base_of_few_spans_is_mapped_on_the_spans_solved(doc, native):
+    """A base face of 3 spans a side, which the sheet refines to 16: the map's lines follow the
+    spans solved, not the base's (lines at the base's Gauss points alone left the surface 0.25 mm
+    from its destination between them while the reported residual said 4e-13)."""
+    poles = [[V(20 * i, 20 * j, 6 * math.sin(math.pi * i / 5) * math.sin(math.pi * j / 5)) for j in range(6)]
+             for i in range(6)]
+    surface = Part.BSplineSurface()
+    knots, mults = [0.0, 1 / 3, 2 / 3, 1.0], [4, 1, 1, 4]
+    surface.buildFromPolesMultsKnots(poles, mults, mults, knots, knots, False, False, 3, 3)
+    base = add_face(doc, surface.toShape())
+    region = (0.35, 0.65, 0.35, 0.65)
+    patch = add_face(doc, bump(35.0, 35.0, 30.0, 30.0, 5.0, z=14.0), "Destination")
+    doc.recompute()
+    sheet = varsurf.make_sheet((base, "Face1"), [])
+    c = varsurf.make_constraint(sheet, "RegionMap", reference=(patch, "Face1"), region=region)
+    doc.recompute()
+    assert sheet.isValid() and c.isValid(), sheet.getStatusString()
+    assert len(sheet.Shape.Faces[0].Surface.getUKnots()) > 4  # refined beyond the base's spans
+    error = mapped_error(sheet, patch, region)
+    assert error < 2.0 * float(sheet.Tolerance)
+    reported = sheet.ConstraintResiduals[list(sheet.ConstraintNames).index(c.Label)]
+    assert reported == pytest.approx(error, rel=0.05, abs=1e-9)
