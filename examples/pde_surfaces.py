@@ -2,18 +2,21 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
 """VarSurf example: PDE surfaces from boundary conditions, after Du & Qin's figures.
 
-    /usr/bin/python3 examples/pde_surfaces.py [OUT_DIR]        (default: out/pde)
+    /usr/bin/python3 examples/pde_surfaces.py [OUT_DIR [FIGURE...]]   (default: out/pde, every figure)
 
 - fig7: Hermite-like conditions: two boundary curves and their derivative curves (7A, 7B), and
   three sets of them joining two surfaces with one tangent across the shared curve (7C, 7D).
 - fig8: Coons-like conditions (four boundary curves, 8A, 8B) and a Gordon-like network (curves at
   u = 0, 0.5, 1 and v = 0, 0.5, 1, 8C, 8D).
+- fig9: one surface from its boundary curves on finer and finer grids (about Du & Qin's 15 x 15,
+  30 x 30 and 60 x 60 samples: 15, 35 and 67 poles a side); the finer two solved by multigrid.
 - fig11: the coefficient a: 3 everywhere, 5 painted on a region, 5 everywhere.
 - fig12, fig13: sculpting tools: a point moved, a normal set, a curvature set; a frozen region.
 - fig14: a non-isoparametric curve constraint: a curve on the surface mapped onto another.
 - fig15: region manipulation: a rectangle of the surface mapped onto a destination patch.
 - fig16: PDE displacements of an existing face (a Sheet with Energy = PDE and its base as rest
-  shape): a point, a point beside a frozen region, a curve.
+  shape): a point, a point beside a frozen region, a curve (17A), a region mapped onto a patch
+  (17C).
 - blend: Bloor & Wilson's blend, closed along v, from a cylinder (G1 to its side) to a flange.
 
 Each figure writes figN.FCStd, figN.step and figN.png (the FreeCAD GUI under Xvfb, when present)
@@ -89,6 +92,29 @@ def fig8(doc):
                                  v_curves=[((net["GordonVMid"], "Edge1"), 0.5)], a=1.0, name="Gordon")
     doc.recompute()
     return [a, b]
+
+
+def fig9(doc):
+    """Du & Qin's Fig. 9: the boundary curves through a few points each (9A), and the PDE surface
+    they bound on 12, 32 and 64 spans (9B-D), side by side; SolveModeUsed says how each was
+    solved (the finer two by multigrid on their B-spline levels)."""
+    def edge(u, v, dx):
+        a, b = math.pi * u, math.pi * v
+        return V(dx + 100 * u, 100 * v, 15 * math.cos(a) * math.sin(2 * b) + 12 * math.sin(a) * math.cos(b))
+
+    out = []
+    for k, spans in enumerate((12, 32, 64)):
+        dx = 130.0 * k
+        sides = [curve(doc, f"Grid{spans}{name}", along(f, 7)) for name, f in (
+            ("U0", lambda t: edge(0, t, dx)), ("U1", lambda t: edge(1, t, dx)),
+            ("V0", lambda t: edge(t, 0, dx)), ("V1", lambda t: edge(t, 1, dx)))]
+        doc.recompute()
+        pde = varsurf.make_pde_surface((sides[0], "Edge1"), (sides[1], "Edge1"), v0=(sides[2], "Edge1"),
+                                       v1=(sides[3], "Edge1"), a=1.0, name=f"Grid{spans}")
+        pde.MinSpans = pde.MaxSpans = spans
+        out.append(pde)
+    doc.recompute()
+    return out
 
 
 def fig11(doc):
@@ -212,7 +238,7 @@ def fig16(doc):
     as rest shape; a point lifts it (16A), another with a frozen region beside it (16C), and a
     curve above the face sculpts it (17A). The face itself is untouched."""
     out = []
-    for k, name in enumerate(("DisplacedPoint", "DisplacedFrozen", "DisplacedCurve")):
+    for k, name in enumerate(("DisplacedPoint", "DisplacedFrozen", "DisplacedCurve", "DisplacedRegion")):
         base = doc.addObject("Part::Feature", f"{name}Base")
         poles = [[V(130 * k + 20 * i, 20 * j, 6 * math.sin(math.pi * i / 5) * math.sin(math.pi * j / 5))
                   for j in range(6)] for i in range(6)]
@@ -227,37 +253,54 @@ def fig16(doc):
             curves = [(arc, "Edge1")]
         doc.recompute()
         sheet = varsurf.make_sheet((base, "Face1"), curves, energy="PDE", pde_a=2.0, name=name)
-        if name != "DisplacedCurve":
+        if name in ("DisplacedPoint", "DisplacedFrozen"):
             at = (0.35, 0.5) if name == "DisplacedFrozen" else (0.5, 0.5)
             target = surface.value(*at) + V(0, 0, 12)
             varsurf.make_constraint(sheet, "Point", uv=at, origin=(target.x, target.y, target.z))
         if name == "DisplacedFrozen":
             varsurf.make_constraint(sheet, "FrozenRegion", region=(0.65, 0.95, 0.1, 0.9))
+        if name == "DisplacedRegion":  # 17C: the middle of the face mapped onto a raised, tilted patch
+            corners = [[V(130 * k + 35 + 10 * i, 35 + 10 * j, 14 + 2 * i + (5 if 0 < i < 3 and 0 < j < 3 else 0))
+                        for j in range(4)] for i in range(4)]
+            patch = Part.BSplineSurface()
+            patch.buildFromPolesMultsKnots(corners, [4, 4], [4, 4], [0.0, 1.0], [0.0, 1.0], False, False, 3, 3)
+            target = doc.addObject("Part::Feature", f"{name}Patch")
+            target.Shape = patch.toShape()
+            doc.recompute()
+            varsurf.make_constraint(sheet, "RegionMap", reference=(target, "Face1"), region=(0.35, 0.65, 0.35, 0.65))
         base.Visibility = False
         out.append(sheet)
     doc.recompute()
     return out
 
 
-FIGURES = {"fig7": fig7, "fig8": fig8, "fig11": fig11, "fig12": fig12, "fig13": fig13, "fig14": fig14, "fig15": fig15,
-           "fig16": fig16,
+FIGURES = {"fig7": fig7, "fig8": fig8, "fig9": fig9, "fig11": fig11, "fig12": fig12, "fig13": fig13, "fig14": fig14,
+           "fig15": fig15, "fig16": fig16,
            "blend": blend}
 
 
-def main(out_dir="out/pde"):
+def main(out_dir="out/pde", *only):
+    """Every figure, or those named after OUT_DIR (e.g. fig9 fig16)."""
     from demo import render
 
+    unknown = [name for name in only if name not in FIGURES]
+    if unknown:
+        print(f"no figure {', '.join(unknown)}: name some of {', '.join(FIGURES)}")
+        return 2
     out = Path(out_dir).resolve()
     out.mkdir(parents=True, exist_ok=True)
     failed = 0
     for stem, build in FIGURES.items():
+        if only and stem not in only:
+            continue
         doc = FreeCAD.newDocument(stem)
         surfaces = build(doc)
         for s in surfaces:
             ok = s.isValid()
             failed += not ok
             print(f"{stem} {s.Label}: {s.Status if ok else s.getStatusString()}; "
-                  f"deviations {', '.join(f'{d:.2g}' for d in s.MaxDeviations)} mm; {s.SolveTime * 1000:.0f} ms")
+                  f"deviations {', '.join(f'{d:.2g}' for d in s.MaxDeviations)} mm; {s.SolveTime * 1000:.0f} ms; "
+                  f"{s.SolveModeUsed}")
         fcstd, step = out / f"{stem}.FCStd", out / f"{stem}.step"
         doc.saveAs(str(fcstd))
         varsurf.export_step(surfaces, str(step))

@@ -72,7 +72,7 @@ def test_hermite_conditions_reproduce_a_pde_solution(doc):
 
 
 def test_a_fine_surface_is_solved_by_multigrid(doc, native, monkeypatch):
-    """At 64 x 64 spans the boundary conditions alone hold 3 969 free poles: Automatic solves them by
+    """At 64 x 64 spans the boundary conditions alone leave 4 095 poles free: Automatic solves them by
     multigrid, and the surface is the solution's as at the coarser default."""
     modes = []
     solve_sheet = native.solve_sheet
@@ -94,6 +94,7 @@ def test_a_fine_surface_is_solved_by_multigrid(doc, native, monkeypatch):
     doc.recompute()
     assert pde.isValid() and pde.Status.startswith("OK"), pde.Status
     assert modes == [native.SolveMode.multigrid]
+    assert pde.SolveModeUsed.startswith("multigrid: 4095 free poles"), pde.SolveModeUsed
     assert worst(pde) < 1e-3
     assert max(pde.MaxDeviations) < 1e-4
     # Coarser, the direct solve: the same surface.
@@ -101,6 +102,7 @@ def test_a_fine_surface_is_solved_by_multigrid(doc, native, monkeypatch):
     pde.MinSpans = pde.MaxSpans = 16
     doc.recompute()
     assert modes[-1] != native.SolveMode.multigrid
+    assert pde.SolveModeUsed.startswith("exact"), pde.SolveModeUsed
     coarse = pde.Shape.Faces[0].Surface
     assert max((coarse.value(i / 10, j / 10) - fine.value(i / 10, j / 10)).Length
                for i in range(11) for j in range(11)) < 1e-3
@@ -448,3 +450,46 @@ def test_a_point_on_a_pde_surface_is_dragged_by_recomputing(doc):
     assert pde.isValid(), pde.getStatusString()
     assert pde.Shape.distToShape(Part.Vertex(start + V(0, 0, 15.0)))[0] < 1e-6
     assert doc.UndoNames[:1] == [drag.TargetDrag.TRANSACTION]
+
+
+def test_fig9_finer_grids_converge_and_go_to_multigrid(doc):
+    """Du & Qin's Fig. 9 (examples/pde_surfaces.py): one surface on 12, 32 and 64 spans; the finer
+    two are solved by multigrid, and the three agree (the finer the closer: a convergent method)."""
+    from pde_surfaces import fig9
+
+    grids = fig9(doc)
+    assert all(g.isValid() and g.Status.startswith("OK") for g in grids), [g.Status for g in grids]
+    assert [g.SolveModeUsed.split(":")[0] for g in grids] == ["exact", "multigrid", "multigrid"]
+    surfaces = [g.Shape.Faces[0].Surface for g in grids]
+
+    def gap(a, b, dx):
+        return max((a.value(i / 10, j / 10) + V(dx, 0, 0) - b.value(i / 10, j / 10)).Length
+                   for i in range(11) for j in range(11))
+
+    coarse, fine = gap(surfaces[0], surfaces[2], 260.0), gap(surfaces[1], surfaces[2], 130.0)
+    assert fine < coarse < 0.5
+    assert fine < 0.05
+
+
+def test_fig17c_a_region_of_a_displacement_is_mapped(doc):
+    """Du & Qin's Fig. 17C (examples/pde_surfaces.py): a Sheet with Energy = PDE on an existing face
+    (its rest shape) maps the middle of the face onto a raised patch; the face itself is left
+    alone."""
+    from pde_surfaces import fig16
+
+    sheets = fig16(doc)
+    region = next(s for s in sheets if s.Label == "DisplacedRegion")
+    assert region.isValid() and region.Status.startswith("OK"), region.getStatusString()
+    base = doc.getObject("DisplacedRegionBase").Shape.Faces[0].Surface
+    patch = doc.getObject("DisplacedRegionPatch").Shape.Faces[0].Surface
+    surface = region.Shape.Faces[0].Surface
+    tolerance = float(region.Tolerance)
+    worst = max((surface.value(0.35 + 0.3 * i / 10, 0.35 + 0.3 * j / 10) - patch.value(i / 10, j / 10)).Length
+                for i in range(11) for j in range(11))
+    assert worst < 2.0 * tolerance
+    # The border of the face stays where the face is (the displacement's boundary is held), and
+    # the base face is unchanged by the edit.
+    assert max((surface.value(t, e) - base.value(t, e)).Length for t in (0.0, 0.5, 1.0) for e in (0.0, 1.0)) < 1e-9
+    poles = base.getPoles()
+    assert max(abs(poles[i][j].z - 6 * math.sin(math.pi * i / 5) * math.sin(math.pi * j / 5))
+               for i in range(6) for j in range(6)) < 1e-12

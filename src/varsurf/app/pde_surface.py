@@ -57,6 +57,7 @@ _PROPERTIES = [
     ("FitError", "App::PropertyFloat", "Result", "Largest distance (mm) between a held boundary row and its curve (and derivative data)", True),
     ("Spans", "App::PropertyInteger", "Result", "Spans per direction of the result", True),
     ("SolveTime", "App::PropertyFloat", "Result", "Time of the last solve (s), every refinement round", True),
+    ("SolveModeUsed", "App::PropertyString", "Result", "How the last solve was done and why (multigrid for a surface held by its boundary conditions alone from 500 free poles; a direct factorization otherwise)", True),
     ("Status", "App::PropertyString", "Result", "Outcome of the last recompute", True),
 ]
 
@@ -234,7 +235,7 @@ class PdeSurfaceFeature(FeatureProxy):
         try:
             outcome = compute(obj)
         except Exception as error:
-            obj.MaxDeviations, obj.CurveNames = [], []
+            obj.MaxDeviations, obj.CurveNames, obj.SolveModeUsed = [], [], ""
             raise mark_failed(obj, error) from error
         nat = native()
         obj.Shape = shapes.shape_from_brep(nat.face_brep(outcome.surface))
@@ -244,6 +245,7 @@ class PdeSurfaceFeature(FeatureProxy):
         obj.FitError = outcome.fit_error
         obj.Spans = outcome.spans
         obj.SolveTime = outcome.seconds
+        obj.SolveModeUsed = str(outcome.report.mode_reason)
         worst = max(outcome.deviations + [outcome.fit_error])
         tolerance = float(value(obj, "Tolerance"))
         if worst > tolerance:
