@@ -1,12 +1,18 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
 """What the GUI test scripts (run inside the real FreeCAD under Xvfb) do to the window: press a
-task panel's buttons, read its widgets, find what the task view cuts off, take a picture of the
-whole main window."""
+task panel's buttons, read its widgets, find what the task view cuts off, read the report view,
+take a picture of the whole main window."""
 
 import os
 
 import FreeCADGui as Gui
 from PySide import QtCore, QtGui
+
+
+def report_view_text():
+    """Everything the report view shows."""
+    widget = Gui.getMainWindow().findChild(QtGui.QTextEdit, "Report view")
+    return widget.toPlainText() if widget is not None else ""
 
 
 def window_shot(path):
@@ -46,7 +52,10 @@ def panel_in_view(form_name):
 
 def clipped_widgets(form_name):
     """The named widgets of the open panel that reach beyond the right edge of the task view's
-    visible area (cut off, or only seen by scrolling sideways)."""
+    visible area (cut off, or only seen by scrolling sideways). After it, an OK pressed by
+    press_task_button finds the panel's form deleted (the report view shows the panel's store()
+    failing; a user's OK, after Update, after a region added or after window_shot, does not):
+    check what OK stored through Update or the object."""
     found = panel_in_view(form_name)
     if isinstance(found, str):
         return [found]

@@ -6,12 +6,15 @@
 A PdeSurface between two edges with their derivative curves; a double click opens its panel; a
 new a and a painted region previewed with Update, then OK (one undoable step); opened again and
 cancelled after a change (the change is undone); a screenshot of the window with the panel open.
-Writes $VARSURF_GUI_OUT/pde_panel.json and quits.
+Then a Point's pin on the surface dragged in the view as the pointer would (each move an update
+of the prepared solve, the preview drawn), a screenshot while it moves, and the release: one
+undoable step. Writes $VARSURF_GUI_OUT/pde_panel.json and quits.
 """
 
 import json
 import os
 import sys
+import time
 import traceback
 
 import FreeCAD as App
@@ -24,7 +27,7 @@ import varsurf  # the Mod link puts VarSurf on the path
 # The helpers the GUI scripts share live beside this one.
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(varsurf.__file__)))),
                                 "tests", "gui"))
-from gui_helpers import clipped_widgets, press_task_button, task_widgets, window_shot  # noqa: E402
+from gui_helpers import clipped_widgets, press_task_button, report_view_text, task_widgets, window_shot  # noqa: E402
 
 OUT = os.environ.get("VARSURF_GUI_OUT") or os.path.join(os.getcwd(), "out", "gui-pde-panel")
 os.makedirs(OUT, exist_ok=True)
@@ -63,6 +66,8 @@ def run(result):
     window_shot(shot)
     result["shot"] = shot
     press_task_button(QtGui.QDialogButtonBox.Ok)
+    Gui.updateGui()
+    result["report_after_ok"] = report_view_text()
     after = [p for row in pde.Shape.Faces[0].Surface.getPoles() for p in row]
     result["ok"] = [round(float(pde.PdeA), 4), len(pde.PdeRegions), pde.isValid(), doc.UndoNames[:1],
                     max((p - q).Length for p, q in zip(before, after)) > 1e-3]
@@ -76,7 +81,38 @@ def run(result):
     w["updateButton"].click()
     Gui.updateGui()
     press_task_button(QtGui.QDialogButtonBox.Cancel)
+    Gui.updateGui()
+    result["report_after_cancel"] = report_view_text()
     result["cancelled"] = [round(float(pde.PdeA), 4), len(pde.PdeRegions), pde.isValid()]
+
+    # A Point's pin dragged up 12 mm in the view.
+    from varsurf.app import drag
+
+    start = pde.Shape.Faces[0].Surface.value(0.5, 0.5)
+    pin = varsurf.make_constraint(pde, "Point", uv=(0.5, 0.5), origin=start, name="Pin")
+    doc.recompute()
+    handles = pin.ViewObject.Proxy.handles
+    result["drag_began"] = handles.begin_drag()
+    result["drag_session"] = type(handles.session).__name__
+    moves, t0 = 30, time.perf_counter()
+    for k in range(1, moves + 1):
+        target = start + App.Vector(0, 0, 12.0 * k / moves)
+        handles.dragger.translation.setValue(*(target / handles.scale))  # as the pointer would
+        handles.drag_to(handles.dragger_target())
+        Gui.updateGui()
+    result["drag_moves_per_second"] = moves / (time.perf_counter() - t0)
+    preview = handles.preview.points if handles.preview is not None else None
+    result["preview_through_pin"] = None if preview is None else min(
+        ((p[0] - target.x) ** 2 + (p[1] - target.y) ** 2 + (p[2] - target.z) ** 2) ** 0.5 for p in preview.tolist())
+    shot = os.path.join(OUT, "pde_drag.png")
+    window_shot(shot)
+    result["drag_shot"] = shot
+    handles.end_drag(handles.dragger_target())
+    result["drag_errors"] = list(handles.errors)
+    Gui.updateGui()
+    result["report_at_end"] = report_view_text()
+    result["after_drag"] = [pde.isValid(), doc.UndoNames[:1] == [drag.TRANSACTION],
+                            pde.Shape.distToShape(Part.Vertex(target))[0]]
 
 
 def main():

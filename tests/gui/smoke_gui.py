@@ -26,7 +26,7 @@ import varsurf  # the Mod link puts VarSurf on the path
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(varsurf.__file__)))),
                                 "tests", "gui"))
 import gui_helpers  # noqa: E402
-from gui_helpers import clipped_widgets, panel_in_view, press_task_button, task_widgets  # noqa: E402
+from gui_helpers import clipped_widgets, panel_in_view, press_task_button, report_view_text, task_widgets  # noqa: E402
 
 OUT = os.environ.get("VARSURF_GUI_OUT") or os.path.join(os.getcwd(), "out", "gui-smoke")
 os.makedirs(OUT, exist_ok=True)
@@ -150,11 +150,6 @@ def unseen_widgets(form_name, names):
         if widget is None or widget.mapTo(viewport, QtCore.QPoint(0, widget.height())).y() > viewport.height():
             out.append(name)
     return out
-
-
-def report_view_text():
-    widget = Gui.getMainWindow().findChild(QtGui.QTextEdit, "Report view")
-    return widget.toPlainText() if widget is not None else ""
 
 
 def report_view_lines():

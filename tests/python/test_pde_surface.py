@@ -428,10 +428,12 @@ def test_surfaces_joined_by_a_shared_derivative_curve_are_c1(doc):
     assert worst_angle < 1e-4
 
 
-def test_a_point_on_a_pde_surface_is_dragged_by_recomputing(doc):
-    """The pin of a Point on a PdeSurface: no prepared solve to update (the Sheets' fast drag), so
-    the handle recomputes the surface as it moves; the release is one undoable step and the surface
-    passes through the new target."""
+def test_a_point_on_a_pde_surface_is_dragged_by_back_substitution(doc):
+    """The pin of a Point on a PdeSurface drags like a Sheet's (PointDrag: the last round's problem
+    prepared once, each move an update of its factorization): each move's surface is the one a
+    recompute with that target gives, and the release is one undoable step through the target."""
+    import time
+
     from pde_surfaces import _hermite_patch
     from varsurf.app import drag
 
@@ -441,6 +443,44 @@ def test_a_point_on_a_pde_surface_is_dragged_by_recomputing(doc):
     start = pde.Shape.Faces[0].Surface.value(0.5, 0.5)
     c = varsurf.make_constraint(pde, "Point", uv=(0.5, 0.5), origin=(start.x, start.y, start.z + 5.0))
     doc.recompute()
+    session = drag.PointDrag(pde, c)
+    moved = {}
+    for dz in (8.0, 11.0, 14.0):
+        moved[dz] = session.move(start + V(0, 0, dz))
+    began = time.perf_counter()
+    session.move(start + V(0, 0, 14.0))
+    per_move = time.perf_counter() - began
+    session.finish(start + V(0, 0, 15.0))
+    assert pde.isValid(), pde.getStatusString()
+    assert pde.Shape.distToShape(Part.Vertex(start + V(0, 0, 15.0)))[0] < 1e-6
+    assert doc.UndoNames[:1] == [drag.TRANSACTION]
+    # The moves against recomputes with their targets (the same poles to rounding).
+    for dz, surface in moved.items():
+        c.Origin = start + V(0, 0, dz)
+        began = time.perf_counter()
+        doc.recompute()
+        recompute = time.perf_counter() - began
+        solved = pde.Shape.Faces[0].Surface
+        assert max((V(*surface.evaluate(i / 8, j / 8)) - solved.value(i / 8, j / 8)).Length
+                   for i in range(9) for j in range(9)) < 1e-6
+    print(f"PdeSurface drag: {per_move * 1e3:.2f} ms a move, {recompute * 1e3:.2f} ms a recompute")
+
+
+def test_a_pde_surface_with_iterated_terms_is_dragged_by_recomputing(doc):
+    """A Curvature condition is iterated: no factorization to keep, so the pin's drag recomputes the
+    surface as it moves; the release is one undoable step and the surface passes through the new
+    target."""
+    from pde_surfaces import _hermite_patch
+    from varsurf.app import drag
+
+    doc.UndoMode = 1
+    pde = _hermite_patch(doc, "Dragged")
+    doc.recompute()
+    start = pde.Shape.Faces[0].Surface.value(0.5, 0.5)
+    c = varsurf.make_constraint(pde, "Point", uv=(0.5, 0.5), origin=(start.x, start.y, start.z + 5.0))
+    varsurf.make_constraint(pde, "Curvature", uv=(0.3, 0.3), vector=(0, 0, 1), curvature=(0.01, 0.01))
+    doc.recompute()
+    assert pde.isValid(), pde.getStatusString()
     with pytest.raises(drag.NotQuadratic):
         drag.PointDrag(pde, c)
     session = drag.TargetDrag(pde, c)

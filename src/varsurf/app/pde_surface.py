@@ -232,11 +232,13 @@ class PdeSurfaceFeature(FeatureProxy):
             setattr(obj, name, (min(max(int(getattr(obj, name)), 1), 512), 1, 512, 1))
 
     def execute(self, obj):
+        self.outcome = None
         try:
             outcome = compute(obj)
         except Exception as error:
             obj.MaxDeviations, obj.CurveNames, obj.SolveModeUsed = [], [], ""
             raise mark_failed(obj, error) from error
+        self.outcome = outcome  # for a drag's prepared solve (not saved: a reopened file solves again)
         nat = native()
         obj.Shape = shapes.shape_from_brep(nat.face_brep(outcome.surface))
         obj.Kind = outcome.kind
@@ -256,6 +258,13 @@ class PdeSurfaceFeature(FeatureProxy):
 
     def consumed(self, obj):
         return []
+
+
+def outcome_of(obj):
+    """The PdeSurfaceOutcome of a PdeSurface's last recompute (solved again if this session has
+    none)."""
+    outcome = getattr(getattr(obj, "Proxy", None), "outcome", None)
+    return outcome if outcome is not None else compute(obj)
 
 
 def is_pde_surface(obj) -> bool:

@@ -51,6 +51,8 @@ class PdeSurfaceOutcome:
     kind: str  # Hermite, Coons, Gordon or Boundary
     report: object = None
     curves: list = field(default_factory=list)
+    problem: object = None  # the last round's native SheetProblem, constraints applied (a drag updates it)
+    options: object = None  # native SolveOptions for such an update (no time limit)
 
 
 def kind_of(curves: Dict[str, object], u_curves: Sequence, v_curves: Sequence) -> str:
@@ -174,7 +176,14 @@ def solve(settings: PdeSurfaceSettings, curves: Dict[str, object], labels: Dict[
         spans *= 2
     return PdeSurfaceOutcome(surface=surface, names=[n for n, _ in measured], deviations=deviations,
                              fit_error=float(fit_error), spans=spans, seconds=time.monotonic() - started,
-                             kind=kind_of(curves, u_curves, v_curves), report=result.report)
+                             kind=kind_of(curves, u_curves, v_curves), report=result.report, problem=problem,
+                             options=build(nat.SolveOptions, fit_tolerance=0.25 * float(settings.tolerance)))
+
+
+def closed_seam(poles, space):
+    """A surface closed along v: its seam's two pole columns, tied to rounding by the solve, made
+    one."""
+    return _closed_seam(poles, space)
 
 
 def check(settings: PdeSurfaceSettings) -> None:
