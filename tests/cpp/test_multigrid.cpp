@@ -5,11 +5,13 @@
 
 #include <cmath>
 
+#include "test_support.hpp"
 #include "varsurf/core/errors.hpp"
 #include "varsurf/core/multigrid.hpp"
 #include "varsurf/core/sheet_solver.hpp"
 
 using namespace varsurf;
+using varsurf::test::with_mode;
 
 namespace {
 
@@ -43,9 +45,7 @@ TEST(Multigrid, GivesTheDirectSolvesPoles) {
     const SheetProblem pb = held(32, pde);
     MultigridReport report;
     const SolveResult mg = solve_sheet_multigrid(pb, MultigridOptions(), &report);
-    SolveOptions exact;
-    exact.mode = SolveMode::exact;
-    const SolveResult direct = solve_sheet(pb, exact);
+    const SolveResult direct = solve_sheet(pb, with_mode(SolveMode::exact));
     EXPECT_EQ(direct.report.mode, SolveMode::exact);
     EXPECT_LT((mg.poles - direct.poles).cwiseAbs().maxCoeff(), 1e-8)
         << (pde ? "PDE" : "thin plate");
@@ -77,16 +77,6 @@ TEST(Multigrid, OnlySheetsHeldByFixedPolesAreTaken) {
   EXPECT_THROW(solve_sheet_multigrid(held(8, true), bad), InvalidInput);
 }
 
-namespace {
-
-SolveOptions mode(SolveMode m) {
-  SolveOptions o;
-  o.mode = m;
-  return o;
-}
-
-}  // namespace
-
 TEST(Multigrid, AutomaticTakesItForLargeSheetsHeldByFixedPoles) {
   // 67 x 67 poles, 3969 free: above multigrid_from, with three levels; with a rest shape too
   // (the PDE displacement of an existing face).
@@ -97,7 +87,7 @@ TEST(Multigrid, AutomaticTakesItForLargeSheetsHeldByFixedPoles) {
       for (int k = 0; k < pb.space.size(); ++k) pb.rest_poles(k, 2) += 3.0 * std::sin(0.01 * k);
     }
     const SolveResult automatic = solve_sheet(pb);
-    const SolveResult direct = solve_sheet(pb, mode(SolveMode::exact));
+    const SolveResult direct = solve_sheet(pb, with_mode(SolveMode::exact));
     EXPECT_EQ(automatic.report.mode, SolveMode::multigrid);
     EXPECT_NE(automatic.report.mode_reason.find("multigrid"), std::string::npos);
     EXPECT_EQ(direct.report.mode, SolveMode::exact);
@@ -116,10 +106,10 @@ TEST(Multigrid, AutomaticKeepsTheDirectSolveElsewhere) {
   pb.points.push_back({0.5, 0.5, Eigen::Vector3d(50, 40, 30), 1.0});
   const SolveResult pinned = solve_sheet(pb);
   EXPECT_NE(pinned.report.mode, SolveMode::multigrid);
-  EXPECT_THROW(solve_sheet(pb, mode(SolveMode::multigrid)), InvalidInput);
+  EXPECT_THROW(solve_sheet(pb, with_mode(SolveMode::multigrid)), InvalidInput);
   EXPECT_NE(solve_sheet(held(63, true)).report.mode, SolveMode::multigrid);
   // Asked of a joined or prepared solve, which multigrid does not do: refused.
-  EXPECT_THROW(PreparedSheet(held(16, true), mode(SolveMode::multigrid)), InvalidInput);
+  EXPECT_THROW(PreparedSheet(held(16, true), with_mode(SolveMode::multigrid)), InvalidInput);
 }
 
 TEST(Multigrid, AutomaticFallsBackWhenTheFixedPolesDoNotHoldTheSheet) {
@@ -135,7 +125,7 @@ TEST(Multigrid, AutomaticFallsBackWhenTheFixedPolesDoNotHoldTheSheet) {
   EXPECT_NE(automatic.report.mode, SolveMode::multigrid);
   EXPECT_NE(automatic.report.mode_reason.find("multigrid declined"), std::string::npos)
       << automatic.report.mode_reason;
-  const SolveResult direct = solve_sheet(pb, mode(SolveMode::exact));
+  const SolveResult direct = solve_sheet(pb, with_mode(SolveMode::exact));
   EXPECT_LT((automatic.poles - direct.poles).cwiseAbs().maxCoeff(), 1e-9);
-  EXPECT_THROW(solve_sheet(pb, mode(SolveMode::multigrid)), SolveFailure);
+  EXPECT_THROW(solve_sheet(pb, with_mode(SolveMode::multigrid)), SolveFailure);
 }

@@ -16,6 +16,7 @@ using namespace varsurf;
 namespace {
 
 using test::flat_poles;
+using test::with_mode;
 
 PointConstraint pin(double u, double v, const Eigen::Vector3d& target) {
   PointConstraint p;
@@ -92,12 +93,6 @@ NormalConstraint tilted_normal() {
   nc.v = 0.3;
   nc.normal = Eigen::Vector3d(0.2, 0.1, 1.0);
   return nc;
-}
-
-SolveOptions with_mode(SolveMode mode) {
-  SolveOptions o;
-  o.mode = mode;
-  return o;
 }
 
 }  // namespace

@@ -70,6 +70,13 @@ inline BSplineCurve fit_piecewise_curve(const std::vector<double>& breaks, int d
 }
 
 // The unit square as poles of the space: the flat sheet (u, v, 0).
+// Options asking for one solve mode.
+inline SolveOptions with_mode(SolveMode mode) {
+  SolveOptions o;
+  o.mode = mode;
+  return o;
+}
+
 inline Eigen::MatrixX3d flat_poles(const SplineSpace& space) {
   return fit_poles(space, [](double u, double v) { return Eigen::Vector3d(u, v, 0.0); });
 }

@@ -50,14 +50,19 @@ def hermite_scene(doc):
     return u0, u1, d0, d1
 
 
-def test_hermite_conditions_reproduce_a_pde_solution(doc):
+def hermite_coons_surface(doc):
+    """The solution's Hermite data on u = 0, 1 and its iso-curves on v = 0, 1 (Coons sides)."""
     u0, u1, d0, d1 = hermite_scene(doc)
     v0 = add_curve(doc, "V0", _iso_v(0.0))
     v1 = add_curve(doc, "V1", _iso_v(1.0))
     doc.recompute()
-    pde = varsurf.make_pde_surface((u0, "Edge1"), (u1, "Edge1"), derivative0=(d0, "Edge1"),
-                                   derivative1=(d1, "Edge1"), v0=(v0, "Edge1"), v1=(v1, "Edge1"),
-                                   magnitude0=4.0, magnitude1=4.0, a=A, tolerance=1e-4)
+    return varsurf.make_pde_surface((u0, "Edge1"), (u1, "Edge1"), derivative0=(d0, "Edge1"),
+                                    derivative1=(d1, "Edge1"), v0=(v0, "Edge1"), v1=(v1, "Edge1"),
+                                    magnitude0=4.0, magnitude1=4.0, a=A, tolerance=1e-4)
+
+
+def test_hermite_conditions_reproduce_a_pde_solution(doc):
+    pde = hermite_coons_surface(doc)
     doc.recompute()
     assert pde.isValid(), pde.getStatusString()
     assert pde.Kind == "Hermite+Coons" and pde.Status.startswith("OK"), pde.Status
@@ -83,13 +88,7 @@ def test_a_fine_surface_is_solved_by_multigrid(doc, native, monkeypatch):
         return result
 
     monkeypatch.setattr(native, "solve_sheet", recording)
-    u0, u1, d0, d1 = hermite_scene(doc)
-    v0 = add_curve(doc, "V0", _iso_v(0.0))
-    v1 = add_curve(doc, "V1", _iso_v(1.0))
-    doc.recompute()
-    pde = varsurf.make_pde_surface((u0, "Edge1"), (u1, "Edge1"), derivative0=(d0, "Edge1"),
-                                   derivative1=(d1, "Edge1"), v0=(v0, "Edge1"), v1=(v1, "Edge1"),
-                                   magnitude0=4.0, magnitude1=4.0, a=A, tolerance=1e-4)
+    pde = hermite_coons_surface(doc)
     pde.MinSpans = pde.MaxSpans = 64
     doc.recompute()
     assert pde.isValid() and pde.Status.startswith("OK"), pde.Status
