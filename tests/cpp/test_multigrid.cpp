@@ -129,3 +129,16 @@ TEST(Multigrid, AutomaticFallsBackWhenTheFixedPolesDoNotHoldTheSheet) {
   EXPECT_LT((automatic.poles - direct.poles).cwiseAbs().maxCoeff(), 1e-9);
   EXPECT_THROW(solve_sheet(pb, with_mode(SolveMode::multigrid)), SolveFailure);
 }
+
+TEST(Multigrid, AutomaticIsCancelledAndTimedLikeTheDirectSolve) {
+  // Cancelled between conjugate gradient steps (not taken for a failure to fall back from), and
+  // stopped by the time limit.
+  SolveOptions cancelled;
+  int asked = 0;
+  cancelled.keep_going = [&asked] { return ++asked < 2; };
+  EXPECT_THROW(solve_sheet(held(64, true), cancelled), Cancelled);
+  EXPECT_GE(asked, 2);
+  SolveOptions timed;
+  timed.time_limit = 1e-6;
+  EXPECT_THROW(solve_sheet(held(128, true), timed), ResourceLimit);
+}
