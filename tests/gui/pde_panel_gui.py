@@ -8,7 +8,9 @@ new a and a painted region previewed with Update, then OK (one undoable step); o
 cancelled after a change (the change is undone); a screenshot of the window with the panel open.
 Then a Point's pin on the surface dragged in the view as the pointer would (each move an update
 of the prepared solve, the preview drawn), a screenshot while it moves, and the release: one
-undoable step. Writes $VARSURF_GUI_OUT/pde_panel.json and quits.
+undoable step; and dragged again with DragMode Dynamic (set in the panel): the surface follows
+with inertia at the timer's frames, settles after the release, which is written. Writes
+$VARSURF_GUI_OUT/pde_panel.json and quits.
 """
 
 import json
@@ -109,10 +111,58 @@ def run(result):
     result["drag_shot"] = shot
     handles.end_drag(handles.dragger_target())
     result["drag_errors"] = list(handles.errors)
-    Gui.updateGui()
-    result["report_at_end"] = report_view_text()
     result["after_drag"] = [pde.isValid(), doc.UndoNames[:1] == [drag.TRANSACTION],
                             pde.Shape.distToShape(Part.Vertex(target))[0]]
+
+    # The same pin dragged dynamically (DragMode Dynamic, set in the panel): the pointer moves
+    # down 12 mm over a second at 60 moves a second, the surface follows with inertia in the
+    # timer's frames, and settles after the release, which is then written.
+    pde.ViewObject.Proxy.doubleClicked(pde.ViewObject)
+    Gui.updateGui()
+    w = task_widgets("VarSurfPdeSurface")
+    result["dynamics_shown"] = [w["dragModeCombo"].currentText(), w["massSpin"].value(), w["dampingSpin"].value(),
+                                w["springSpin"].value()]
+    w["dragModeCombo"].setCurrentText("Dynamic")
+    w["dampingSpin"].setValue(0.3)
+    press_task_button(QtGui.QDialogButtonBox.Ok)
+    result["dynamics_stored"] = [str(pde.DragMode), round(float(pde.Damping), 3)]
+    high = target
+    result["dynamic_began"] = handles.begin_drag()
+    result["dynamic_session"] = type(handles.session).__name__
+    shown = []
+    original_show = handles.preview.show if handles.preview is not None else None
+    if original_show is not None:
+        def counting(surface):
+            shown.append(surface.evaluate(0.5, 0.5)[2])
+            return original_show(surface)
+        handles.preview.show = counting
+    t0 = time.perf_counter()
+    moves = 60
+    for k in range(1, moves + 1):
+        target = high - App.Vector(0, 0, 12.0 * k / moves)
+        handles.dragger.translation.setValue(*(target / handles.scale))
+        handles.drag_to(handles.dragger_target())
+        until = t0 + k / 60.0
+        while time.perf_counter() < until:
+            QtGui.QApplication.processEvents()
+            Gui.updateGui()
+    elapsed = time.perf_counter() - t0
+    result["dynamic_frames_per_second"] = len(shown) / elapsed
+    result["dynamic_lag"] = shown[-1] - target.z if shown else None  # still above the pointer: inertia
+    shot = os.path.join(OUT, "pde_dynamic_drag.png")
+    window_shot(shot)
+    result["dynamic_shot"] = shot
+    handles.end_drag(handles.dragger_target())
+    t1 = time.perf_counter()
+    while handles.session is not None and time.perf_counter() - t1 < 6.0:
+        QtGui.QApplication.processEvents()
+        Gui.updateGui()
+    result["dynamic_settle_seconds"] = time.perf_counter() - t1
+    result["dynamic_errors"] = list(handles.errors)
+    result["after_dynamic"] = [handles.session is None, pde.isValid(), doc.UndoNames[:1] == [drag.TRANSACTION],
+                               pde.Shape.distToShape(Part.Vertex(target))[0]]
+    Gui.updateGui()
+    result["report_at_end"] = report_view_text()
 
 
 def main():

@@ -42,3 +42,23 @@ def test_a_pin_on_the_surface_drags_by_back_substitution(panel):
     assert valid and one_step and distance < 1e-6
     assert Path(panel["drag_shot"]).stat().st_size > 10000
     print(f"PdeSurface pin drag in the GUI: {panel['drag_moves_per_second']:.0f} moves per second, view redrawn")
+
+
+def test_a_dynamic_drag_follows_with_inertia_and_settles(panel):
+    """DragMode Dynamic, set in the panel: the pin pulls the surface by a spring; it follows the
+    pointer with inertia (still above it when the pointer stops going down), at 30 frames a second
+    or more with the view redrawn, settles after the release, and the release is one undoable
+    step through the target."""
+    assert panel["dynamics_shown"] == ["Static", 1.0, 0.5, 10.0]
+    assert panel["dynamics_stored"] == ["Dynamic", 0.3]
+    assert panel["dynamic_began"] and panel["dynamic_session"] == "DynamicDrag", panel
+    assert panel["dynamic_errors"] == []
+    assert panel["dynamic_frames_per_second"] >= 30.0, panel["dynamic_frames_per_second"]
+    assert panel["dynamic_lag"] is not None and panel["dynamic_lag"] > 0.1
+    finished, valid, one_step, distance = panel["after_dynamic"]
+    assert finished and valid and one_step and distance < 1e-6
+    assert panel["dynamic_settle_seconds"] < 3.5
+    added = panel["report_at_end"][len(panel["report_after_cancel"]):]
+    assert "Traceback" not in added, added
+    print(f"PdeSurface dynamic drag in the GUI: {panel['dynamic_frames_per_second']:.0f} frames per second, "
+          f"settled in {panel['dynamic_settle_seconds']:.2f} s")

@@ -532,3 +532,78 @@ def test_fig17c_a_region_of_a_displacement_is_mapped(doc):
     poles = base.getPoles()
     assert max(abs(poles[i][j].z - 6 * math.sin(math.pi * i / 5) * math.sin(math.pi * j / 5))
                for i in range(6) for j in range(6)) < 1e-12
+
+
+def _dynamic_scene(doc, **properties):
+    from pde_surfaces import _hermite_patch
+
+    doc.UndoMode = 1
+    pde = _hermite_patch(doc, "Dynamic")
+    doc.recompute()
+    start = pde.Shape.Faces[0].Surface.value(0.5, 0.5)
+    c = varsurf.make_constraint(pde, "Point", uv=(0.5, 0.5), origin=start)
+    pde.DragMode = "Dynamic"
+    for name, value in properties.items():
+        setattr(pde, name, value)
+    doc.recompute()
+    return pde, c, start
+
+
+def test_a_dynamic_drag_follows_with_inertia_and_settles_on_the_static_solve(doc):
+    """Du & Qin 4.8 in a document: the pin pulls the surface by a spring; it lags the pointer,
+    loses energy at every step once released, settles on the static solve through the target
+    (short by the pin's give), and the release is one undoable step."""
+    from varsurf.app import drag, dynamic_drag
+
+    pde, c, start = _dynamic_scene(doc)
+    session = dynamic_drag.DynamicDrag(pde, c)
+    target = start + V(0, 0, 10.0)
+    heights = [session.move(target, steps=1).evaluate(0.5, 0.5)[2] - start.z for _ in range(30)]
+    assert heights[0] < 5.0  # one frame in, far from the pointer: inertia
+    assert heights[-1] == pytest.approx(10.0 * 10 / 11, rel=1e-2)  # the pin's give at Spring 10
+    session.release(target)
+    energies = [session.energy()]
+    for _ in range(300):
+        surface = session.settle(steps=1)
+        energies.append(session.energy())
+        if session.settled:
+            break
+    assert session.settled
+    assert all(b <= a + 1e-12 * abs(a) for a, b in zip(energies, energies[1:]))
+    settled = surface
+    session.finish(target)
+    assert pde.isValid() and doc.UndoNames[:1] == [drag.TRANSACTION]
+    assert pde.Shape.distToShape(Part.Vertex(target))[0] < 1e-6
+    solved = pde.Shape.Faces[0].Surface
+    gap = max((V(*settled.evaluate(i / 8, j / 8)) - solved.value(i / 8, j / 8)).Length
+              for i in range(9) for j in range(9))
+    assert gap < 10.0 * 1.5 / (1 + dynamic_drag.SETTLE_SPRING)
+
+
+def test_a_heavier_surface_follows_more_slowly(doc):
+    from varsurf.app import dynamic_drag
+
+    reached = []
+    for mass in (1.0, 9.0):
+        pde, c, start = _dynamic_scene(doc, Mass=mass)
+        session = dynamic_drag.DynamicDrag(pde, c)
+        reached.append(session.move(start + V(0, 0, 10.0), steps=3).evaluate(0.5, 0.5)[2] - start.z)
+        session.cancel()
+    assert reached[1] < 0.6 * reached[0]
+
+
+def test_a_dynamic_drag_needs_a_surface_held_by_its_boundary_conditions(doc):
+    """Static DragMode, or other constraints than the pin (the core's dynamics hold a surface by its
+    fixed poles): the pin drags statically."""
+    from varsurf.app import drag, dynamic_drag
+
+    pde, c, start = _dynamic_scene(doc)
+    pde.DragMode = "Static"
+    with pytest.raises(drag.NotQuadratic):
+        dynamic_drag.DynamicDrag(pde, c)
+    pde.DragMode = "Dynamic"
+    varsurf.make_constraint(pde, "Normal", uv=(0.3, 0.3), vector=(0, 0.2, 1))
+    doc.recompute()
+    with pytest.raises(drag.NotQuadratic):
+        dynamic_drag.DynamicDrag(pde, c)
+    drag.PointDrag(pde, c).cancel()

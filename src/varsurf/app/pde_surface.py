@@ -47,6 +47,10 @@ _PROPERTIES = [
     ("PdeA", "App::PropertyFloatConstraint", "PDE", "The coefficient a of (d2/du2 + a^2 d2/dv2)^2 P = 0 where nothing is painted: large a shortens the length scale of changes along u (1/a of that along v)", False),
     ("PdeRegions", "App::PropertyFloatList", "PDE", "a painted on rectangles, five numbers each: a, u0, u1, v0, v1 (0..1; later regions over earlier ones)", False),
     ("PdeBlend", "App::PropertyFloat", "PDE", "Width of the band over which a blends across a painted region's border, a fraction of the domain (0: sharp; at most 0.5)", False),
+    ("DragMode", "App::PropertyEnumeration", "Dynamics", "How a Point's pin drags the surface. Static: the surface follows the pin at once (a solve per move). Dynamic (Du & Qin's dynamic sculpting): the pin pulls it by a spring; it moves with mass and damping and settles when released", False),
+    ("Mass", "App::PropertyFloatConstraint", "Dynamics", "Dynamic drag: the surface's mass, relative (1: a full swing takes 0.3 s with the pin held; 4: twice as long)", False),
+    ("Damping", "App::PropertyFloatConstraint", "Dynamics", "Dynamic drag: the damping ratio of that swing (0: it keeps swinging; 1: critical, no overshoot)", False),
+    ("Spring", "App::PropertyFloatConstraint", "Dynamics", "Dynamic drag: the pin's stiffness, in units of the surface's own stiffness at the pin (10: the pin point reaches 10/11 of the way to the pointer)", False),
     ("Degree", "App::PropertyIntegerConstraint", "Solver", "Degree of the surface in u and v (3 or more for Hermite conditions)", False),
     ("MinSpans", "App::PropertyIntegerConstraint", "Solver", "Spans per direction of the first solve", False),
     ("MaxSpans", "App::PropertyIntegerConstraint", "Solver", "While a curve is farther from the surface than Tolerance, the spans double up to this count", False),
@@ -70,7 +74,14 @@ _DEFAULTS = {
     "MaxSpans": (64, 1, 512, 1),
     "Tolerance": settings.DEFAULT_TOLERANCE,
     "Status": "Not computed",
+    "DragMode": ["Static", "Dynamic"],
+    "Mass": (1.0, 1e-3, 1e3, 0.1),
+    "Damping": (0.5, 0.0, 10.0, 0.1),
+    "Spring": (10.0, 0.1, 1e4, 1.0),
 }
+
+#: Bounds of the dynamic drag's numbers (a constraint property's bounds are not saved).
+DYNAMICS_BOUNDS = {"Mass": (1e-3, 1e3, 0.1), "Damping": (0.0, 10.0, 0.1), "Spring": (0.1, 1e4, 1.0)}
 
 _LINKS = (("U0", "u0"), ("U1", "u1"), ("Derivative0", "d0"), ("Derivative1", "d1"), ("V0", "v0"), ("V1", "v1"))
 
@@ -230,6 +241,8 @@ class PdeSurfaceFeature(FeatureProxy):
         obj.Degree = (min(max(int(obj.Degree), 2), settings.MAX_DEGREE), 2, settings.MAX_DEGREE, 1)
         for name in ("MinSpans", "MaxSpans"):
             setattr(obj, name, (min(max(int(getattr(obj, name)), 1), 512), 1, 512, 1))
+        for name, (low, high, step) in DYNAMICS_BOUNDS.items():
+            setattr(obj, name, (min(max(float(getattr(obj, name)), low), high), low, high, step))
 
     def execute(self, obj):
         self.outcome = None

@@ -15,8 +15,9 @@ import FreeCAD as App
 import FreeCADGui as Gui
 import Part
 from pivy import coin
+from PySide import QtCore
 
-from varsurf.app import drag
+from varsurf.app import drag, dynamic_drag
 from varsurf.solve import constraints
 from varsurf.solve.native import native
 from varsurf.gui.coin_lines import add_polyline
@@ -38,6 +39,8 @@ RIBBON_TICKS = 12
 CURVATURE_POINTS = 16
 #: Points on a CurveMap's curves (every quarter of them joined source to destination).
 CURVE_MAP_POINTS = 65
+#: A released dynamic drag is written after at most this many frames (3 s) if it has not settled.
+SETTLE_FRAMES = 180
 
 _dragging = []  # the ConstraintHandles whose pin is being dragged (at most one)
 #: Kinds whose Origin is drawn as a draggable pin.
@@ -344,19 +347,74 @@ class ConstraintHandles:
         try:
             if sheet is None:
                 raise drag.DragError(f"{self.constraint.Label} is in no Sheet")
-            try:
-                self.session = drag.PointDrag(sheet, self.constraint)
-            except drag.NotQuadratic:  # iterated terms: recompute as often as that takes
-                self.session = drag.TargetDrag(sheet, self.constraint)
+            self._settle_now()  # a surface still settling from the last release is put in place first
+            try:  # a PdeSurface with DragMode Dynamic: pulled by a spring, with mass and damping
+                self.session = dynamic_drag.DynamicDrag(sheet, self.constraint)
+            except drag.NotQuadratic:
+                try:
+                    self.session = drag.PointDrag(sheet, self.constraint)
+                except drag.NotQuadratic:  # iterated terms: recompute as often as that takes
+                    self.session = drag.TargetDrag(sheet, self.constraint)
         except drag.DragError as error:
             self._refuse(error)
             return False
         # The preview draws the whole surface: a trimmed sheet (a hole, a disc) shows its Shape.
         self.preview = (DragPreview(sheet.ViewObject, self.session.space)
-                        if sheet.ViewObject and isinstance(self.session, drag.PointDrag)
+                        if sheet.ViewObject and isinstance(self.session, (drag.PointDrag, dynamic_drag.DynamicDrag))
                         and self.session.natural else None)
+        if isinstance(self.session, dynamic_drag.DynamicDrag):
+            # The surface moves on while the pointer rests: a frame's steps every 1/60 s.
+            self.target = None
+            self.timer = QtCore.QTimer()
+            self.timer.setInterval(int(1000 * dynamic_drag.TIME_STEP))
+            self.timer.timeout.connect(self._tick)
+            self.timer.start()
         _dragging.append(self)
         return True
+
+    def _tick(self):
+        """A frame of a dynamic drag: toward the pointer while held, settling once released (then
+        the release is written)."""
+        session = self.session
+        if not isinstance(session, dynamic_drag.DynamicDrag):
+            return
+        try:
+            if session.released:
+                surface = session.settle()
+                if session.settled or self.settle_frames > SETTLE_FRAMES:
+                    self._finish_dynamic()
+                    return
+                self.settle_frames += 1
+            elif self.target is not None:
+                surface = session.move(self.target, update_shape=self.preview is None)
+            else:
+                return
+        except Exception as error:  # a timer's slot: nothing may escape it (the document closed...)
+            self.timer.stop()
+            self.session = None
+            if self in _dragging:
+                _dragging.remove(self)
+            self._close_preview()
+            self._refuse(error)
+            return
+        if self.preview is not None:
+            self.preview.show(surface)
+
+    def _finish_dynamic(self):
+        session, self.session = self.session, None
+        self.timer.stop()
+        if self in _dragging:
+            _dragging.remove(self)
+        self._close_preview()
+        try:
+            session.finish(self.released_at, do_command=Gui.doCommand)
+        except Exception as error:
+            self._refuse(error)
+        self.rebuild(self.constraint)
+
+    def _settle_now(self):
+        if isinstance(self.session, dynamic_drag.DynamicDrag) and self.session.released:
+            self._finish_dynamic()
 
     def begin_origin_drag(self):
         try:
@@ -370,6 +428,10 @@ class ConstraintHandles:
     def drag_to(self, target):
         """Re-solve for the target and draw the result (the Sheet's Shape waits for the release)."""
         if self.session is None:
+            return None
+        if isinstance(self.session, dynamic_drag.DynamicDrag):  # the timer's frames move it
+            self.target = target
+            self._tick()
             return None
         if isinstance(self.session, drag.RecomputeDrag):
             try:
@@ -392,6 +454,10 @@ class ConstraintHandles:
             preview.close()
 
     def end_drag(self, target):
+        if isinstance(self.session, dynamic_drag.DynamicDrag):  # settles in the timer's frames
+            self.session.release(target)
+            self.released_at, self.settle_frames = target, 0
+            return
         session, self.session = self.session, None
         if self in _dragging:
             _dragging.remove(self)
@@ -405,6 +471,8 @@ class ConstraintHandles:
         self.rebuild(self.constraint)
 
     def cancel_drag(self):
+        if isinstance(self.session, dynamic_drag.DynamicDrag):
+            self.timer.stop()
         session, self.session = self.session, None
         if self in _dragging:
             _dragging.remove(self)
@@ -474,6 +542,10 @@ class CurveHandles:
             self.session.move(target)
 
     def end_drag(self, target):
+        if isinstance(self.session, dynamic_drag.DynamicDrag):  # settles in the timer's frames
+            self.session.release(target)
+            self.released_at, self.settle_frames = target, 0
+            return
         session, self.session = self.session, None
         if self in _dragging:
             _dragging.remove(self)

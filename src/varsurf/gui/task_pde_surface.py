@@ -18,7 +18,9 @@ class TaskPanelPdeSurface(PropertyTaskPanel):
     ICON = "VarSurf_PdeSurface.svg"
     TRANSACTION = "Edit VarSurf PDE surface"
     EDITABLE = ("PdeA", "PdeBlend", "PdeRegions", "Magnitude0", "Magnitude1", "Tolerance", "MinSpans",
-                "MaxSpans")
+                "MaxSpans", "DragMode", "Mass", "Damping", "Spring")
+    #: The dynamic drag's numbers: property, spin box.
+    DYNAMICS = (("Mass", "massSpin"), ("Damping", "dampingSpin"), ("Spring", "springSpin"))
 
     def __init__(self, obj):
         super().__init__(obj)
@@ -29,6 +31,9 @@ class TaskPanelPdeSurface(PropertyTaskPanel):
         self.min_spans = self.child(QtGui.QSpinBox, "minSpansSpin")
         self.max_spans = self.child(QtGui.QSpinBox, "maxSpansSpin")
         self.regions = self.child(QtGui.QTableWidget, "regionTable")
+        self.drag_mode = self.child(QtGui.QComboBox, "dragModeCombo")
+        self.drag_mode.addItems(list(obj.getEnumerationsOfProperty("DragMode")))
+        self.dynamics = [(name, self.child(QtGui.QDoubleSpinBox, spin)) for name, spin in self.DYNAMICS]
         # Five short numbers a row: the columns share the panel's width (no sideways scrolling),
         # without row numbers or cell padding, so "0.25" fits FreeCAD's default 250 px combo view.
         self.regions.horizontalHeader().setSectionResizeMode(QtGui.QHeaderView.Stretch)
@@ -77,6 +82,9 @@ class TaskPanelPdeSurface(PropertyTaskPanel):
         self.tolerance.setValue(float(obj.Tolerance))
         self.min_spans.setValue(int(obj.MinSpans))
         self.max_spans.setValue(int(obj.MaxSpans))
+        self.drag_mode.setCurrentText(str(obj.DragMode))
+        for name, spin in self.dynamics:
+            spin.setValue(float(getattr(obj, name)))
         flat = list(obj.PdeRegions)
         self.regions.setRowCount(0)
         for start in range(0, len(flat) - len(flat) % REGION_COLUMNS, REGION_COLUMNS):
@@ -114,6 +122,11 @@ class TaskPanelPdeSurface(PropertyTaskPanel):
             obj.MinSpans = self.min_spans.value()
         if self.max_spans.value() != int(obj.MaxSpans):
             obj.MaxSpans = self.max_spans.value()
+        if self.drag_mode.currentText() != str(obj.DragMode):
+            obj.DragMode = self.drag_mode.currentText()
+        for name, spin in self.dynamics:
+            if abs(spin.value() - float(getattr(obj, name))) > 0.5 * 10 ** -spin.decimals():
+                setattr(obj, name, spin.value())
         numbers = self._region_numbers()
         if numbers is not None and numbers != list(obj.PdeRegions):
             obj.PdeRegions = numbers
