@@ -98,7 +98,26 @@ def _point_index(sheet, constraint):
     return points.index(constraint)
 
 
-class PointDrag:
+class WrittenOnRelease:
+    """A drag that shows the moved sheet without writing anything until the release: ``finish``
+    writes the Point's target, ``cancel`` puts the shape back. Subclasses set sheet, constraint,
+    doc and start_shape, and open the TRANSACTION."""
+
+    def finish(self, target, do_command=None):
+        """Write the target and recompute: one undoable step. do_command (FreeCADGui.doCommand in
+        the GUI) runs the macro lines that do it, so a macro records the drag's outcome."""
+        _finish(self.doc, _target_lines(self.constraint, FreeCAD.Vector(target)), do_command)
+        if not self.sheet.isValid():
+            raise SheetError(f"{self.sheet.Label}: {self.sheet.Status}")
+
+    def cancel(self):
+        """Put the Sheet's shape back; nothing is written."""
+        self.sheet.Shape = self.start_shape
+        self.doc.abortTransaction()
+        self.sheet.purgeTouched()
+
+
+class PointDrag(WrittenOnRelease):
     """One drag of a Point constraint's target: ``move`` as often as the pointer moves, then
     ``finish`` or ``cancel``."""
 
@@ -172,19 +191,6 @@ class PointDrag:
         self.moves += 1
         self.seconds += time.perf_counter() - began
         return surface
-
-    def finish(self, target, do_command=None):
-        """Write the target and recompute: one undoable step. do_command (FreeCADGui.doCommand in
-        the GUI) runs the macro lines that do it, so a macro records the drag's outcome."""
-        _finish(self.doc, _target_lines(self.constraint, FreeCAD.Vector(target)), do_command)
-        if not self.sheet.isValid():
-            raise SheetError(f"{self.sheet.Label}: {self.sheet.Status}")
-
-    def cancel(self):
-        """Put the Sheet's shape back; nothing is written."""
-        self.sheet.Shape = self.start_shape
-        self.doc.abortTransaction()
-        self.sheet.purgeTouched()
 
 
 HANDLE_TRANSACTION = "Drag VarSurf handle"

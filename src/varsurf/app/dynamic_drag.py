@@ -22,7 +22,6 @@ import FreeCAD
 from varsurf.app import drag
 from varsurf.app import pde_surface as pde_feature
 from varsurf.solve import pde_surface as pde_solve
-from varsurf.solve.errors import SheetError
 from varsurf.solve.native import build, native
 from varsurf.solve.shapes import shape_from_binary, single_face
 
@@ -51,10 +50,10 @@ def pole_areas(space):
     return [a * b for a in su for b in sv]
 
 
-class DynamicDrag:
+class DynamicDrag(drag.WrittenOnRelease):
     """One dynamic drag of a Point's target on a PdeSurface whose DragMode is Dynamic: ``move``
-    as the pointer moves, ``release`` and ``settle`` until ``settled``, then ``finish`` (or
-    ``cancel``)."""
+    as the pointer moves, ``release`` and ``settle`` until ``settled``, then ``finish`` (the
+    static solution through the target: one undoable step) or ``cancel``."""
 
     def __init__(self, surface, constraint):
         self.sheet, self.constraint, self.doc = surface, constraint, surface.Document
@@ -188,14 +187,3 @@ class DynamicDrag:
         size."""
         size = max(self.start_shape.BoundBox.DiagonalLength, 1.0)
         return float(self.dynamics.kinetic_energy()) < 1e-6 * self.stiffness * (0.1 * size) ** 2
-
-    def finish(self, target, do_command=None):
-        """Write the target and recompute: one undoable step (the static solution through it)."""
-        drag._finish(self.doc, drag._target_lines(self.constraint, FreeCAD.Vector(target)), do_command)
-        if not self.sheet.isValid():
-            raise SheetError(f"{self.sheet.Label}: {self.sheet.Status}")
-
-    def cancel(self):
-        self.sheet.Shape = self.start_shape
-        self.doc.abortTransaction()
-        self.sheet.purgeTouched()
