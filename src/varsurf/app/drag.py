@@ -24,7 +24,6 @@ from varsurf.app import references
 from varsurf.app import sheet as sheet_feature
 from varsurf.app import space_curve as space_curve_feature
 from varsurf.app.macro import exec_line, ref
-from varsurf.solve import pde_surface as pde_solve
 from varsurf.solve.errors import SheetError
 from varsurf.solve.native import build, native
 from varsurf.solve.shapes import shape_from_binary, single_face
@@ -127,10 +126,8 @@ class PointDrag(WrittenOnRelease):
             raise DragError(f"{sheet.Label} is in error: fix it before dragging")
         if references.is_sheet(sheet):
             outcome = sheet_feature.outcome_of(sheet)
-            trim = outcome.trim
         elif pde_feature.is_pde_surface(sheet):  # its last round's problem: boundary rows held
             outcome = pde_feature.outcome_of(sheet)
-            trim = None
         else:
             raise NotQuadratic(f"{sheet.Label} is neither a Sheet nor a PdeSurface: it is dragged by recomputing")
         self.problem = copy.copy(outcome.problem)
@@ -150,7 +147,8 @@ class PointDrag(WrittenOnRelease):
         except nat.InvalidInput as error:
             raise NotQuadratic(f"{sheet.Label} cannot be dragged by back-substitution: {error}") from error
         self.space = self.problem.space
-        self.trim = trim  # the base face's trim: a dragged sheet stays bounded like its base
+        self.surface_of = getattr(outcome, "surface_of", None)  # a PdeSurface's own (seam tied)
+        self.trim = outcome.trim  # the base face's trim: a dragged sheet stays bounded like its base
         #: The sheet covers its whole parameter rectangle, so a view may draw the solved surface
         #: itself; else (a hole, a disc, a chamfered outline) only the Shape shows it bounded.
         self.natural = self.trim is None or bool(self.trim.natural)
@@ -177,10 +175,8 @@ class PointDrag(WrittenOnRelease):
             self.last = self.prepared.update(self.problem)
         except (nat.InvalidInput, nat.SolveFailure) as error:
             raise DragError(f"{self.sheet.Label}: {error}") from error
-        poles = self.last.poles
-        if self.problem.closed_v and pde_feature.is_pde_surface(self.sheet):  # as its recompute does
-            poles = pde_solve.closed_seam(poles, self.space)
-        surface = build(nat.BSplineSurface, space=self.space, poles=poles)
+        surface = (self.surface_of(self.last.poles) if self.surface_of is not None
+                   else build(nat.BSplineSurface, space=self.space, poles=self.last.poles))
         if update_shape:
             try:  # bounded and oriented like the base face, as the Sheet's own result
                 data = self.trim.face_binary(surface) if self.trim is not None else nat.face_binary(surface)

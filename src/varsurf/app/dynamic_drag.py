@@ -21,7 +21,6 @@ import FreeCAD
 
 from varsurf.app import drag
 from varsurf.app import pde_surface as pde_feature
-from varsurf.solve import pde_surface as pde_solve
 from varsurf.solve.native import build, native
 from varsurf.solve.shapes import shape_from_binary, single_face
 
@@ -82,7 +81,7 @@ class DynamicDrag(drag.WrittenOnRelease):
         problem.initial_poles = outcome.surface.poles
         problem.rest_poles = outcome.surface.poles
         self.space = problem.space
-        self.closed = bool(problem.closed_v)
+        self.surface_of = outcome.surface_of
         self.natural = True  # a PdeSurface covers its parameter rectangle: the view draws the surface
         start = FreeCAD.Vector(*points[0].target)
         size = max(surface.Shape.BoundBox.DiagonalLength, 1.0)
@@ -133,11 +132,7 @@ class DynamicDrag(drag.WrittenOnRelease):
         return (1.0 - delta) / delta, max(shape, 1e-300)
 
     def _surface(self):
-        nat = native()
-        poles = self.dynamics.poles
-        if self.closed:
-            poles = pde_solve.closed_seam(poles, self.space)
-        return build(nat.BSplineSurface, space=self.space, poles=poles)
+        return self.surface_of(self.dynamics.poles)
 
     def _advance(self, steps):
         if steps is None:  # as many whole frames as have passed (the motion keeps real time)

@@ -53,6 +53,20 @@ class PdeSurfaceOutcome:
     curves: list = field(default_factory=list)
     problem: object = None  # the last round's native SheetProblem, constraints applied (a drag updates it)
     options: object = None  # native SolveOptions for such an update (no time limit)
+    trim: object = None  # a PdeSurface covers its parameter rectangle (a Sheet's outcome may be trimmed)
+
+    def surface_of(self, poles):
+        """The native surface of solved poles on the last round's space, as the recompute makes
+        it (a drag's moved poles)."""
+        return _surface_of(self.problem, poles)
+
+
+def _surface_of(problem, poles):
+    """The native surface of solved poles: a closed surface's seam (its two pole columns, tied to
+    rounding by the solve) made one."""
+    if problem.closed_v:
+        poles = _closed_seam(poles, problem.space)
+    return build(native().BSplineSurface, space=problem.space, poles=poles)
 
 
 def kind_of(curves: Dict[str, object], u_curves: Sequence, v_curves: Sequence) -> str:
@@ -165,10 +179,7 @@ def solve(settings: PdeSurfaceSettings, curves: Dict[str, object], labels: Dict[
             raise SheetError(advised(str(error), "use fewer spans or a looser tolerance")) from error
         except nat.Cancelled as error:
             raise SheetError(CANCELLED) from error
-        poles = result.poles
-        if problem.closed_v:  # the seam's two pole columns, tied to rounding, made one
-            poles = _closed_seam(poles, problem.space)
-        surface = nat.BSplineSurface(problem.space, poles)
+        surface = _surface_of(problem, result.poles)
         deviations = [float(d) for d in nat.max_deviations(surface, [c for _, c in measured], 200)]
         worst = max(deviations + [fit_error])
         if worst <= settings.tolerance or 2 * spans > settings.max_spans:
@@ -178,12 +189,6 @@ def solve(settings: PdeSurfaceSettings, curves: Dict[str, object], labels: Dict[
                              fit_error=float(fit_error), spans=spans, seconds=time.monotonic() - started,
                              kind=kind_of(curves, u_curves, v_curves), report=result.report, problem=problem,
                              options=build(nat.SolveOptions, fit_tolerance=0.25 * float(settings.tolerance)))
-
-
-def closed_seam(poles, space):
-    """A surface closed along v: its seam's two pole columns, tied to rounding by the solve, made
-    one."""
-    return _closed_seam(poles, space)
 
 
 def check(settings: PdeSurfaceSettings) -> None:
