@@ -68,3 +68,36 @@ TEST(CurveOrientation, OrientedTurnsTowardTheNearerEnds) {
   EXPECT_EQ(oriented(c, mid, mid).poles, c.poles);
   EXPECT_THROW(oriented(c, Eigen::Vector2d(0, 0), Eigen::Vector2d(1, 1)), InvalidInput);
 }
+
+// A piece runs through the curve's own points on its range: across the interior knot, starting
+// on it, and the whole range; a cubic B-spline too. Ends outside the range are refused.
+TEST(CurveOrientation, PieceKeepsTheCurvesPointsOnItsRange) {
+  const BSplineCurve c = arc();
+  for (const auto& [t0, t1] :
+       {std::pair{2.4, 4.1}, {3.0, 5.0}, {2.0, 5.0}, {2.0, 2.7}, {3.5, 3.6}}) {
+    const BSplineCurve r = piece(c, t0, t1);
+    EXPECT_NO_THROW(r.validate());
+    EXPECT_EQ(r.first(), t0);
+    EXPECT_EQ(r.last(), t1);
+    EXPECT_TRUE(r.rational());
+    for (int k = 0; k <= 40; ++k) {
+      const double t = t0 + (t1 - t0) * k / 40.0;
+      EXPECT_LT((r.evaluate(t) - c.evaluate(t)).norm(), 1e-12) << t0 << " " << t1 << " " << t;
+    }
+  }
+  BSplineCurve cubic;
+  cubic.degree = 3;
+  cubic.knots = {0, 0, 0, 0, 0.25, 0.5, 0.5, 0.75, 1, 1, 1, 1};
+  cubic.poles.resize(8, 2);
+  cubic.poles << 0, 0, 1, 2, 2, -1, 3, 3, 4, 0, 5, 1, 6, -2, 7, 0;
+  const BSplineCurve r = piece(cubic, 0.1, 0.5);
+  EXPECT_FALSE(r.rational());
+  EXPECT_EQ(r.pole_count() + 4, static_cast<int>(r.knots.size()));
+  for (int k = 0; k <= 40; ++k) {
+    const double t = 0.1 + 0.4 * k / 40.0;
+    EXPECT_LT((r.evaluate(t) - cubic.evaluate(t)).norm(), 1e-12) << t;
+  }
+  EXPECT_THROW(piece(c, 1.9, 3.0), InvalidInput);
+  EXPECT_THROW(piece(c, 3.0, 3.0), InvalidInput);
+  EXPECT_THROW(piece(c, 3.0, 5.1), InvalidInput);
+}

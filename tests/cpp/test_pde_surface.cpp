@@ -262,6 +262,140 @@ TEST(PdeSurface, ClosedAlongVGivesBloorWilsonsSolution) {
   EXPECT_LT(seam_mismatch(pb.space, poles, 1), 1e-6 * r0);
 }
 
+namespace {
+
+// Bloor & Wilson's closed-form solution of ClosedAlongVGivesBloorWilsonsSolution:
+// P = (f(u) cos 2 pi v, f(u) sin 2 pi v, H u), f = (A + B u) e^(k u) + (C + D u) e^(-k u).
+struct BloorWilson {
+  double a = 0.3, height = 25.0, r0 = 20.0, s0 = -10.0, r1 = 12.0, s1 = 6.0;
+  Eigen::Vector4d c;
+  BloorWilson() {
+    const double k = 2.0 * M_PI * a, e = std::exp(k), ie = std::exp(-k);
+    Eigen::Matrix4d m;
+    m << 1, 0, 1, 0, k, 1, -k, 1, e, e, ie, ie, k * e, e + k * e, -k * ie, ie - k * ie;
+    c = m.fullPivLu().solve(Eigen::Vector4d(r0, s0, r1, s1));
+  }
+  double f(double u) const {
+    const double k = 2.0 * M_PI * a;
+    return (c(0) + c(1) * u) * std::exp(k * u) + (c(2) + c(3) * u) * std::exp(-k * u);
+  }
+  Eigen::Vector3d operator()(double u, double v) const {
+    return {f(u) * std::cos(2.0 * M_PI * v), f(u) * std::sin(2.0 * M_PI * v), height * u};
+  }
+  // The profile at v: a cubic spline through 65 of its points (within 1e-6 of it).
+  BSplineCurve profile(double v) const {
+    std::vector<double> t;
+    Eigen::MatrixXd pts(65, 3);
+    for (int k = 0; k <= 64; ++k) {
+      t.push_back(k / 64.0);
+      pts.row(k) = (*this)(k / 64.0, v).transpose();
+    }
+    return fit_clamped_curve(t, pts, 3, uniform_clamped_knots(3, 32));
+  }
+  PdeBoundary hermite() const {
+    PdeBoundary b;
+    b.a.a = a;
+    b.u0 = circle(r0, 0.0);
+    b.u1 = circle(r1, height, 0.3, true);
+    b.d0 = circle(r0 + s0, height, 0.1);
+    b.d1 = circle(r1 + s1, 2.0 * height, 0.7);
+    return b;
+  }
+};
+
+double worst_against(const SheetProblem& pb, const Eigen::MatrixX3d& poles,
+                     const std::function<Eigen::Vector3d(double, double)>& f) {
+  const BSplineSurface surface{pb.space, poles};
+  double out = 0.0;
+  for (int i = 0; i <= 24; ++i)
+    for (int j = 0; j <= 24; ++j)
+      out = std::max(out, (surface.evaluate(i / 24.0, j / 24.0) - f(i / 24.0, j / 24.0)).norm());
+  return out;
+}
+
+}  // namespace
+
+// A Gordon network on a surface closed along v: interior circles of the closed-form solution (their
+// seams anywhere, one drawn backwards) and profiles at v = 0, 0.2, 0.55 (one reversed) are
+// curves the solution contains, so the surface is the solution, v placed by the profiles.
+TEST(PdeSurface, ClosedNetworkGivesTheClosedFormSolution) {
+  const BloorWilson bw;
+  PdeBoundary b = bw.hermite();
+  b.u_curves.push_back({0.35, circle(bw.f(0.35), 0.35 * bw.height, 0.45, true)});
+  b.u_curves.push_back({0.7, circle(bw.f(0.7), 0.7 * bw.height, 0.8)});
+  for (double v : {0.0, 0.2, 0.55}) b.v_curves.push_back({v, bw.profile(v)});
+  b.v_curves[1].curve = reversed(b.v_curves[1].curve);
+  PdeSurfaceOptions o;
+  o.spans_u = 12;
+  o.spans_v = 32;
+  const SheetProblem pb = pde_surface_problem(b, o);
+  EXPECT_TRUE(pb.closed_v);
+  // Each circle is held on both sides of its own seam (two pieces), each profile whole.
+  EXPECT_EQ(pb.curves.size(), 7u);
+  SolveOptions opt;
+  opt.fit_tolerance = 1e-5;
+  const Eigen::MatrixX3d poles = solve_sheet(pb, opt).poles;
+  EXPECT_LT(worst_against(pb, poles, bw), 1e-3 * bw.r0);
+  EXPECT_LT(seam_mismatch(pb.space, poles, 1), 1e-6 * bw.r0);
+}
+
+// Network curves change a closed surface: a circle bulging out at u = 0.5 between two boundary
+// circles (no Hermite data) is contained by the surface, whatever its seam and direction.
+TEST(PdeSurface, ClosedNetworkCurvesAreContained) {
+  PdeBoundary b;
+  b.a.a = 0.4;
+  b.u0 = circle(20.0, 0.0);
+  b.u1 = circle(12.0, 30.0, 0.6);
+  PdeSurfaceOptions o;
+  o.spans_u = 10;
+  o.spans_v = 24;
+  SolveOptions opt;  // exact incidence: the answer does not depend on where the penalty stops
+  opt.fit_tolerance = 0.0;
+  const SheetProblem plain = pde_surface_problem(b, o);
+  const Eigen::MatrixX3d plain_poles = solve_sheet(plain, opt).poles;
+  Eigen::MatrixX3d first;
+  for (const auto& [turn, backwards] : {std::pair{0.0, false}, {0.37, true}, {0.81, false}}) {
+    b.u_curves = {{0.5, circle(26.0, 15.0, turn, backwards)}};
+    const SheetProblem pb = pde_surface_problem(b, o);
+    const Eigen::MatrixX3d poles = solve_sheet(pb, opt).poles;
+    const BSplineSurface surface{pb.space, poles};
+    double off = 0.0, plain_off = 0.0;
+    for (int j = 0; j <= 96; ++j) {
+      const Eigen::Vector3d p = surface.evaluate(0.5, j / 96.0);
+      off = std::max(off, std::hypot(std::hypot(p.x(), p.y()) - 26.0, p.z() - 15.0));
+      const Eigen::Vector3d q = BSplineSurface{plain.space, plain_poles}.evaluate(0.5, j / 96.0);
+      plain_off = std::max(plain_off, std::hypot(std::hypot(q.x(), q.y()) - 26.0, q.z() - 15.0));
+    }
+    EXPECT_LT(off, 1e-3) << turn;
+    EXPECT_GT(plain_off, 5.0);  // without the curve the surface passes far from it
+    if (first.size() == 0)
+      first = poles;
+    else  // the same surface, whichever way the circle was drawn, to the sheet's own error of
+          // a circle (24 cubic spans hold one of radius 26 to about 3e-4: where the circle's
+          // pieces meet moves with its seam, and so does the least-squares fit)
+      EXPECT_LT((poles - first).cwiseAbs().maxCoeff(), 1e-3) << turn;
+  }
+}
+
+TEST(PdeSurface, BadClosedNetworksAreRefusedByName) {
+  const BloorWilson bw;
+  PdeBoundary b = bw.hermite();
+  b.u_curves.push_back({0.5, bw.profile(0.3)});
+  EXPECT_NE(message_of(b).find("u-curve 1 is open"), std::string::npos) << message_of(b);
+  b = bw.hermite();
+  b.v_curves.push_back({1.0, bw.profile(0.3)});
+  EXPECT_NE(message_of(b).find("v-curve 1 lies at 1"), std::string::npos) << message_of(b);
+  b = bw.hermite();
+  b.v_curves.push_back({0.3, bw.profile(0.3)});
+  b.v_curves[0].curve.poles.col(2).array() += 40.0;  // lifted off both circles
+  EXPECT_NE(message_of(b).find("u0 and v-curve 1 do not meet"), std::string::npos) << message_of(b);
+  b = bw.hermite();
+  for (double v : {0.1, 0.4, 0.7}) b.v_curves.push_back({v, bw.profile(v)});
+  std::swap(b.v_curves[0].at, b.v_curves[1].at);  // 0.4, 0.1, 0.7: not the way they lie
+  EXPECT_NE(message_of(b).find("crosses the v-curves out of their order"), std::string::npos)
+      << message_of(b);
+}
+
 TEST(PdeSurface, ClosedAndOpenBoundariesAreRefused) {
   PdeBoundary b;
   b.u0 = circle(10.0, 0.0);

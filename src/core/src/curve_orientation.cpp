@@ -1,9 +1,11 @@
 // SPDX-License-Identifier: LGPL-2.1-or-later
 #include "varsurf/core/curve_orientation.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "varsurf/core/errors.hpp"
+#include "varsurf/core/knot_refinement.hpp"
 
 namespace varsurf {
 
@@ -38,6 +40,39 @@ BSplineCurve oriented(const BSplineCurve& c, const Eigen::VectorXd& start,
   const double kept = (first - start).norm() + (last - end).norm();
   const double turned = (last - start).norm() + (first - end).norm();
   return turned < kept ? reversed(c) : c;
+}
+
+BSplineCurve piece(const BSplineCurve& c, double t0, double t1) {
+  c.validate("curve");
+  if (!(std::isfinite(t0) && std::isfinite(t1) && c.first() <= t0 && t0 < t1 && t1 <= c.last()))
+    throw InvalidInput(
+        "a curve's piece must lie within its parameter range, its start below its end");
+  const int p = c.degree;
+  // Each end to multiplicity p (the clamped ends have p + 1 already): there the curve is a pole.
+  std::vector<double> fine = c.knots;
+  for (double t : {t0, t1}) {
+    const auto have = std::count(c.knots.begin(), c.knots.end(), t);
+    fine.insert(std::upper_bound(fine.begin(), fine.end(), t), std::max<long>(0, p - have), t);
+  }
+  const Eigen::SparseMatrix<double> map = refinement_matrix(c.knots, p, fine);
+  Eigen::MatrixXd homogeneous(c.pole_count(), c.dim() + 1);
+  const Eigen::VectorXd w = c.rational() ? c.weights : Eigen::VectorXd::Ones(c.pole_count());
+  homogeneous.leftCols(c.dim()) = c.poles.array().colwise() * w.array();
+  homogeneous.col(c.dim()) = w;
+  const Eigen::MatrixXd refined = map * homogeneous;
+  // The last p copies of t0 start the piece, the first p copies of t1 end it.
+  const auto last0 = std::upper_bound(fine.begin(), fine.end(), t0) - fine.begin() - 1;
+  const auto first1 = std::lower_bound(fine.begin(), fine.end(), t1) - fine.begin();
+  const auto i = last0 - p + 1, j = first1;
+  BSplineCurve out;
+  out.degree = p;
+  out.knots.push_back(t0);
+  out.knots.insert(out.knots.end(), fine.begin() + i, fine.begin() + j + p);
+  out.knots.push_back(t1);
+  const Eigen::MatrixXd h = refined.middleRows(i - 1, j - i + 1);
+  out.poles = h.leftCols(c.dim()).array().colwise() / h.col(c.dim()).array();
+  if (c.rational()) out.weights = h.col(c.dim());
+  return out;
 }
 
 }  // namespace varsurf

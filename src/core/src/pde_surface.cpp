@@ -257,15 +257,187 @@ void check_iso(const std::vector<IsoCurve>& curves, const char* kind) {
                          fmt(curves[k].at) + ": give a value strictly between 0 and 1");
 }
 
-// A surface closed along v: both boundary curves (and their derivative curves) closed, paired by
-// the alignment that best matches their shapes; the rows fitted closed and held, the seam tied.
-SheetProblem closed_problem(const PdeBoundary& b, const PdeSurfaceOptions& o, double* fit_error) {
+// A curve of a network: its isoparametric value, its name in messages, and the map of the
+// surface's parameter along it to its own normalized parameter.
+struct Line {
+  const BSplineCurve* curve;
+  double at;
+  std::string name;
+  ParameterMap map;
+};
+
+// Checks that every u-direction curve meets every v-direction one; the crossings inside the
+// surface place the curves across (their maps pass through them). Returns, per u-direction
+// curve, its crossings (the v-direction curve's value, its own normalized parameter).
+std::vector<std::vector<std::pair<double, double>>> cross(std::vector<Line>& along_v,
+                                                          std::vector<Line>& along_u,
+                                                          double gap_tolerance) {
+  std::vector<std::vector<std::pair<double, double>>> out(along_v.size());
+  for (size_t i = 0; i < along_v.size(); ++i)
+    for (Line& y : along_u) {
+      Line& x = along_v[i];
+      const Crossing c = crossing(*x.curve, *y.curve);
+      if (c.gap > gap_tolerance)
+        throw InvalidInput(x.name + " and " + y.name + " do not meet (they come " + fmt(c.gap) +
+                           " close): the curves of a network must cross; move one onto the other");
+      out[i].emplace_back(y.at, c.sa);
+      if (x.at > 0.0 && x.at < 1.0) y.map.add(x.at, c.sb);
+    }
+  return out;
+}
+
+void check_order(const std::vector<Line>& lines) {
+  for (const Line& x : lines)
+    if (!x.map.monotone())
+      throw InvalidInput(x.name + " crosses the curves across it out of their order: order the " +
+                         "isoparametric values as the curves lie");
+}
+
+// Gordon curves inside: curve constraints whose pre-images run along their isoparametric line
+// through the crossings (degree 1, the crossings' parameters as knots). A closed curve's map may
+// run across its own seam (its parameter unwrapped beyond 1): it is held as one piece per turn.
+void add_curve_constraints(SheetProblem& pb, const Line& line, bool along_v_dir) {
+  std::vector<double> s, t;
+  for (size_t k = 0; k < line.map.s.size(); ++k) {
+    s.push_back(line.map.s[k]);
+    t.push_back(line.map.t[k]);
+    if (k + 1 == line.map.s.size()) break;
+    const double t1 = line.map.t[k + 1], s1 = line.map.s[k + 1];
+    for (double n = std::floor(t.back()) + 1.0; n < t1; n += 1.0) {
+      if (n <= t.back()) continue;
+      s.push_back(s.back() + (n - t.back()) / (t1 - t.back()) * (s1 - s.back()));
+      t.push_back(n);
+    }
+  }
+  const BSplineCurve& curve = *line.curve;
+  const double t0 = curve.first(), dt = curve.last() - curve.first();
+  auto turn = [&](size_t k) { return std::floor(0.5 * (t[k] + t[k + 1])); };
+  for (size_t start = 0; start + 1 < s.size();) {
+    const double n = turn(start);
+    size_t end = start + 1;
+    while (end + 1 < s.size() && turn(end) == n) ++end;
+    const double a = std::clamp(t[start] - n, 0.0, 1.0), b = std::clamp(t[end] - n, 0.0, 1.0);
+    if (b - a > 1e-12) {
+      CurveConstraint c;
+      c.target = a == 0.0 && b == 1.0 ? curve : piece(curve, t0 + dt * a, t0 + dt * b);
+      c.preimage.degree = 1;
+      c.preimage.poles.resize(static_cast<Eigen::Index>(end - start + 1), 2);
+      c.preimage.knots.push_back(c.target.first());
+      for (size_t k = start; k <= end; ++k) {
+        const double x = k == start ? a : k == end ? b : std::clamp(t[k] - n, a, b);
+        c.preimage.knots.push_back(k == start ? c.target.first()
+                                   : k == end ? c.target.last()
+                                              : t0 + dt * x);
+        c.preimage.poles.row(static_cast<Eigen::Index>(k - start)) =
+            along_v_dir ? Eigen::RowVector2d(line.at, s[k]) : Eigen::RowVector2d(s[k], line.at);
+      }
+      c.preimage.knots.push_back(c.target.last());
+      pb.curves.push_back(std::move(c));
+    }
+    start = end;
+  }
+}
+
+// A closed curve's map through its crossings (v_k, t_k): sorted by v, each t the previous one plus
+// the forward distance around the curve (unwrapped), repeated with the period of one turn.
+// False when the crossings do not lie in the curve's cyclic order.
+bool periodic_map(std::vector<std::pair<double, double>> pts, ParameterMap* out) {
+  std::sort(pts.begin(), pts.end());
+  std::vector<double> v, t;
+  for (const auto& [vk, tk] : pts) {
+    if (t.empty()) {
+      v.push_back(vk), t.push_back(tk);
+      continue;
+    }
+    const double step = tk - t.back() - std::floor(tk - t.back());
+    if (!(vk > v.back() && step > 0.0)) return false;
+    v.push_back(vk), t.push_back(t.back() + step);
+  }
+  if (!(t.back() - t.front() < 1.0)) return false;
+  // Between the last crossing and the first one a turn later lies the surface's seam (v = 0 = 1).
+  const double before = v.back() - 1.0, t_before = t.back() - 1.0;
+  const double t_zero =
+      v.front() == 0.0 ? t.front()
+                       : t_before + (0.0 - before) / (v.front() - before) * (t.front() - t_before);
+  out->s.clear(), out->t.clear();
+  if (v.front() > 0.0) out->s.push_back(0.0), out->t.push_back(t_zero);
+  out->s.insert(out->s.end(), v.begin(), v.end());
+  out->t.insert(out->t.end(), t.begin(), t.end());
+  out->s.push_back(1.0), out->t.push_back(t_zero + 1.0);
+  return true;
+}
+
+// A closed curve read through its (possibly unwrapped) map.
+Vec3 around(const Line& line, double s) {
+  const double t = line.map(s);
+  return at(*line.curve, t - std::floor(t));
+}
+
+// A surface closed along v: both boundary curves (and their derivative curves) closed. Without
+// v-curves, the curves are paired by the seam shift and direction that best match u0's shape and
+// v = 0 lies at u0's start; v-curves (from u0 to u1, at v in [0, 1)) place every closed curve by
+// their crossings instead. The rows fitted closed and held, u-curves and v-curves as curve
+// constraints, the seam tied.
+SheetProblem closed_problem(const PdeBoundary& b, const PdeSurfaceOptions& o, double gap_tolerance,
+                            double* fit_error) {
   if (b.v0.poles.size() != 0 || b.v1.poles.size() != 0)
     throw InvalidInput("a surface closed along v has no sides: clear v0 and v1");
-  if (!b.u_curves.empty() || !b.v_curves.empty())
-    throw InvalidInput(
-        "network curves on a surface closed along v are not supported yet: remove "
-        "them, or open the boundary curves");
+  for (size_t k = 0; k < b.v_curves.size(); ++k)
+    if (!(b.v_curves[k].at >= 0.0 && b.v_curves[k].at < 1.0))
+      throw InvalidInput(
+          "v-curve " + std::to_string(k + 1) + " lies at " + fmt(b.v_curves[k].at) +
+          ": on a surface closed along v give a value from 0 up to (not including) 1");
+  // Closed curves along v, each turned to run like u0 (by the shapes' best match).
+  std::vector<BSplineCurve> closed{b.u0, b.u1};
+  std::vector<std::string> names{"u0", "u1"};
+  std::vector<double> ats{0.0, 1.0};
+  for (size_t i = 0; i < b.u_curves.size(); ++i) {
+    names.push_back("u-curve " + std::to_string(i + 1));
+    closed.push_back(normalized_3d(b.u_curves[i].curve, names.back()));
+    ats.push_back(b.u_curves[i].at);
+  }
+  std::vector<Line> along_v;
+  for (size_t i = 0; i < closed.size(); ++i) {
+    BSplineCurve& c = closed[i];
+    const double gap = (at(c, 0.0) - at(c, 1.0)).norm();
+    if (gap > gap_tolerance)
+      throw InvalidInput(
+          names[i] + " is open (its ends are " + fmt(gap) +
+          " apart) on a surface closed along v: close it, or open the boundary curves");
+    Line line{&c, ats[i], names[i], {}};
+    if (i > 0) {
+      const Alignment al = align(
+          c, [&](double s) { return at(b.u0, s); }, true);
+      if (al.dir < 0.0) c = reversed(c);
+      // Without v-curves the best match places it: t = shift + s on the curve turned forward.
+      const double shift = al.dir < 0.0 ? 1.0 - al.shift : al.shift;
+      line.map.t = {shift, shift + 1.0};
+    }
+    along_v.push_back(std::move(line));
+  }
+  std::vector<BSplineCurve> profiles;
+  profiles.reserve(b.v_curves.size());
+  std::vector<Line> along_u;
+  for (size_t j = 0; j < b.v_curves.size(); ++j) {
+    const std::string name = "v-curve " + std::to_string(j + 1);
+    BSplineCurve c = normalized_3d(b.v_curves[j].curve, name);
+    // From u0 to u1: the end nearer u0 first.
+    auto gap = [&](const BSplineCurve& to, double s) {
+      return (at(to, closest(to, at(c, s))) - at(c, s)).norm();
+    };
+    if (gap(b.u0, 1.0) + gap(b.u1, 0.0) < gap(b.u0, 0.0) + gap(b.u1, 1.0)) c = reversed(c);
+    profiles.push_back(std::move(c));
+    along_u.push_back({&profiles.back(), b.v_curves[j].at, name, {}});
+  }
+  const auto crossings = cross(along_v, along_u, gap_tolerance);
+  if (!along_u.empty())
+    for (size_t i = 0; i < along_v.size(); ++i)
+      if (!periodic_map(crossings[i], &along_v[i].map))
+        throw InvalidInput(along_v[i].name +
+                           " crosses the v-curves out of their order: order their values as the "
+                           "curves lie around it (v runs the way u0 does)");
+  check_order(along_u);
+
   const int p = o.degree;
   SheetProblem pb;
   pb.space = SplineSpace::uniform(p, p, o.spans_u, o.spans_v);
@@ -274,10 +446,8 @@ SheetProblem closed_problem(const PdeBoundary& b, const PdeSurfaceOptions& o, do
   pb.pde->plate_form = false;  // no free side: u = 0 and u = 1 are held, v closes
   const SplineSpace& sp = pb.space;
   const int nu = sp.nu(), nv = sp.nv();
-  const Alignment a1 = align(
-      b.u1, [&](double s) { return at(b.u0, s); }, true);
-  auto u0 = [&](double s) { return at(b.u0, s); };
-  auto u1 = [&](double s) { return at(b.u1, a1(s)); };
+  auto u0 = [&](double s) { return around(along_v[0], s); };
+  auto u1 = [&](double s) { return around(along_v[1], s); };
   double error = 0.0;
   const BSplineCurve row0 = fit_closed_row(u0, p, sp.knots_v, &error);
   const BSplineCurve row1 = fit_closed_row(u1, p, sp.knots_v, &error);
@@ -308,6 +478,10 @@ SheetProblem closed_problem(const PdeBoundary& b, const PdeSurfaceOptions& o, do
   for (int i : rows)
     for (int j = 0; j < nv; ++j) pb.fixed_poles.push_back(sp.index(i, j));
   std::sort(pb.fixed_poles.begin(), pb.fixed_poles.end());
+  pb.fixed_poles.erase(std::unique(pb.fixed_poles.begin(), pb.fixed_poles.end()),
+                       pb.fixed_poles.end());
+  for (size_t k = 2; k < along_v.size(); ++k) add_curve_constraints(pb, along_v[k], true);
+  for (const Line& line : along_u) add_curve_constraints(pb, line, false);
   if (fit_error) *fit_error = error;
   return pb;
 }
@@ -328,7 +502,6 @@ SheetProblem pde_surface_problem(const PdeBoundary& in, const PdeSurfaceOptions&
   for (double m : {in.magnitude0, in.magnitude1})
     if (!std::isfinite(m)) throw InvalidInput("derivative magnitude must be finite");
   check_iso(in.u_curves, "u-curve");
-  check_iso(in.v_curves, "v-curve");
 
   PdeBoundary b = in;
   b.u0 = normalized_3d(in.u0, "u0");
@@ -344,7 +517,8 @@ SheetProblem pde_surface_problem(const PdeBoundary& in, const PdeSurfaceOptions&
                        fmt(std::max(open0, open1)) +
                        " apart): a surface closed along v needs both boundary curves closed; close "
                        "the open one, or use two open curves");
-  if (open0 <= gap_tolerance) return closed_problem(b, o, fit_error);
+  if (open0 <= gap_tolerance) return closed_problem(b, o, gap_tolerance, fit_error);
+  check_iso(in.v_curves, "v-curve");
   auto derivative = [&](const BSplineCurve& d, const BSplineCurve& c, const char* name,
                         const char* of) {
     const BSplineCurve out = oriented(normalized_3d(d, name), at(c, 0.0), at(c, 1.0));
@@ -394,12 +568,6 @@ SheetProblem pde_surface_problem(const PdeBoundary& in, const PdeSurfaceOptions&
         oriented(normalized_3d(in.v_curves[j].curve, name), at(b.u0, v), at(b.u1, v));
   }
   // u-direction curves (u0, u1, u-curves) cross the v-direction ones (v0, v1, v-curves).
-  struct Line {
-    const BSplineCurve* curve;
-    double at;
-    std::string name;
-    ParameterMap map;
-  };
   std::vector<Line> along_v{{&b.u0, 0.0, "u0", {}}, {&b.u1, 1.0, "u1", {}}};
   for (size_t i = 0; i < b.u_curves.size(); ++i)
     along_v.push_back(
@@ -410,21 +578,13 @@ SheetProblem pde_surface_problem(const PdeBoundary& in, const PdeSurfaceOptions&
   for (size_t j = 0; j < b.v_curves.size(); ++j)
     along_u.push_back(
         {&b.v_curves[j].curve, b.v_curves[j].at, "v-curve " + std::to_string(j + 1), {}});
-  for (Line& x : along_v)
-    for (Line& y : along_u) {
-      const Crossing c = crossing(*x.curve, *y.curve);
-      if (c.gap > gap_tolerance)
-        throw InvalidInput(x.name + " and " + y.name + " do not meet (they come " + fmt(c.gap) +
-                           " close): the curves of a network must cross; move one onto the other");
-      // Crossings at the curves' ends are the corners, already at 0 and 1.
-      if (y.at > 0.0 && y.at < 1.0) x.map.add(y.at, c.sa);
-      if (x.at > 0.0 && x.at < 1.0) y.map.add(x.at, c.sb);
-    }
-  for (const std::vector<Line>* family : {&along_v, &along_u})
-    for (const Line& x : *family)
-      if (!x.map.monotone())
-        throw InvalidInput(x.name + " crosses the curves across it out of their order: order the " +
-                           "isoparametric values as the curves lie");
+  const auto crossings = cross(along_v, along_u, gap_tolerance);
+  // Crossings at the curves' ends are the corners, already at 0 and 1.
+  for (size_t i = 0; i < along_v.size(); ++i)
+    for (const auto& [v, t] : crossings[i])
+      if (v > 0.0 && v < 1.0) along_v[i].map.add(v, t);
+  check_order(along_v);
+  check_order(along_u);
 
   SheetProblem pb;
   pb.space = SplineSpace::uniform(p, p, o.spans_u, o.spans_v);
@@ -474,28 +634,9 @@ SheetProblem pde_surface_problem(const PdeBoundary& in, const PdeSurfaceOptions&
             -(1.0 - sp.knots_u[static_cast<size_t>(nu - 1)]) / p);
   for (int k = 0; k < sp.size(); ++k)
     if (fixed[static_cast<size_t>(k)]) pb.fixed_poles.push_back(k);
-  // Gordon curves inside: curve constraints whose pre-images run along their isoparametric line
-  // through the crossings (degree 1, the crossings' parameters as knots).
-  auto constraint = [&](const Line& line, bool along_v_dir) {
-    CurveConstraint c;
-    c.target = *line.curve;
-    const double t0 = line.curve->first(), dt = line.curve->last() - line.curve->first();
-    c.preimage.degree = 1;
-    const size_t m = line.map.s.size();
-    c.preimage.poles.resize(static_cast<Eigen::Index>(m), 2);
-    c.preimage.knots.push_back(t0 + dt * line.map.t.front());
-    for (size_t k = 0; k < m; ++k) {
-      c.preimage.knots.push_back(t0 + dt * line.map.t[k]);
-      const double s = line.map.s[k];
-      c.preimage.poles.row(static_cast<Eigen::Index>(k)) =
-          along_v_dir ? Eigen::RowVector2d(line.at, s) : Eigen::RowVector2d(s, line.at);
-    }
-    c.preimage.knots.push_back(t0 + dt * line.map.t.back());
-    pb.curves.push_back(std::move(c));
-  };
-  for (size_t k = 2; k < along_v.size(); ++k) constraint(along_v[k], true);
+  for (size_t k = 2; k < along_v.size(); ++k) add_curve_constraints(pb, along_v[k], true);
   for (const Line& line : along_u)
-    if (line.at > 0.0 && line.at < 1.0) constraint(line, false);
+    if (line.at > 0.0 && line.at < 1.0) add_curve_constraints(pb, line, false);
   if (fit_error) *fit_error = error;
   return pb;
 }

@@ -47,9 +47,11 @@ struct PdeSurfaceOptions {
 };
 
 // Closed boundary curves (both: one closed and the other open is refused) make the surface closed
-// along v: the rows are fitted closed, the curves paired by the seam shift and direction that best
-// match their shapes, and the sheet's seam tied (SheetProblem::closed_v); derivative curves must be
-// closed too. The energy's plate form (PdeCoefficient::plate_form) is set where a side is free
+// along v: the rows are fitted closed and the sheet's seam tied (SheetProblem::closed_v);
+// derivative curves and u-curves must be closed too. Without v-curves the closed curves are paired
+// by the seam shift and direction that best match u0's shape (v = 0 at u0's start); v-curves
+// (open, from u0 to u1, at v in [0, 1)) place them by their crossings, in their cyclic order.
+// The energy's plate form (PdeCoefficient::plate_form) is set where a side is free
 // (no v0 or v1 on an open surface), the operator's own square elsewhere.
 // The curves oriented and checked, fitted, and the sheet to solve: space [0, 1]^2 of the options'
 // degree and spans, the fitted rows (and Hermite rows) as fixed poles, Gordon curves as curve
