@@ -119,3 +119,26 @@ TEST(SheetDynamics, BadParametersAreRefused) {
   EXPECT_THROW(sheet.set_springs({{2.0, 0.5, Eigen::Vector3d::Zero(), 1.0}}), InvalidInput);
   EXPECT_THROW(sheet.move_targets({Eigen::Vector3d::Zero()}), InvalidInput);
 }
+
+// Damping may be painted 0 (an undamped region): painted 0 over the whole domain moves the sheet
+// as no damping does; painted below 0 it is refused.
+TEST(SheetDynamics, DampingPaintedZeroIsNoDamping) {
+  const SheetProblem pb = held_sheet(6);
+  auto pulled = [&](DynamicsParameters d) {
+    d.time_step = 2e-4;  // short beside the sheet's swing, so damping shows
+    DynamicSheet sheet(pb, d);
+    sheet.set_springs({{0.5, 0.5, Eigen::Vector3d(50, 50, 20), 5.0}});
+    sheet.step(20);
+    return Eigen::MatrixX3d(sheet.poles());
+  };
+  DynamicsParameters painted = parameters(50.0);
+  painted.damping.painted.push_back({Region(0.0, 1.0, 0.0, 1.0), 0.0});
+  const Eigen::MatrixX3d undamped = pulled(parameters(0.0)), damped = pulled(parameters(50.0));
+  EXPECT_LT((pulled(painted) - undamped).cwiseAbs().maxCoeff(), 1e-12 * 50);
+  EXPECT_GT((damped - undamped).cwiseAbs().maxCoeff(), 1e-3);
+  painted.damping.painted.back().a = -1.0;
+  EXPECT_THROW(DynamicSheet(pb, painted), InvalidInput);
+  painted.damping.painted.back().a = 0.0;
+  painted.damping.painted.back().region = Region(0.6, 0.4, 0.0, 1.0);
+  EXPECT_THROW(DynamicSheet(pb, painted), InvalidInput);
+}

@@ -8,7 +8,8 @@ new a and a painted region previewed with Update, then OK (one undoable step); o
 cancelled after a change (the change is undone); a screenshot of the window with the panel open.
 Then a Point's pin on the surface dragged in the view as the pointer would (each move an update
 of the prepared solve, the preview drawn), a screenshot while it moves, and the release: one
-undoable step; and dragged again with DragMode Dynamic (set in the panel): the surface follows
+undoable step; and dragged again with DragMode Dynamic and a heavier region painted around the
+pin (both set in the panel): the surface follows
 with inertia at the timer's frames, settles after the release, which is written. Writes
 $VARSURF_GUI_OUT/pde_panel.json and quits.
 """
@@ -124,8 +125,19 @@ def run(result):
                                 w["springSpin"].value()]
     w["dragModeCombo"].setCurrentText("Dynamic")
     w["dampingSpin"].setValue(0.3)
+    w["addMaterialButton"].click()  # a heavier region around the pin (4 x Mass, the damping)
+    Gui.updateGui()
+    result["material_rows"] = w["materialTable"].rowCount()
+    for area in Gui.getMainWindow().findChildren(QtGui.QScrollArea):  # the panel scrolled to the table
+        if area.isAncestorOf(w["materialTable"]):
+            area.ensureWidgetVisible(w["materialTable"])
+    Gui.updateGui()
+    shot = os.path.join(OUT, "pde_dynamics_panel.png")
+    window_shot(shot)
+    result["dynamics_shot"] = shot
     press_task_button(QtGui.QDialogButtonBox.Ok)
-    result["dynamics_stored"] = [str(pde.DragMode), round(float(pde.Damping), 3)]
+    result["dynamics_stored"] = [str(pde.DragMode), round(float(pde.Damping), 3),
+                                 [round(float(x), 4) for x in pde.MaterialRegions]]
     high = target
     result["dynamic_began"] = handles.begin_drag()
     result["dynamic_session"] = type(handles.session).__name__

@@ -45,12 +45,14 @@ def test_a_pin_on_the_surface_drags_by_back_substitution(panel):
 
 
 def test_a_dynamic_drag_follows_with_inertia_and_settles(panel):
-    """DragMode Dynamic, set in the panel: the pin pulls the surface by a spring; it follows the
-    pointer with inertia (still above it when the pointer stops going down), at 30 frames a second
-    or more with the view redrawn, settles after the release, and the release is one undoable
-    step through the target."""
+    """DragMode Dynamic and a heavier region around the pin, set in the panel: the pin pulls the
+    surface by a spring; it follows the pointer with inertia (still above it when the pointer
+    stops going down), at 30 frames a second or more with the view redrawn, settles after the
+    release, and the release is one undoable step through the target."""
     assert panel["dynamics_shown"] == ["Static", 1.0, 0.5, 10.0]
-    assert panel["dynamics_stored"] == ["Dynamic", 0.3]
+    assert panel["material_rows"] == 1
+    assert panel["dynamics_stored"] == ["Dynamic", 0.3, [4.0, 0.3, 0.25, 0.75, 0.25, 0.75]]
+    assert Path(panel["dynamics_shot"]).stat().st_size > 10000
     assert panel["dynamic_began"] and panel["dynamic_session"] == "DynamicDrag", panel
     assert panel["dynamic_errors"] == []
     assert panel["dynamic_frames_per_second"] >= 30.0, panel["dynamic_frames_per_second"]

@@ -699,3 +699,56 @@ def test_a_dynamic_drag_needs_a_surface_held_by_its_boundary_conditions(doc):
     with pytest.raises(drag.NotQuadratic):
         dynamic_drag.DynamicDrag(pde, c)
     drag.PointDrag(pde, c).cancel()
+
+
+def _pin_heights(doc, steps=3, **properties):
+    """Heights the pin point reaches, frame by frame, pulled 10 mm up from rest."""
+    from varsurf.app import dynamic_drag
+
+    pde, c, start = _dynamic_scene(doc, **properties)
+    session = dynamic_drag.DynamicDrag(pde, c)
+    heights = [session.move(start + V(0, 0, 10.0), steps=1).evaluate(0.5, 0.5)[2] - start.z for _ in range(steps)]
+    session.cancel()
+    return heights
+
+
+def test_material_painted_everywhere_is_the_surface_of_those_constants(doc):
+    """A region painted (mass 4, damping 0.3) over the whole surface moves it as Mass 4 and Damping
+    0.3 do; a region painted without damping is allowed."""
+    painted = _pin_heights(doc, 12, MaterialRegions=[4.0, 0.3, 0.0, 1.0, 0.0, 1.0])
+    constant = _pin_heights(doc, 12, Mass=4.0, Damping=0.3)
+    plain = _pin_heights(doc, 12)
+    assert max(abs(a - b) for a, b in zip(painted, constant)) < 1e-9 * 10.0
+    assert max(abs(a - b) for a, b in zip(painted, plain)) > 0.5  # and not the surface's own
+    assert len(_pin_heights(doc, 1, MaterialRegions=[1.0, 0.0, 0.2, 0.4, 0.2, 0.4])) == 1
+
+
+def test_painted_mass_slows_the_surface_where_it_is_painted(doc):
+    """Mass painted 50 times heavier around the pin holds it back; the same mass painted in a
+    corner far from it changes its motion far less (Du & Qin 3.4: material fields)."""
+    plain = _pin_heights(doc)[-1]
+    near = _pin_heights(doc, MaterialRegions=[50.0, 0.5, 0.35, 0.65, 0.35, 0.65])[-1]
+    far = _pin_heights(doc, MaterialRegions=[50.0, 0.5, 0.0, 0.15, 0.0, 0.15])[-1]
+    assert near < 0.5 * plain, (near, plain)
+    assert abs(far - plain) < 0.2 * abs(near - plain), (far, near, plain)
+
+
+@pytest.mark.parametrize("regions, words", [
+    ([-1.0, 0.5, 0.0, 1.0, 0.0, 1.0], "MaterialRegions: region 1 paints mass -1.0"),
+    ([1.0, -0.5, 0.0, 1.0, 0.0, 1.0], "MaterialRegions: region 1 paints damping -0.5"),
+    ([1.0, 0.5, 0.6, 0.4, 0.0, 1.0], "MaterialRegions: region 1 spans u 0.6..0.4"),
+    ([1.0, 0.5, 0.0, 1.0, 0.0], "MaterialRegions needs six numbers a region"),
+])
+def test_bad_material_regions_put_the_surface_in_error(doc, regions, words):
+    from varsurf.app import drag, dynamic_drag
+
+    pde, c, _start = _dynamic_scene(doc)
+    pde.MaterialRegions = regions
+    doc.recompute()
+    assert not pde.isValid()
+    assert words in pde.getStatusString(), pde.getStatusString()
+    with pytest.raises(drag.DragError):
+        dynamic_drag.DynamicDrag(pde, c)
+    pde.MaterialRegions = [2.0, 0.5, 0.0, 1.0, 0.0, 1.0]
+    doc.recompute()
+    assert pde.isValid(), pde.getStatusString()

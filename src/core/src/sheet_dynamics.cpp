@@ -44,6 +44,19 @@ bool zero_density(const PdeCoefficient& c) {
   return c.a == 0.0 && !c.has_field() && c.painted.empty();
 }
 
+// Damping may be 0 anywhere (an undamped region): PdeCoefficient::validate, which asks a > 0,
+// checks everything else (finite values, regions, blend, the field's space) on a copy whose zero
+// values stand in as 1.
+void validate_non_negative(PdeCoefficient c, const SplineSpace& space) {
+  auto lift = [](double& x) {
+    if (x == 0.0) x = 1.0;
+  };
+  lift(c.a);
+  for (PaintedCoefficient& p : c.painted) lift(p.a);
+  for (Eigen::Index k = 0; k < c.field_values.size(); ++k) lift(c.field_values(k));
+  c.validate(space);
+}
+
 }  // namespace
 
 struct DynamicSheet::Impl {
@@ -124,7 +137,7 @@ DynamicSheet::DynamicSheet(const SheetProblem& pb, const DynamicsParameters& par
   }
   if (!zero_density(par.damping)) {
     try {
-      par.damping.validate(pb.space);
+      validate_non_negative(par.damping, pb.space);
     } catch (const InvalidInput& e) {
       throw InvalidInput(std::string("dynamics: the damping must be 0 or positive: ") + e.what());
     }

@@ -21,6 +21,8 @@ import FreeCAD
 
 from varsurf.app import drag
 from varsurf.app import pde_surface as pde_feature
+from varsurf.solve import pde_surface as pde_solve
+from varsurf.solve.errors import SheetError
 from varsurf.solve.native import build, native
 from varsurf.solve.shapes import shape_from_binary, single_face
 
@@ -92,15 +94,17 @@ class DynamicDrag(drag.WrittenOnRelease):
             self.stiffness, shape_mass = self._measure(nat, problem, outcome.surface)
             k = (1.0 + float(surface.Spring)) * self.stiffness  # the surface and the pin together
             omega = 2.0 * math.pi / PERIOD
-            density = float(surface.Mass) * k / (omega * omega * shape_mass)
+            # Per unit of relative mass: the density that swings in PERIOD, and the damping
+            # density of ratio 1 (2 sqrt(k m) for the shape's mass m).
+            density = k / (omega * omega * shape_mass)
             parameters = nat.DynamicsParameters()
-            parameters.mass = nat.PdeCoefficient(a=density)
-            damping = 2.0 * float(surface.Damping) * math.sqrt(k * density / shape_mass)
-            parameters.damping = nat.PdeCoefficient(a=max(damping, 0.0))
+            parameters.mass, parameters.damping = pde_solve.material_fields(
+                nat, pde_feature.settings_of(surface), float(surface.Mass), float(surface.Damping),
+                density, 2.0 * math.sqrt(k * density / shape_mass))
             parameters.time_step = TIME_STEP
             self.dynamics = nat.DynamicSheet(problem, parameters)
             self.dynamics.set_springs([nat.Spring(self.u, self.v, list(start), float(surface.Spring) * self.stiffness)])
-        except (nat.InvalidInput, nat.SolveFailure) as error:
+        except (nat.InvalidInput, nat.SolveFailure, SheetError) as error:
             raise drag.DragError(f"{surface.Label}: {error}") from error
         self.clock = time.perf_counter()
         self.released = False

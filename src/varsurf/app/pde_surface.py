@@ -50,6 +50,7 @@ _PROPERTIES = [
     ("DragMode", "App::PropertyEnumeration", "Dynamics", "How a Point's pin drags the surface. Static: the surface follows the pin at once (a solve per move). Dynamic (Du & Qin's dynamic sculpting): the pin pulls it by a spring; it moves with mass and damping and settles when released", False),
     ("Mass", "App::PropertyFloatConstraint", "Dynamics", "Dynamic drag: the surface's mass, relative (1: a full swing takes 0.3 s with the pin held; 4: twice as long)", False),
     ("Damping", "App::PropertyFloatConstraint", "Dynamics", "Dynamic drag: the damping ratio of that swing (0: it keeps swinging; 1: critical, no overshoot)", False),
+    ("MaterialRegions", "App::PropertyFloatList", "Dynamics", "Dynamic drag: mass and damping painted on rectangles, six numbers each: mass, damping, u0, u1, v0, v1 (relative like Mass and Damping, u and v 0..1; blended across the border by PdeBlend; later regions over earlier ones)", False),
     ("Spring", "App::PropertyFloatConstraint", "Dynamics", "Dynamic drag: the pin's stiffness, in units of the surface's own stiffness at the pin (10: the pin point reaches 10/11 of the way to the pointer)", False),
     ("Degree", "App::PropertyIntegerConstraint", "Solver", "Degree of the surface in u and v (3 or more for Hermite conditions)", False),
     ("MinSpans", "App::PropertyIntegerConstraint", "Solver", "Spans per direction of the first solve", False),
@@ -75,13 +76,12 @@ _DEFAULTS = {
     "Tolerance": settings.DEFAULT_TOLERANCE,
     "Status": "Not computed",
     "DragMode": ["Static", "Dynamic"],
-    "Mass": (1.0, 1e-3, 1e3, 0.1),
-    "Damping": (0.5, 0.0, 10.0, 0.1),
-    "Spring": (10.0, 0.1, 1e4, 1.0),
 }
 
-#: Bounds of the dynamic drag's numbers (a constraint property's bounds are not saved).
-DYNAMICS_BOUNDS = {"Mass": (1e-3, 1e3, 0.1), "Damping": (0.0, 10.0, 0.1), "Spring": (0.1, 1e4, 1.0)}
+#: The dynamic drag's numbers: default, bounds and step (a constraint property's bounds are not
+#: saved: add_properties sets them again).
+DYNAMICS = {"Mass": (1.0, 1e-3, 1e3, 0.1), "Damping": (0.5, 0.0, 10.0, 0.1), "Spring": (10.0, 0.1, 1e4, 1.0)}
+_DEFAULTS.update(DYNAMICS)
 
 _LINKS = (("U0", "u0"), ("U1", "u1"), ("Derivative0", "d0"), ("Derivative1", "d1"), ("V0", "v0"), ("V1", "v1"))
 
@@ -180,11 +180,19 @@ def _fives(flat):
     return tuple(tuple(flat[k:k + 5]) for k in range(0, len(flat), 5))
 
 
+def _sixes(flat):
+    if len(flat) % 6:
+        raise errors.SheetError(f"MaterialRegions needs six numbers a region (mass, damping, u0, u1, v0, v1); got "
+                                f"{len(flat)}: give each region all six")
+    return tuple(tuple(flat[k:k + 6]) for k in range(0, len(flat), 6))
+
+
 def settings_of(obj) -> pde.PdeSurfaceSettings:
     values = pde.PdeSurfaceSettings(
         a=float(obj.PdeA), regions=_fives([float(x) for x in obj.PdeRegions]), blend=float(obj.PdeBlend),
         magnitude0=float(obj.Magnitude0), magnitude1=float(obj.Magnitude1), degree=int(obj.Degree),
-        min_spans=int(obj.MinSpans), max_spans=int(obj.MaxSpans), tolerance=float(value(obj, "Tolerance")))
+        min_spans=int(obj.MinSpans), max_spans=int(obj.MaxSpans), tolerance=float(value(obj, "Tolerance")),
+        materials=_sixes([float(x) for x in getattr(obj, "MaterialRegions", [])]))
     pde.check(values)
     return values
 
@@ -241,7 +249,7 @@ class PdeSurfaceFeature(FeatureProxy):
         obj.Degree = (min(max(int(obj.Degree), 2), settings.MAX_DEGREE), 2, settings.MAX_DEGREE, 1)
         for name in ("MinSpans", "MaxSpans"):
             setattr(obj, name, (min(max(int(getattr(obj, name)), 1), 512), 1, 512, 1))
-        for name, (low, high, step) in DYNAMICS_BOUNDS.items():
+        for name, (_default, low, high, step) in DYNAMICS.items():
             setattr(obj, name, (min(max(float(getattr(obj, name)), low), high), low, high, step))
 
     def execute(self, obj):

@@ -4,13 +4,11 @@ it is painted on, the derivative magnitudes and solver settings; the result's de
 
 from __future__ import annotations
 
-from PySide import QtCore, QtGui
+from PySide import QtGui
 
 from varsurf.gui import table_fit
-from varsurf.gui.task_base import PropertyTaskPanel, translate
-
-#: Columns of the painted regions' table: a, then the rectangle in 0..1.
-REGION_COLUMNS = 5
+from varsurf.gui.region_table import RegionTable
+from varsurf.gui.task_base import PropertyTaskPanel
 
 
 class TaskPanelPdeSurface(PropertyTaskPanel):
@@ -18,7 +16,7 @@ class TaskPanelPdeSurface(PropertyTaskPanel):
     ICON = "VarSurf_PdeSurface.svg"
     TRANSACTION = "Edit VarSurf PDE surface"
     EDITABLE = ("PdeA", "PdeBlend", "PdeRegions", "Magnitude0", "Magnitude1", "Tolerance", "MinSpans",
-                "MaxSpans", "DragMode", "Mass", "Damping", "Spring")
+                "MaxSpans", "DragMode", "Mass", "Damping", "Spring", "MaterialRegions")
     #: The dynamic drag's numbers: property, spin box.
     DYNAMICS = (("Mass", "massSpin"), ("Damping", "dampingSpin"), ("Spring", "springSpin"))
 
@@ -30,23 +28,24 @@ class TaskPanelPdeSurface(PropertyTaskPanel):
         self.tolerance = self.child(QtGui.QDoubleSpinBox, "toleranceSpin")
         self.min_spans = self.child(QtGui.QSpinBox, "minSpansSpin")
         self.max_spans = self.child(QtGui.QSpinBox, "maxSpansSpin")
-        self.regions = self.child(QtGui.QTableWidget, "regionTable")
+        self.status = self.child(QtGui.QLabel, "statusValue")
+        # a painted (a, then the rectangle); mass and damping painted (the same, two values).
+        self.regions = RegionTable(self.child(QtGui.QTableWidget, "regionTable"), "PdeRegions", 5,
+                                   lambda: (2.0 * float(self.a.value()), 0.25, 0.75, 0.25, 0.75), self.status)
+        self.materials = RegionTable(self.child(QtGui.QTableWidget, "materialTable"), "MaterialRegions", 6,
+                                     lambda: (4.0 * float(self.dynamics[0][1].value()),
+                                              float(self.dynamics[1][1].value()), 0.25, 0.75, 0.25, 0.75),
+                                     self.status)
         self.drag_mode = self.child(QtGui.QComboBox, "dragModeCombo")
         self.drag_mode.addItems(list(obj.getEnumerationsOfProperty("DragMode")))
         self.dynamics = [(name, self.child(QtGui.QDoubleSpinBox, spin)) for name, spin in self.DYNAMICS]
-        # Five short numbers a row: the columns share the panel's width (no sideways scrolling),
-        # without row numbers or cell padding, so "0.25" fits FreeCAD's default 250 px combo view.
-        self.regions.horizontalHeader().setSectionResizeMode(QtGui.QHeaderView.Stretch)
-        self.regions.horizontalHeader().setMinimumSectionSize(10)
-        self.regions.verticalHeader().setVisible(False)
-        self.regions.setTextElideMode(QtCore.Qt.ElideNone)
-        self.regions.setStyleSheet("QTableWidget::item { padding: 0px; }")
-        self.status = self.child(QtGui.QLabel, "statusValue")
         self.deviations = self.child(QtGui.QTableWidget, "deviationTable")
         self.child(QtGui.QLabel, "curvesValue").setText(self._curves_text())
         self.child(QtGui.QPushButton, "updateButton").clicked.connect(self.update)
-        self.child(QtGui.QPushButton, "addRegionButton").clicked.connect(self.add_region)
-        self.child(QtGui.QPushButton, "removeRegionButton").clicked.connect(self.remove_region)
+        for table, add, remove in ((self.regions, "addRegionButton", "removeRegionButton"),
+                                   (self.materials, "addMaterialButton", "removeMaterialButton")):
+            self.child(QtGui.QPushButton, add).clicked.connect(table.add)
+            self.child(QtGui.QPushButton, remove).clicked.connect(table.remove)
         self.load()
         self.show_results()
 
@@ -63,16 +62,6 @@ class TaskPanelPdeSurface(PropertyTaskPanel):
                 parts.append(f"{prop}: {count}")
         return "\n".join(parts)
 
-    def add_region(self):
-        row = self.regions.rowCount()
-        self.regions.insertRow(row)
-        for column, value in enumerate((2.0 * float(self.a.value()), 0.25, 0.75, 0.25, 0.75)):
-            self.regions.setItem(row, column, QtGui.QTableWidgetItem(f"{value:g}"))
-
-    def remove_region(self):
-        row = self.regions.currentRow()
-        self.regions.removeRow(row if row >= 0 else self.regions.rowCount() - 1)
-
     def load(self):
         obj = self.obj
         self.a.setValue(float(obj.PdeA))
@@ -85,27 +74,8 @@ class TaskPanelPdeSurface(PropertyTaskPanel):
         self.drag_mode.setCurrentText(str(obj.DragMode))
         for name, spin in self.dynamics:
             spin.setValue(float(getattr(obj, name)))
-        flat = list(obj.PdeRegions)
-        self.regions.setRowCount(0)
-        for start in range(0, len(flat) - len(flat) % REGION_COLUMNS, REGION_COLUMNS):
-            row = self.regions.rowCount()
-            self.regions.insertRow(row)
-            for column in range(REGION_COLUMNS):
-                self.regions.setItem(row, column, QtGui.QTableWidgetItem(f"{flat[start + column]:g}"))
-
-    def _region_numbers(self):
-        """The table's numbers row by row; an unreadable cell keeps the object's value and says so."""
-        numbers = []
-        for row in range(self.regions.rowCount()):
-            for column in range(REGION_COLUMNS):
-                item = self.regions.item(row, column)
-                try:
-                    numbers.append(float(item.text()))
-                except (AttributeError, ValueError):
-                    self.status.setText(translate("VarSurf", "Region {} has a cell that is not a number: "
-                                                             "type a number").format(row + 1))
-                    return None
-        return numbers
+        self.regions.load(obj)
+        self.materials.load(obj)
 
     def store(self):
         obj = self.obj
@@ -127,9 +97,8 @@ class TaskPanelPdeSurface(PropertyTaskPanel):
         for name, spin in self.dynamics:
             if abs(spin.value() - float(getattr(obj, name))) > 0.5 * 10 ** -spin.decimals():
                 setattr(obj, name, spin.value())
-        numbers = self._region_numbers()
-        if numbers is not None and numbers != list(obj.PdeRegions):
-            obj.PdeRegions = numbers
+        self.regions.store(obj)
+        self.materials.store(obj)
 
     def show_results(self):
         obj = self.obj

@@ -12,6 +12,7 @@ curve lies on the result within the tolerance.
 
 from __future__ import annotations
 
+import math
 import re
 import time
 from dataclasses import dataclass, field
@@ -38,6 +39,8 @@ class PdeSurfaceSettings:
     max_spans: int = 64
     tolerance: float = 0.01
     time_limit: float = 600.0
+    # Mass and damping painted for the dynamic drag: (mass, damping, u0, u1, v0, v1), 0..1.
+    materials: Sequence[Tuple[float, float, float, float, float, float]] = ()
 
 
 @dataclass
@@ -214,6 +217,35 @@ def check(settings: PdeSurfaceSettings) -> None:
                              "and 0 <= v0 < v1 <= 1")
     if not (0.0 <= settings.blend <= 0.5):
         raise SheetError(f"PdeBlend must be in [0, 0.5] (got {settings.blend}): 0 for a sharp border")
+    for k, region in enumerate(settings.materials):
+        mass, damping, u0, u1, v0, v1 = (float(x) for x in region)
+        if not (0.0 < mass < float("inf")):
+            raise SheetError(f"MaterialRegions: region {k + 1} paints mass {mass}; give it a number above 0 (1: the "
+                             "surface's own)")
+        if not (0.0 <= damping < float("inf")):
+            raise SheetError(f"MaterialRegions: region {k + 1} paints damping {damping}; give it a number from 0 "
+                             "(none) up (1: critical)")
+        if not (0.0 <= u0 < u1 <= 1.0 and 0.0 <= v0 < v1 <= 1.0):
+            raise SheetError(f"MaterialRegions: region {k + 1} spans u {u0}..{u1}, v {v0}..{v1}; give "
+                             "0 <= u0 < u1 <= 1 and 0 <= v0 < v1 <= 1")
+
+
+def material_fields(nat, settings: PdeSurfaceSettings, mass: float, damping: float, mass_scale: float,
+                    damping_scale: float):
+    """The core's mass and damping densities: `mass` and the damping ratio `damping` where nothing
+    is painted, each region's (mass, damping) inside it (blended by PdeBlend). The damping density
+    is damping_scale * ratio * sqrt(mass): a ratio is the local motion's, so a region painted
+    (m, z) everywhere is the surface with Mass m and Damping z. Densities are the relative numbers
+    times mass_scale and damping_scale (the caller's, from the surface's stiffness)."""
+    def field(base, values):
+        painted = [nat.PaintedCoefficient(nat.Region(u0, u1, v0, v1), float(x))
+                   for x, (_, _, u0, u1, v0, v1) in zip(values, settings.materials)]
+        return nat.PdeCoefficient(a=float(base), painted=painted, blend=float(settings.blend))
+
+    regions = settings.materials
+    return (field(mass_scale * mass, [mass_scale * m for m, *_ in regions]),
+            field(damping_scale * damping * math.sqrt(mass),
+                  [damping_scale * z * math.sqrt(m) for m, z, *_ in regions]))
 
 
 def labels_for(names: Dict[str, str], u_names: Sequence[str] = (), v_names: Sequence[str] = ()) -> Dict[str, str]:
