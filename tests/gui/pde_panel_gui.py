@@ -88,6 +88,21 @@ def run(result):
     result["report_after_cancel"] = report_view_text()
     result["cancelled"] = [round(float(pde.PdeA), 4), len(pde.PdeRegions), pde.isValid()]
 
+    # a painted in the view: Paint in view down, a rectangle dragged over the surface with the
+    # mouse (Qt events on the 3D view's GL widget, as the pointer gives them), then OK.
+    pde.ViewObject.Proxy.doubleClicked(pde.ViewObject)
+    Gui.updateGui()
+    w = task_widgets("VarSurfPdeSurface")
+    w["paintSpin"].setValue(6.0)
+    w["paintButton"].click()
+    Gui.updateGui()
+    result["painted"] = paint_rectangle(pde, (0.3, 0.3), (0.6, 0.7), os.path.join(OUT, "pde_paint.png"))
+    result["painted_rows"] = w["regionTable"].rowCount()
+    press_task_button(QtGui.QDialogButtonBox.Ok)
+    Gui.updateGui()
+    result["paint_ok"] = [[round(float(x), 2) for x in pde.PdeRegions], pde.isValid(), doc.UndoNames[:1],
+                          report_view_text()[len(result["report_after_cancel"]):]]
+
     # A Point's pin dragged up 12 mm in the view.
     from varsurf.app import drag
 
@@ -175,6 +190,38 @@ def run(result):
                                pde.Shape.distToShape(Part.Vertex(target))[0]]
     Gui.updateGui()
     result["report_at_end"] = report_view_text()
+
+
+def paint_rectangle(pde, corner0, corner1, shot):
+    """Drag from the surface point at (u, v) corner0 to the one at corner1 with the left button, as
+    the pointer does (the GL widget's Qt events); a screenshot before the release."""
+    view = Gui.ActiveDocument.ActiveView
+    gl = next(w for w in Gui.getMainWindow().findChildren(QtGui.QWidget)
+              if w.metaObject().className() == "QOpenGLWidget" and w.isVisible())
+    width, height = view.getSize()
+    face = pde.Shape.Faces[0]
+
+    def at(uv):  # Coin's pixels (from the bottom left) to the widget's (from the top left)
+        x, y = view.getPointOnScreen(face.Surface.value(*uv))
+        return QtCore.QPoint(round(x * gl.width() / width), round((height - 1 - y) * gl.height() / height))
+
+    def send(kind, point, buttons):
+        event = QtGui.QMouseEvent(kind, point, QtCore.Qt.LeftButton if kind != QtCore.QEvent.MouseMove
+                                  else QtCore.Qt.NoButton, buttons, QtCore.Qt.NoModifier)
+        QtGui.QApplication.sendEvent(gl, event)
+        Gui.updateGui()
+
+    camera = view.getCameraOrientation().Q, view.getCameraNode().position.getValue().getValue()
+    send(QtCore.QEvent.MouseButtonPress, at(corner0), QtCore.Qt.LeftButton)
+    for k in range(1, 11):
+        s = k / 10
+        send(QtCore.QEvent.MouseMove, at((corner0[0] + s * (corner1[0] - corner0[0]),
+                                          corner0[1] + s * (corner1[1] - corner0[1]))), QtCore.Qt.LeftButton)
+    window_shot(shot)
+    send(QtCore.QEvent.MouseButtonRelease, at(corner1), QtCore.Qt.NoButton)
+    after = view.getCameraOrientation().Q, view.getCameraNode().position.getValue().getValue()
+    turned = max(abs(a - b) for a, b in zip(camera[0] + camera[1], after[0] + after[1]))
+    return {"shot": shot, "view_moved": turned, "regions": [round(float(x), 3) for x in pde.PdeRegions]}
 
 
 def main():

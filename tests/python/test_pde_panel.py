@@ -30,6 +30,22 @@ def test_the_panel_edits_a_and_the_regions_in_one_undoable_step(panel):
     # gui_helpers.clipped_widgets; Update stored the values, as `ok` shows.)
 
 
+def test_a_rectangle_dragged_over_the_surface_paints_a(panel):
+    """Paint in view: a left-button drag over the surface from (u, v) = (0.3, 0.3) to (0.6, 0.7)
+    adds that rectangle with the Paint a value (6) and previews it, the view does not turn, and OK
+    keeps it in one undoable step."""
+    painted = panel["painted"]
+    assert painted["view_moved"] < 1e-9
+    a, u0, u1, v0, v1 = painted["regions"][5:]
+    assert a == 6.0
+    assert max(abs(u0 - 0.3), abs(u1 - 0.6), abs(v0 - 0.3), abs(v1 - 0.7)) < 0.01, painted["regions"]
+    assert panel["painted_rows"] == 2
+    regions, valid, undo, report = panel["paint_ok"]
+    assert len(regions) == 10 and valid and undo == ["Edit VarSurf PDE surface"]
+    assert "Traceback" not in report, report
+    assert Path(painted["shot"]).stat().st_size > 10000
+
+
 def test_a_pin_on_the_surface_drags_by_back_substitution(panel):
     """The pin's drag updates the prepared solve (PointDrag, not a recompute a move), the preview
     passes through the pin, and the release is one undoable step through the target."""

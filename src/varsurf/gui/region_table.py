@@ -29,14 +29,14 @@ class RegionTable:
             table.setFont(font)
             table.horizontalHeader().setFont(font)
 
-    def _append(self, values):
+    def append(self, values):
         row = self.table.rowCount()
         self.table.insertRow(row)
         for column, value in enumerate(values):
             self.table.setItem(row, column, QtGui.QTableWidgetItem(f"{value:g}"))
 
     def add(self):
-        self._append(self.new_row())
+        self.append(self.new_row())
 
     def remove(self):
         row = self.table.currentRow()
@@ -46,7 +46,7 @@ class RegionTable:
         flat = [float(x) for x in getattr(obj, self.prop)]
         self.table.setRowCount(0)
         for start in range(0, len(flat) - len(flat) % self.columns, self.columns):
-            self._append(flat[start:start + self.columns])
+            self.append(flat[start:start + self.columns])
 
     def numbers(self):
         """The table's numbers row by row; None (said on the status line) for an unreadable cell."""

@@ -7,6 +7,7 @@ from __future__ import annotations
 from PySide import QtGui
 
 from varsurf.gui import table_fit
+from varsurf.gui.region_painter import RegionPainter
 from varsurf.gui.region_table import RegionTable
 from varsurf.gui.task_base import PropertyTaskPanel
 
@@ -42,6 +43,10 @@ class TaskPanelPdeSurface(PropertyTaskPanel):
         self.deviations = self.child(QtGui.QTableWidget, "deviationTable")
         self.child(QtGui.QLabel, "curvesValue").setText(self._curves_text())
         self.child(QtGui.QPushButton, "updateButton").clicked.connect(self.update)
+        self.paint_value = self.child(QtGui.QDoubleSpinBox, "paintSpin")
+        self.paint_button = self.child(QtGui.QPushButton, "paintButton")
+        self.paint_button.toggled.connect(self.paint)
+        self.painter = None
         for table, add, remove in ((self.regions, "addRegionButton", "removeRegionButton"),
                                    (self.materials, "addMaterialButton", "removeMaterialButton")):
             self.child(QtGui.QPushButton, add).clicked.connect(table.add)
@@ -76,6 +81,35 @@ class TaskPanelPdeSurface(PropertyTaskPanel):
             spin.setValue(float(getattr(obj, name)))
         self.regions.load(obj)
         self.materials.load(obj)
+        self.paint_value.setValue(2.0 * float(obj.PdeA))
+
+    def paint(self, on):
+        """Paint in view: rectangles dragged over the surface are added to the table with the
+        Paint a value and previewed at once; the painted ones are outlined while painting."""
+        if on and self.painter is None:
+            self.painter = RegionPainter(self.obj, self.painted)
+            self.painter.show(self._painted_rects())
+        elif not on and self.painter is not None:
+            self.painter.stop()
+            self.painter = None
+
+    def _painted_rects(self):
+        flat = [float(x) for x in self.obj.PdeRegions]
+        return [tuple(flat[k + 1:k + 5]) for k in range(0, len(flat) - len(flat) % 5, 5)]
+
+    def painted(self, u0, u1, v0, v1):
+        self.regions.append([float(self.paint_value.value())] + [round(x, 4) for x in (u0, u1, v0, v1)])
+        self.update()
+        if self.painter is not None:
+            self.painter.show(self._painted_rects())
+
+    def accept(self):
+        self.paint(False)
+        return super().accept()
+
+    def reject(self):
+        self.paint(False)
+        return super().reject()
 
     def store(self):
         obj = self.obj
