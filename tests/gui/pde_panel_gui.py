@@ -97,6 +97,8 @@ def run(result):
     w["paintButton"].click()
     Gui.updateGui()
     result["painted"] = paint_rectangle(pde, (0.3, 0.3), (0.6, 0.7), os.path.join(OUT, "pde_paint.png"))
+    # A drag that starts off the surface (beyond its u = 1 edge) paints nothing: the view has it.
+    result["painted_off"] = paint_rectangle(pde, (1.6, 0.5), (0.5, 0.8), None)["regions"]
     result["painted_rows"] = w["regionTable"].rowCount()
     press_task_button(QtGui.QDialogButtonBox.Ok)
     Gui.updateGui()
@@ -202,7 +204,9 @@ def paint_rectangle(pde, corner0, corner1, shot):
     face = pde.Shape.Faces[0]
 
     def at(uv):  # Coin's pixels (from the bottom left) to the widget's (from the top left)
-        x, y = view.getPointOnScreen(face.Surface.value(*uv))
+        u, v = uv  # beyond 1: on the surface's tangent plane past its edge
+        beyond = face.Surface.getDN(1.0, v, 1, 0) * (u - min(u, 1.0))
+        x, y = view.getPointOnScreen(face.Surface.value(min(u, 1.0), v) + beyond)
         return QtCore.QPoint(round(x * gl.width() / width), round((height - 1 - y) * gl.height() / height))
 
     def send(kind, point, buttons):
@@ -217,7 +221,8 @@ def paint_rectangle(pde, corner0, corner1, shot):
         s = k / 10
         send(QtCore.QEvent.MouseMove, at((corner0[0] + s * (corner1[0] - corner0[0]),
                                           corner0[1] + s * (corner1[1] - corner0[1]))), QtCore.Qt.LeftButton)
-    window_shot(shot)
+    if shot:
+        window_shot(shot)
     send(QtCore.QEvent.MouseButtonRelease, at(corner1), QtCore.Qt.NoButton)
     after = view.getCameraOrientation().Q, view.getCameraNode().position.getValue().getValue()
     turned = max(abs(a - b) for a, b in zip(camera[0] + camera[1], after[0] + after[1]))

@@ -33,13 +33,14 @@ def test_the_panel_edits_a_and_the_regions_in_one_undoable_step(panel):
 def test_a_rectangle_dragged_over_the_surface_paints_a(panel):
     """Paint in view: a left-button drag over the surface from (u, v) = (0.3, 0.3) to (0.6, 0.7)
     adds that rectangle with the Paint a value (6) and previews it, the view does not turn, and OK
-    keeps it in one undoable step."""
+    keeps it in one undoable step; a drag that starts off the surface paints nothing."""
     painted = panel["painted"]
     assert painted["view_moved"] < 1e-9
     a, u0, u1, v0, v1 = painted["regions"][5:]
     assert a == 6.0
     assert max(abs(u0 - 0.3), abs(u1 - 0.6), abs(v0 - 0.3), abs(v1 - 0.7)) < 0.01, painted["regions"]
     assert panel["painted_rows"] == 2
+    assert panel["painted_off"] == painted["regions"]  # a drag from off the surface paints nothing
     regions, valid, undo, report = panel["paint_ok"]
     assert len(regions) == 10 and valid and undo == ["Edit VarSurf PDE surface"]
     assert "Traceback" not in report, report
