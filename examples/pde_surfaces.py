@@ -18,6 +18,8 @@
   shape): a point, a point beside a frozen region, a curve (17A), a region mapped onto a patch
   (17C).
 - blend: Bloor & Wilson's blend, closed along v, from a cylinder (G1 to its side) to a flange.
+- vase: a Gordon network closed along v: a cylinder's top circle, a belt and a rim (Part circles),
+  two sketch profiles (an arc and a B-spline) across them.
 
 Each figure writes figN.FCStd, figN.step and figN.png (the FreeCAD GUI under Xvfb, when present)
 into OUT_DIR and prints what each surface measured.
@@ -157,6 +159,54 @@ def blend(doc):
     return [surface]
 
 
+def _profile_sketch(doc, name, angle, geometry):
+    """A Sketcher profile in the vertical plane at `angle` degrees about z (sketch x = radius,
+    sketch y = height)."""
+    import Sketcher  # noqa: F401  (registers the type)
+
+    sketch = doc.addObject("Sketcher::SketchObject", name)
+    upright = FreeCAD.Rotation(V(1, 0, 0), 90)
+    sketch.Placement = FreeCAD.Placement(V(0, 0, 0), FreeCAD.Rotation(V(0, 0, 1), angle) * upright)
+    sketch.addGeometry(geometry)
+    return sketch
+
+
+def vase_scene(doc, flip_belt=False):
+    """A vase closed along v from real inputs: a Part Cylinder's top circle (u0), a Part Circle
+    rim (u1), a belt circle between them (a u-curve) and two sketch profiles from the cylinder
+    through the belt to the rim, a three-point arc and an interpolated B-spline (v-curves at v = 0
+    and 0.25: where the cylinder's circle starts and a quarter turn on)."""
+    cylinder = doc.addObject("Part::Cylinder", "Cylinder")
+    cylinder.Radius, cylinder.Height = 10.0, 20.0
+    rim = doc.addObject("Part::Circle", "Rim")
+    rim.Radius = 15.0
+    rim.Placement = FreeCAD.Placement(V(0, 0, 60), FreeCAD.Rotation(V(0, 0, 1), 50))
+    belt = doc.addObject("Part::Circle", "Belt")
+    belt.Radius = 24.0
+    # Its seam elsewhere; flipped over, it runs the other way round.
+    turn = FreeCAD.Rotation(V(0, 0, 1), 130)
+    belt.Placement = FreeCAD.Placement(V(0, 0, 40), turn * FreeCAD.Rotation(V(1, 0, 0), 180) if flip_belt else turn)
+    p0 = _profile_sketch(doc, "Profile0", 0.0, Part.Arc(V(10, 20, 0), V(24, 40, 0), V(15, 60, 0)))
+    spline = Part.BSplineCurve()
+    spline.interpolate([V(10, 20, 0), V(17, 28, 0), V(24, 40, 0), V(21, 52, 0), V(15, 60, 0)])
+    p1 = _profile_sketch(doc, "Profile1", 90.0, spline)
+    doc.recompute()
+    top = next(f"Edge{k + 1}" for k, e in enumerate(cylinder.Shape.Edges)
+               if e.Curve.TypeId == "Part::GeomCircle" and abs(e.Vertexes[0].Point.z - 20.0) < 1e-9)
+    return cylinder, top, rim, belt, p0, p1
+
+
+def vase(doc):
+    """A Gordon network closed along v: a vase from a cylinder's top circle through a belt to a
+    rim, its profiles a sketch arc and a sketch B-spline (v = 0 and 0.25)."""
+    cylinder, top, rim, belt, p0, p1 = vase_scene(doc)
+    surface = varsurf.make_pde_surface((cylinder, top), (rim, "Edge1"), u_curves=[((belt, "Edge1"), 0.5)],
+                                       v_curves=[((p0, "Edge1"), 0.0), ((p1, "Edge1"), 0.25)], a=0.5,
+                                       tolerance=1e-2, name="Vase")
+    doc.recompute()
+    return [surface]
+
+
 def _hermite_patch(doc, prefix, dx=0.0, a=2.0):
     """Fig. 7's kind of surface, used by the sculpting figures: a wavy and a straight boundary with
     their derivative curves, 100 mm long, at x = dx .. dx + 80."""
@@ -276,7 +326,7 @@ def fig16(doc):
 
 FIGURES = {"fig7": fig7, "fig8": fig8, "fig9": fig9, "fig11": fig11, "fig12": fig12, "fig13": fig13, "fig14": fig14,
            "fig15": fig15, "fig16": fig16,
-           "blend": blend}
+           "blend": blend, "vase": vase}
 
 
 def main(out_dir="out/pde", *only):

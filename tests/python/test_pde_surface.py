@@ -11,6 +11,7 @@ import pytest
 
 import varsurf
 from pde_surfaces import curve as add_curve  # the example's curves: B-splines run by parameter
+from pde_surfaces import vase_scene
 from scenes import Sel, V, reopened
 from step_check import assert_reads_back
 
@@ -349,50 +350,13 @@ def test_closed_blend_from_a_cylinder_to_a_flange(doc, tmp_path, native):
     assert_reads_back(blend.Shape, path, native)
 
 
-def _profile_sketch(doc, name, angle, geometry):
-    """A Sketcher profile in the vertical plane at `angle` degrees about z (sketch x = radius,
-    sketch y = height)."""
-    import Sketcher  # noqa: F401  (registers the type)
-
-    sketch = doc.addObject("Sketcher::SketchObject", name)
-    upright = FreeCAD.Rotation(V(1, 0, 0), 90)
-    sketch.Placement = FreeCAD.Placement(V(0, 0, 0), FreeCAD.Rotation(V(0, 0, 1), angle) * upright)
-    sketch.addGeometry(geometry)
-    return sketch
-
-
-def _closed_vase(doc, flip_belt=False):
-    """A vase closed along v from real inputs: a Part Cylinder's top circle (u0), a Part Circle
-    rim (u1), a belt circle between them (a u-curve) and two sketch profiles from the cylinder
-    through the belt to the rim, a three-point arc and an interpolated B-spline (v-curves at v = 0
-    and 0.25: where the cylinder's circle starts and a quarter turn on)."""
-    cylinder = doc.addObject("Part::Cylinder", "Cylinder")
-    cylinder.Radius, cylinder.Height = 10.0, 20.0
-    rim = doc.addObject("Part::Circle", "Rim")
-    rim.Radius = 15.0
-    rim.Placement = FreeCAD.Placement(V(0, 0, 60), FreeCAD.Rotation(V(0, 0, 1), 50))
-    belt = doc.addObject("Part::Circle", "Belt")
-    belt.Radius = 24.0
-    # Its seam elsewhere; flipped over, it runs the other way round.
-    turn = FreeCAD.Rotation(V(0, 0, 1), 130)
-    belt.Placement = FreeCAD.Placement(V(0, 0, 40), turn * FreeCAD.Rotation(V(1, 0, 0), 180) if flip_belt else turn)
-    p0 = _profile_sketch(doc, "Profile0", 0.0, Part.Arc(V(10, 20, 0), V(24, 40, 0), V(15, 60, 0)))
-    spline = Part.BSplineCurve()
-    spline.interpolate([V(10, 20, 0), V(17, 28, 0), V(24, 40, 0), V(21, 52, 0), V(15, 60, 0)])
-    p1 = _profile_sketch(doc, "Profile1", 90.0, spline)
-    doc.recompute()
-    top = next(f"Edge{k + 1}" for k, e in enumerate(cylinder.Shape.Edges)
-               if e.Curve.TypeId == "Part::GeomCircle" and abs(e.Vertexes[0].Point.z - 20.0) < 1e-9)
-    return cylinder, top, rim, belt, p0, p1
-
-
 def test_closed_gordon_network_of_circles_and_sketch_profiles(doc, tmp_path, native):
     """A Gordon network on a surface closed along v: the surface contains the belt circle and the
     profiles (a sketch arc and a sketch B-spline), whichever way the belt runs; valid, closed by
     one seam, and clean through STEP."""
     faces = []
     for flip in (False, True):
-        cylinder, top, rim, belt, p0, p1 = _closed_vase(doc, flip)
+        cylinder, top, rim, belt, p0, p1 = vase_scene(doc, flip)
         vase = varsurf.make_pde_surface(
             (cylinder, top), (rim, "Edge1"), u_curves=[((belt, "Edge1"), 0.5)],
             v_curves=[((p0, "Edge1"), 0.0), ((p1, "Edge1"), 0.25)], a=0.5, tolerance=1e-2)
@@ -425,7 +389,7 @@ def test_bad_closed_networks_name_the_curve(doc, edit, words):
     """An open belt on a closed surface, a profile at v = 1 (two profiles are in order either way
     round; three out of order are refused by the core's BadClosedNetworksAreRefusedByName):
     the vase in error naming what is wrong, the inputs intact, and whole again once repaired."""
-    cylinder, top, rim, belt, p0, p1 = _closed_vase(doc)
+    cylinder, top, rim, belt, p0, p1 = vase_scene(doc)
     vase = varsurf.make_pde_surface((cylinder, top), (rim, "Edge1"), u_curves=[((belt, "Edge1"), 0.5)],
                                     v_curves=[((p0, "Edge1"), 0.0), ((p1, "Edge1"), 0.25)], a=0.5, tolerance=1e-2)
     doc.recompute()
