@@ -207,13 +207,17 @@ def vase(doc):
     return [surface]
 
 
-def _hermite_patch(doc, prefix, dx=0.0, a=2.0):
+def _hermite_patch(doc, prefix, dx=0.0, a=2.0, place=None):
     """Fig. 7's kind of surface, used by the sculpting figures: a wavy and a straight boundary with
-    their derivative curves, 100 mm long, at x = dx .. dx + 80."""
-    c0 = curve(doc, f"{prefix}Boundary0", along(lambda t: V(dx, 100 * t, 10 * math.sin(2 * math.pi * t))))
-    c1 = curve(doc, f"{prefix}Boundary1", along(lambda t: V(dx + 80, 100 * t, 0)))
-    d0 = curve(doc, f"{prefix}Derivative0", along(lambda t: V(dx + 15, 100 * t, 10 * math.sin(2 * math.pi * t) + 25)))
-    d1 = curve(doc, f"{prefix}Derivative1", along(lambda t: V(dx + 100, 100 * t, 10)))
+    their derivative curves, 100 mm long, at x = dx .. dx + 80 (each point mapped by `place`, when
+    given: the same scene moved or scaled)."""
+    def at(f):
+        return [place(p) for p in along(f)] if place else along(f)
+
+    c0 = curve(doc, f"{prefix}Boundary0", at(lambda t: V(dx, 100 * t, 10 * math.sin(2 * math.pi * t))))
+    c1 = curve(doc, f"{prefix}Boundary1", at(lambda t: V(dx + 80, 100 * t, 0)))
+    d0 = curve(doc, f"{prefix}Derivative0", at(lambda t: V(dx + 15, 100 * t, 10 * math.sin(2 * math.pi * t) + 25)))
+    d1 = curve(doc, f"{prefix}Derivative1", at(lambda t: V(dx + 100, 100 * t, 10)))
     doc.recompute()
     return varsurf.make_pde_surface((c0, "Edge1"), (c1, "Edge1"), derivative0=(d0, "Edge1"),
                                     derivative1=(d1, "Edge1"), a=a, name=prefix)

@@ -716,3 +716,46 @@ def test_bad_material_regions_put_the_surface_in_error(doc, regions, words):
     pde.MaterialRegions = [2.0, 0.5, 0.0, 1.0, 0.0, 1.0]
     doc.recompute()
     assert pde.isValid(), pde.getStatusString()
+
+
+@pytest.mark.parametrize("mode", ["Static", "Dynamic"])
+@pytest.mark.parametrize("change", ["rigid", "scale"])
+def test_pin_drags_follow_a_rigid_motion_and_a_change_of_scale(doc, mode, change):
+    """The same pin drag (static: back-substitution; dynamic: mass, damping and a spring) on a
+    Hermite patch, and on the patch moved rigidly or 100 times larger with the pull moved or scaled
+    alike: every frame's surface is the moved or scaled one. The dynamic drag's numbers are
+    relative to the surface's stiffness, measured at the grab, so its motion scales too."""
+    from pde_surfaces import _hermite_patch
+    from varsurf.app import drag, dynamic_drag
+
+    motion = FreeCAD.Placement(V(100, -40, 7), FreeCAD.Rotation(V(0.3, 1, 0.2), 63))
+    factor = 100.0 if change == "scale" else 1.0
+
+    def place(p):
+        return motion.multVec(p) if change == "rigid" else p * factor
+
+    def frames(prefix, mapped):
+        pde = _hermite_patch(doc, prefix, place=place if mapped else None)
+        pde.Tolerance = 1e-3 * (factor if mapped else 1.0)
+        pde.DragMode = mode
+        doc.recompute()
+        start = pde.Shape.Faces[0].Surface.value(0.5, 0.5)
+        c = varsurf.make_constraint(pde, "Point", uv=(0.5, 0.5), origin=start)
+        doc.recompute()
+        session = (dynamic_drag.DynamicDrag if mode == "Dynamic" else drag.PointDrag)(pde, c)
+        pull = V(2, -3, 12)
+        if mapped:
+            pull = motion.Rotation.multVec(pull) if change == "rigid" else pull * factor
+        out = []
+        for k in range(1, 6):
+            target = start + pull * (k / 5)
+            surface = session.move(target, steps=1) if mode == "Dynamic" else session.move(target)
+            out.append([V(*surface.evaluate(i / 4, j / 4)) for i in range(5) for j in range(5)])
+        session.cancel()
+        return out
+
+    plain, mapped = frames("Plain", False), frames("Mapped", True)
+    worst = max((place(p) - q).Length for a, b in zip(plain, mapped) for p, q in zip(a, b))
+    assert worst < 1e-6 * 100 * factor, f"{worst:.3g} mm"
+    moved = max((p - q).Length for p, q in zip(plain[0], plain[-1]))
+    assert moved > 1.0  # the drag did move the surface
