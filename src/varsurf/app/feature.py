@@ -111,6 +111,13 @@ class _TracebackHider:
 _hider = _TracebackHider()
 
 
+def last_outcome(obj, compute):
+    """The outcome of obj's last recompute in this session (its proxy keeps it for drags and
+    analyses), else compute(obj): a reopened file's proxy has none until it recomputes."""
+    outcome = getattr(getattr(obj, "Proxy", None), "outcome", None)
+    return outcome if outcome is not None else compute(obj)
+
+
 def failure(obj, error) -> RecomputeError:
     """The exception an execute() raises for ``error``: FreeCAD marks ``obj`` in error and reports
     one line, 'VarSurf: <Label>: <error>'; bugs (INTERNAL_ERRORS) keep their traceback."""

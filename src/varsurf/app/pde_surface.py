@@ -18,7 +18,7 @@ import dataclasses
 import Part
 
 from varsurf.app.constraint import spec_of
-from varsurf.app.feature import FeatureProxy, mark_failed, value
+from varsurf.app.feature import FeatureProxy, last_outcome, mark_failed, value
 from varsurf.app.view_link import attach as attach_view_provider
 from varsurf.solve import errors, settings, shapes
 from varsurf.solve import pde_surface as pde
@@ -282,10 +282,8 @@ class PdeSurfaceFeature(FeatureProxy):
 
 
 def outcome_of(obj):
-    """The PdeSurfaceOutcome of a PdeSurface's last recompute (solved again if this session has
-    none)."""
-    outcome = getattr(getattr(obj, "Proxy", None), "outcome", None)
-    return outcome if outcome is not None else compute(obj)
+    """The PdeSurfaceOutcome of a PdeSurface's last recompute (solved again if this session has none)."""
+    return last_outcome(obj, compute)
 
 
 def is_pde_surface(obj) -> bool:

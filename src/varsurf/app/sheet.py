@@ -16,7 +16,7 @@ import Part
 
 from varsurf.app import preferences, progress, projection
 from varsurf.app.constraint import spec_of
-from varsurf.app.feature import FeatureProxy, failure, value
+from varsurf.app.feature import FeatureProxy, failure, last_outcome, value
 from varsurf.solve import errors, settings
 from varsurf.solve.sheet import solve_sheet_from_curves, solve_sheet_on_face
 
@@ -318,8 +318,7 @@ def curve_keys(obj):
 
 def outcome_of(obj):
     """The SheetOutcome of a Sheet's last recompute (solved again if this session has none)."""
-    outcome = getattr(getattr(obj, "Proxy", None), "outcome", None)
-    return outcome if outcome is not None else compute(obj)
+    return last_outcome(obj, compute)
 
 
 class SheetFeature(FeatureProxy):
