@@ -149,7 +149,15 @@ void bind_pde(py::module_& m) {
       .def("kinetic_energy", &DynamicSheet::kinetic_energy)
       .def("potential_energy", &DynamicSheet::potential_energy)
       .def("equilibrium", &DynamicSheet::equilibrium,
-           "Where the motion settles (A P = b with the springs).");
+           "Where the motion settles (A P = b with the springs).")
+      .def_property_readonly("masses", &DynamicSheet::masses);
+
+  py::class_<PinStiffness>(m, "PinStiffness", "A sheet's stiffness where it is pinned.")
+      .def_readonly("stiffness", &PinStiffness::stiffness)
+      .def_readonly("shape_mass", &PinStiffness::shape_mass);
+  m.def("pin_stiffness", &pin_stiffness, "problem"_a, "u"_a, "v"_a,
+        "The force per unit move a pull along the normal at (u, v) meets, and the mass per unit "
+        "density of the shape the sheet deflects in (the problem's start poles the shape).");
 
   py::class_<MultigridOptions>(m, "MultigridOptions", "Smoothing sweeps, coarsest size, tolerance.")
       .def(py::init<>())

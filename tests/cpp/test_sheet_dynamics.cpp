@@ -3,9 +3,14 @@
 // monotonically once released, bad parameters are refused.
 #include <gtest/gtest.h>
 
+#include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
+#include <utility>
+#include <vector>
 
 #include "varsurf/core/errors.hpp"
+#include "varsurf/core/pde_energy.hpp"
 #include "varsurf/core/sheet_dynamics.hpp"
 #include "varsurf/core/sheet_solver.hpp"
 
@@ -141,4 +146,55 @@ TEST(SheetDynamics, DampingPaintedZeroIsNoDamping) {
   painted.damping.painted.back().a = 0.0;
   painted.damping.painted.back().region = Region(0.6, 0.4, 0.0, 1.0);
   EXPECT_THROW(DynamicSheet(pb, painted), InvalidInput);
+}
+
+// The pin's stiffness against the compliance of the free poles computed directly: a unit force
+// at (u, v) moves the point by c = N^T A_FF^-1 N (each coordinate alike), so the stiffness is
+// 1 / c, and the shape it deflects in is A_FF^-1 N / c, weighed by each pole's share of the
+// domain (the integral of its basis function: knot differences over degree + 1 on uniform knots).
+TEST(SheetDynamics, PinStiffnessIsTheInverseCompliance) {
+  const SheetProblem pb = held_sheet(8);
+  for (const auto& [u, v] : {std::pair{0.5, 0.5}, {0.3, 0.62}}) {
+    const PinStiffness got = pin_stiffness(pb, u, v);
+    const Eigen::SparseMatrix<double> a = assemble_pde(pb.space, *pb.pde);
+    std::vector<int> free;
+    std::vector<bool> fixed(static_cast<size_t>(pb.space.size()), false);
+    for (int k : pb.fixed_poles) fixed[static_cast<size_t>(k)] = true;
+    for (int k = 0; k < pb.space.size(); ++k)
+      if (!fixed[static_cast<size_t>(k)]) free.push_back(k);
+    const int n = static_cast<int>(free.size());
+    Eigen::MatrixXd aff(n, n);
+    const Eigen::MatrixXd dense(a);
+    Eigen::VectorXd basis(n);
+    const BasisSample s = pb.space.basis(u, v, 0);
+    Eigen::VectorXd all = Eigen::VectorXd::Zero(pb.space.size());
+    for (size_t k = 0; k < s.index.size(); ++k)
+      all(s.index[k]) = s.values(0, static_cast<Eigen::Index>(k));
+    for (int i = 0; i < n; ++i) {
+      basis(i) = all(free[static_cast<size_t>(i)]);
+      for (int j = 0; j < n; ++j)
+        aff(i, j) = dense(free[static_cast<size_t>(i)], free[static_cast<size_t>(j)]);
+    }
+    const Eigen::VectorXd response = aff.ldlt().solve(basis);
+    const double c = basis.dot(response);
+    EXPECT_NEAR(got.stiffness, 1.0 / c, 1e-9 / c) << u << " " << v;
+    auto share = [](const std::vector<double>& t, int i) { return (t[i + 4] - t[i]) / 4.0; };
+    double shape = 0.0;
+    for (int i = 0; i < n; ++i) {
+      const int pole = free[static_cast<size_t>(i)];
+      const int iu = pole / pb.space.nv(), iv = pole % pb.space.nv();
+      ASSERT_EQ(pb.space.index(iu, iv), pole);
+      shape +=
+          share(pb.space.knots_u, iu) * share(pb.space.knots_v, iv) * std::pow(response(i) / c, 2);
+    }
+    EXPECT_NEAR(got.shape_mass, shape, 1e-9 * shape) << u << " " << v;
+  }
+  // Held where the pin is (every pole its basis reaches fixed): no give there.
+  SheetProblem held = pb;
+  const BasisSample s = pb.space.basis(0.5, 0.5, 0);
+  for (int k : s.index) held.fixed_poles.push_back(k);
+  std::sort(held.fixed_poles.begin(), held.fixed_poles.end());
+  held.fixed_poles.erase(std::unique(held.fixed_poles.begin(), held.fixed_poles.end()),
+                         held.fixed_poles.end());
+  EXPECT_THROW(pin_stiffness(held, 0.5, 0.5), SolveFailure);
 }

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: LGPL-2.1-or-later
 #include "varsurf/core/sheet_dynamics.hpp"
 
+#include <Eigen/Geometry>
+
 #include <Eigen/SparseCholesky>
 #include <cmath>
 #include <string>
@@ -260,6 +262,10 @@ double DynamicSheet::potential_energy() const {
          (m.forces().transpose() * m.p).trace() + springs;
 }
 
+const Eigen::VectorXd& DynamicSheet::masses() const {
+  return impl_->mass;
+}
+
 Eigen::MatrixX3d DynamicSheet::equilibrium() const {
   const Impl& m = *impl_;
   const Sparse a = m.stiffness();
@@ -281,6 +287,35 @@ Eigen::MatrixX3d DynamicSheet::equilibrium() const {
   for (size_t k = 0; k < m.poles_free.free.size(); ++k)
     out.row(m.poles_free.free[k]) = pf.row(static_cast<Eigen::Index>(k));
   return out;
+}
+
+PinStiffness pin_stiffness(const SheetProblem& problem, double u, double v) {
+  DynamicsParameters unit;  // unit mass density: the lumped masses are the poles' shares
+  SheetProblem at_rest = problem;  // the start is the rest shape: only the spring moves it
+  at_rest.rest_poles = problem.initial_poles;
+  DynamicSheet probe(at_rest, unit);
+  const Eigen::MatrixXd d = evaluate_surface(problem.space, problem.initial_poles, u, v, 1);
+  const Eigen::Vector3d at = d.row(0).transpose();
+  const Eigen::Vector3d du = d.row(1).transpose(), dv = d.row(2).transpose();
+  Eigen::Vector3d normal = du.cross(dv);
+  if (!(normal.norm() > 0.0) || !normal.allFinite())
+    throw SolveFailure("the surface has no normal at the pin");
+  normal.normalize();
+  probe.set_springs({{u, v, at + normal, 1.0}});
+  const Eigen::MatrixX3d settled = probe.equilibrium();
+  const Eigen::Vector3d moved =
+      evaluate_surface(problem.space, settled, u, v, 0).row(0).transpose();
+  const double delta = (moved - at).dot(normal);
+  // Under a unit spring pulled one unit away, the pin moves delta: the sheet's own stiffness k
+  // balances the spring's, k delta = 1 - delta.
+  if (!(delta > 0.0 && delta < 1.0))
+    throw SolveFailure(
+        "the surface does not give at the pin (its boundary conditions hold it there)");
+  const Eigen::VectorXd& share = probe.masses();
+  double shape = 0.0;
+  for (Eigen::Index k = 0; k < settled.rows(); ++k)
+    shape += share(k) * ((settled.row(k) - problem.initial_poles.row(k)) / delta).squaredNorm();
+  return {(1.0 - delta) / delta, std::max(shape, 1e-300)};
 }
 
 }  // namespace varsurf

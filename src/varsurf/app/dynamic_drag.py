@@ -23,7 +23,7 @@ from varsurf.app import drag
 from varsurf.app import pde_surface as pde_feature
 from varsurf.solve import pde_surface as pde_solve
 from varsurf.solve.errors import SheetError
-from varsurf.solve.native import build, native
+from varsurf.solve.native import native
 from varsurf.solve.shapes import shape_from_binary, single_face
 
 #: Seconds a full swing takes with Mass 1 and the pin held (the feel of the default).
@@ -37,18 +37,6 @@ TIME_STEP = 1.0 / 60.0
 #: Conditions a dynamic drag cannot carry: the core's dynamics hold a sheet by its fixed poles.
 _OTHER_TERMS = ("tangents", "normals", "plane_points", "line_points", "ribbons", "curves", "curvatures",
                 "point_curvatures", "attractors", "directors", "repellers", "shape_attractors")
-
-
-def pole_areas(space):
-    """Each pole's share of the (normalized) domain: the integral of its basis function (the
-    lumped mass the core gives it per unit density)."""
-    def shares(knots, degree):
-        span = knots[-1] - knots[0]
-        count = len(knots) - degree - 1
-        return [(knots[i + degree + 1] - knots[i]) / (degree + 1) / span for i in range(count)]
-
-    su, sv = shares(list(space.knots_u), space.degree_u), shares(list(space.knots_v), space.degree_v)
-    return [a * b for a in su for b in sv]
 
 
 class DynamicDrag(drag.WrittenOnRelease):
@@ -91,7 +79,9 @@ class DynamicDrag(drag.WrittenOnRelease):
             raise drag.DragError(f"{surface.Label} is not up to date with {constraint.Label}: recompute first")
         self.start_shape = surface.Shape.copy()
         try:
-            self.stiffness, shape_mass = self._measure(nat, problem, outcome.surface)
+            # The surface's own stiffness at the pin and the mass of the shape it deflects in.
+            pin = nat.pin_stiffness(problem, self.u, self.v)
+            self.stiffness, shape_mass = pin.stiffness, pin.shape_mass
             k = (1.0 + float(surface.Spring)) * self.stiffness  # the surface and the pin together
             omega = 2.0 * math.pi / PERIOD
             # Per unit of relative mass: the density that swings in PERIOD, and the damping
@@ -110,30 +100,6 @@ class DynamicDrag(drag.WrittenOnRelease):
         self.released = False
         self.moves = 0
         self.doc.openTransaction(drag.TRANSACTION)
-
-    def _measure(self, nat, problem, surface):
-        """The surface's stiffness at the pin (the force a unit pull along its normal takes) and
-        the mass of the shape it deflects in (per unit density), from its equilibrium under a unit
-        spring."""
-        probe = nat.DynamicSheet(problem, nat.DynamicsParameters())
-        rows = surface.derivatives(self.u, self.v, 1)
-        at = [float(x) for x in rows[0]]
-        du, dv = rows[1], rows[2]
-        normal = [du[1] * dv[2] - du[2] * dv[1], du[2] * dv[0] - du[0] * dv[2], du[0] * dv[1] - du[1] * dv[0]]
-        length = math.sqrt(sum(c * c for c in normal))
-        if not length > 0.0:
-            raise nat.InvalidInput("the surface has no normal at the pin")
-        normal = [c / length for c in normal]
-        probe.set_springs([nat.Spring(self.u, self.v, [a + n for a, n in zip(at, normal)], 1.0)])
-        settled = probe.equilibrium()
-        moved = build(nat.BSplineSurface, space=problem.space, poles=settled).evaluate(self.u, self.v)
-        delta = sum((float(m) - a) * n for m, a, n in zip(moved, at, normal))
-        if not 0.0 < delta < 1.0:
-            raise nat.SolveFailure("the surface does not give at the pin (its boundary conditions hold it there)")
-        start = surface.poles
-        shape = sum(w * sum(((float(p[c]) - float(q[c])) / delta) ** 2 for c in range(3))
-                    for w, p, q in zip(pole_areas(problem.space), settled, start))
-        return (1.0 - delta) / delta, max(shape, 1e-300)
 
     def _surface(self):
         return self.surface_of(self.dynamics.poles)

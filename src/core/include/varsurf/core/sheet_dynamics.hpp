@@ -51,6 +51,8 @@ class DynamicSheet {
   void step(int count = 1);
 
   const Eigen::MatrixX3d& poles() const;
+  // Each pole's lumped mass (its share of the mass density; fixed poles included).
+  const Eigen::VectorXd& masses() const;
   const Eigen::MatrixX3d& velocities() const;
   double kinetic_energy() const;    // 1/2 V^T M V
   double potential_energy() const;  // 1/2 P^T A P - b^T P with the springs' energy
@@ -62,5 +64,19 @@ class DynamicSheet {
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
+
+// How stiff a sheet is where it is pinned: the force per unit of displacement a pull along its
+// normal at (u, v) meets (the energy's response, measured by its equilibrium under a unit spring
+// there), and the mass per unit density of the shape it deflects in (the deflection normalized to
+// a unit move of the pin, weighted by each pole's lumped share of the domain). A dynamic drag sets
+// its mass, damping and spring from these, so the same relative numbers feel alike on any sheet.
+// The problem as DynamicSheet takes it, its start poles the shape and the rest shape (whatever
+// rest shape it has: the pin measures the response to its own pull); SolveFailure when the sheet
+// does not give at the pin (held there) or has no normal there.
+struct PinStiffness {
+  double stiffness = 0.0;
+  double shape_mass = 0.0;
+};
+PinStiffness pin_stiffness(const SheetProblem& problem, double u, double v);
 
 }  // namespace varsurf
