@@ -15,6 +15,7 @@ $VARSURF_GUI_OUT/pde_panel.json and quits.
 """
 
 import json
+import math
 import os
 import sys
 import time
@@ -97,12 +98,27 @@ def run(result):
     w["paintButton"].click()
     Gui.updateGui()
     result["painted"] = paint_rectangle(pde, (0.3, 0.3), (0.6, 0.7), os.path.join(OUT, "pde_paint.png"))
-    # A drag that starts off the surface (beyond its u = 1 edge) paints nothing: the view has it.
-    result["painted_off"] = paint_rectangle(pde, (1.6, 0.5), (0.5, 0.8), None)["regions"]
     result["painted_rows"] = w["regionTable"].rowCount()
+    # A loop drawn around (0.5, 0.45): the Loop shape, a circular drag.
+    w["paintShapeCombo"].setCurrentIndex(1)
+    circle = [(0.5 + 0.15 * math.cos(2 * math.pi * k / 40), 0.45 + 0.15 * math.sin(2 * math.pi * k / 40))
+              for k in range(40)]
+    drag_over(pde, circle, os.path.join(OUT, "pde_paint_loop.png"))
+    result["loops_label"] = w["loopsValue"].text()
+    result["loop_status"] = w["statusValue"].text()
+    loops = list(pde.PdeLoops)
+    points = [(loops[2 + 2 * i], loops[3 + 2 * i]) for i in range(int(loops[1]))] if loops else []
+    result["loop"] = [loops[:2], max((abs(math.hypot(u - 0.5, v - 0.45) - 0.15) for u, v in points), default=None),
+                      pde.isValid()]
+    # A drag that starts off the surface (beyond its u = 1 edge) paints nothing: the view has it;
+    # and painting goes on after it.
+    w["paintShapeCombo"].setCurrentIndex(0)
+    result["painted_off"] = paint_rectangle(pde, (1.6, 0.5), (0.5, 0.8), None)["regions"]
+    result["painted_after_off"] = paint_rectangle(pde, (0.1, 0.1), (0.2, 0.2), None)["regions"]
     press_task_button(QtGui.QDialogButtonBox.Ok)
     Gui.updateGui()
-    result["paint_ok"] = [[round(float(x), 2) for x in pde.PdeRegions], pde.isValid(), doc.UndoNames[:1],
+    result["paint_ok"] = [[round(float(x), 2) for x in pde.PdeRegions], len(pde.PdeLoops), pde.isValid(),
+                          doc.UndoNames[:1],
                           report_view_text()[len(result["report_after_cancel"]):]]
 
     # A Point's pin dragged up 12 mm in the view.
@@ -194,9 +210,10 @@ def run(result):
     result["report_at_end"] = report_view_text()
 
 
-def paint_rectangle(pde, corner0, corner1, shot):
-    """Drag from the surface point at (u, v) corner0 to the one at corner1 with the left button, as
-    the pointer does (the GL widget's Qt events); a screenshot before the release."""
+def drag_over(pde, path, shot):
+    """Press the left button on the surface point at (u, v) path[0], move through the others and
+    release at the last, as the pointer does (the GL widget's Qt events); a screenshot before the
+    release. Points beyond u = 1 lie on the surface's tangent plane past its edge."""
     view = Gui.ActiveDocument.ActiveView
     gl = next(w for w in Gui.getMainWindow().findChildren(QtGui.QWidget)
               if w.metaObject().className() == "QOpenGLWidget" and w.isVisible())
@@ -204,7 +221,7 @@ def paint_rectangle(pde, corner0, corner1, shot):
     face = pde.Shape.Faces[0]
 
     def at(uv):  # Coin's pixels (from the bottom left) to the widget's (from the top left)
-        u, v = uv  # beyond 1: on the surface's tangent plane past its edge
+        u, v = uv
         beyond = face.Surface.getDN(1.0, v, 1, 0) * (u - min(u, 1.0))
         x, y = view.getPointOnScreen(face.Surface.value(min(u, 1.0), v) + beyond)
         return QtCore.QPoint(round(x * gl.width() / width), round((height - 1 - y) * gl.height() / height))
@@ -216,17 +233,22 @@ def paint_rectangle(pde, corner0, corner1, shot):
         Gui.updateGui()
 
     camera = view.getCameraOrientation().Q, view.getCameraNode().position.getValue().getValue()
-    send(QtCore.QEvent.MouseButtonPress, at(corner0), QtCore.Qt.LeftButton)
-    for k in range(1, 11):
-        s = k / 10
-        send(QtCore.QEvent.MouseMove, at((corner0[0] + s * (corner1[0] - corner0[0]),
-                                          corner0[1] + s * (corner1[1] - corner0[1]))), QtCore.Qt.LeftButton)
+    send(QtCore.QEvent.MouseButtonPress, at(path[0]), QtCore.Qt.LeftButton)
+    for uv in path[1:]:
+        send(QtCore.QEvent.MouseMove, at(uv), QtCore.Qt.LeftButton)
     if shot:
         window_shot(shot)
-    send(QtCore.QEvent.MouseButtonRelease, at(corner1), QtCore.Qt.NoButton)
+    send(QtCore.QEvent.MouseButtonRelease, at(path[-1]), QtCore.Qt.NoButton)
     after = view.getCameraOrientation().Q, view.getCameraNode().position.getValue().getValue()
     turned = max(abs(a - b) for a, b in zip(camera[0] + camera[1], after[0] + after[1]))
     return {"shot": shot, "view_moved": turned, "regions": [round(float(x), 3) for x in pde.PdeRegions]}
+
+
+def paint_rectangle(pde, corner0, corner1, shot):
+    """A drag from the surface point at (u, v) corner0 to the one at corner1."""
+    path = [(corner0[0] + k / 10 * (corner1[0] - corner0[0]), corner0[1] + k / 10 * (corner1[1] - corner0[1]))
+            for k in range(11)]
+    return drag_over(pde, path, shot)
 
 
 def main():

@@ -33,7 +33,8 @@ def test_the_panel_edits_a_and_the_regions_in_one_undoable_step(panel):
 def test_a_rectangle_dragged_over_the_surface_paints_a(panel):
     """Paint in view: a left-button drag over the surface from (u, v) = (0.3, 0.3) to (0.6, 0.7)
     adds that rectangle with the Paint a value (6) and previews it, the view does not turn, and OK
-    keeps it in one undoable step; a drag that starts off the surface paints nothing."""
+    keeps it in one undoable step; a drag that starts off the surface paints nothing, and the next
+    one on the surface paints again."""
     painted = panel["painted"]
     assert painted["view_moved"] < 1e-9
     a, u0, u1, v0, v1 = painted["regions"][5:]
@@ -41,10 +42,21 @@ def test_a_rectangle_dragged_over_the_surface_paints_a(panel):
     assert max(abs(u0 - 0.3), abs(u1 - 0.6), abs(v0 - 0.3), abs(v1 - 0.7)) < 0.01, painted["regions"]
     assert panel["painted_rows"] == 2
     assert panel["painted_off"] == painted["regions"]  # a drag from off the surface paints nothing
-    regions, valid, undo, report = panel["paint_ok"]
-    assert len(regions) == 10 and valid and undo == ["Edit VarSurf PDE surface"]
+    after = panel["painted_after_off"]  # and the next drag on it paints
+    assert len(after) == 15 and max(abs(a - b) for a, b in zip(after[11:], (0.1, 0.2, 0.1, 0.2))) < 0.01, after
+    regions, loop_numbers, valid, undo, report = panel["paint_ok"]
+    assert len(regions) == 15 and loop_numbers > 40 and valid and undo == ["Edit VarSurf PDE surface"]
     assert "Traceback" not in report, report
     assert Path(painted["shot"]).stat().st_size > 10000
+
+
+def test_a_loop_drawn_over_the_surface_paints_a_inside_it(panel):
+    """The Loop shape: a circular drag of radius 0.15 in (u, v) paints a inside the path it drew
+    (PdeLoops: a 6, then its points, every one within 0.01 of the circle), previewed at once."""
+    (a, count), off, valid = panel["loop"]
+    assert a == 6.0 and count >= 20, panel["loop"]
+    assert off < 0.01 and valid
+    assert panel["loops_label"] == "1 loops"
 
 
 def test_a_pin_on_the_surface_drags_by_back_substitution(panel):

@@ -759,3 +759,50 @@ def test_pin_drags_follow_a_rigid_motion_and_a_change_of_scale(doc, mode, change
     assert worst < 1e-6 * 100 * factor, f"{worst:.3g} mm"
     moved = max((p - q).Length for p, q in zip(plain[0], plain[-1]))
     assert moved > 1.0  # the drag did move the surface
+
+
+def test_a_painted_loop_paints_a_like_the_rectangle_it_traces(doc):
+    """PdeLoops: a closed (u, v) polygon painting a. The loop around the rectangle gives the
+    rectangle's surface; a round loop paints a surface of its own."""
+    from pde_surfaces import _hermite_patch
+
+    surfaces = {}
+    for name, regions, loops in (("Plain", (), ()), ("Rectangle", [(6.0, 0.3, 0.7, 0.2, 0.6)], ()),
+                                 ("Traced", (), [(6.0, ((0.3, 0.2), (0.7, 0.2), (0.7, 0.6), (0.3, 0.6)))]),
+                                 ("Round", (), [(6.0, tuple((0.5 + 0.2 * math.cos(2 * math.pi * k / 24),
+                                                             0.4 + 0.2 * math.sin(2 * math.pi * k / 24))
+                                                            for k in range(24)))])):
+        pde = _hermite_patch(doc, name)
+        pde.PdeRegions = [x for r in regions for x in r]
+        pde.PdeLoops = varsurf.app.pde_surface.flat_loops(loops)
+        doc.recompute()
+        assert pde.isValid(), pde.getStatusString()
+        surfaces[name] = pde.Shape.Faces[0].Surface
+
+    def gap(a, b, uvs):
+        return max((surfaces[a].value(u, v) - surfaces[b].value(u, v)).Length for u, v in uvs)
+
+    grid = [(i / 10, j / 10) for i in range(11) for j in range(11)]
+    assert gap("Rectangle", "Traced", grid) < 1e-9
+    assert gap("Round", "Plain", grid) > 0.05  # painted: the surface changes
+    assert gap("Round", "Traced", grid) > 0.05  # and not as the rectangle does
+
+
+@pytest.mark.parametrize("flat, words", [
+    ([6.0, 4, 0.2, 0.2, 0.8, 0.8, 0.8, 0.2, 0.2, 0.8], "PdeLoops: loop 1: the region's loop crosses itself"),
+    ([0.0, 3, 0.2, 0.2, 0.8, 0.2, 0.5, 0.8], "PdeLoops: loop 1 paints a = 0.0"),
+    ([6.0, 3, 0.2, 0.2, 1.8, 0.2, 0.5, 0.8], "PdeLoops: loop 1 leaves the domain"),
+    ([6.0, 5, 0.2, 0.2, 0.8, 0.2], "PdeLoops does not read as loops at loop 1"),
+])
+def test_bad_loops_name_the_loop(doc, flat, words):
+    from pde_surfaces import _hermite_patch
+
+    pde = _hermite_patch(doc, "Looped")
+    doc.recompute()
+    pde.PdeLoops = flat
+    doc.recompute()
+    assert not pde.isValid()
+    assert words in pde.getStatusString(), pde.getStatusString()
+    pde.PdeLoops = []
+    doc.recompute()
+    assert pde.isValid(), pde.getStatusString()

@@ -46,6 +46,7 @@ _PROPERTIES = [
     ("Constraints", "App::PropertyLinkList", "Sculpting", "Constraint objects sculpting the surface (Du & Qin's tools: points, normals, tangents, frozen regions, attractors...), placed on the surface the boundary conditions alone give", False),
     ("PdeA", "App::PropertyFloatConstraint", "PDE", "The coefficient a of (d2/du2 + a^2 d2/dv2)^2 P = 0 where nothing is painted: large a shortens the length scale of changes along u (1/a of that along v)", False),
     ("PdeRegions", "App::PropertyFloatList", "PDE", "a painted on rectangles, five numbers each: a, u0, u1, v0, v1 (0..1; later regions over earlier ones)", False),
+    ("PdeLoops", "App::PropertyFloatList", "PDE", "a painted inside closed loops of (u, v), over the rectangles: for each loop its a, its point count n, then n pairs u, v (0..1; later loops over earlier ones)", False),
     ("PdeBlend", "App::PropertyFloat", "PDE", "Width of the band over which a blends across a painted region's border, a fraction of the domain (0: sharp; at most 0.5)", False),
     ("DragMode", "App::PropertyEnumeration", "Dynamics", "How a Point's pin drags the surface. Static: the surface follows the pin at once (a solve per move). Dynamic (Du & Qin's dynamic sculpting): the pin pulls it by a spring; it moves with mass and damping and settles when released", False),
     ("Mass", "App::PropertyFloatConstraint", "Dynamics", "Dynamic drag: the surface's mass, relative (1: a full swing takes 0.3 s with the pin held; 4: twice as long)", False),
@@ -180,6 +181,25 @@ def _fives(flat):
     return tuple(tuple(flat[k:k + 5]) for k in range(0, len(flat), 5))
 
 
+def loops_of(flat):
+    """PdeLoops' numbers as (a, ((u, v), ...)) loops."""
+    out, k = [], 0
+    while k < len(flat):
+        if k + 2 > len(flat) or flat[k + 1] != int(flat[k + 1]) or flat[k + 1] < 0 \
+                or k + 2 + 2 * int(flat[k + 1]) > len(flat):
+            raise errors.SheetError(f"PdeLoops does not read as loops at loop {len(out) + 1}: each is its a, its "
+                                    "point count n, then n pairs u, v; paint the loops again")
+        n = int(flat[k + 1])
+        out.append((flat[k], tuple((flat[k + 2 + 2 * i], flat[k + 3 + 2 * i]) for i in range(n))))
+        k += 2 + 2 * n
+    return tuple(out)
+
+
+def flat_loops(loops):
+    """(a, ((u, v), ...)) loops as PdeLoops' numbers."""
+    return [float(x) for a, points in loops for x in [a, len(points)] + [c for point in points for c in point]]
+
+
 def _sixes(flat):
     if len(flat) % 6:
         raise errors.SheetError(f"MaterialRegions needs six numbers a region (mass, damping, u0, u1, v0, v1); got "
@@ -190,6 +210,7 @@ def _sixes(flat):
 def settings_of(obj) -> pde.PdeSurfaceSettings:
     values = pde.PdeSurfaceSettings(
         a=float(obj.PdeA), regions=_fives([float(x) for x in obj.PdeRegions]), blend=float(obj.PdeBlend),
+        loops=loops_of([float(x) for x in getattr(obj, "PdeLoops", [])]),
         magnitude0=float(obj.Magnitude0), magnitude1=float(obj.Magnitude1), degree=int(obj.Degree),
         min_spans=int(obj.MinSpans), max_spans=int(obj.MaxSpans), tolerance=float(value(obj, "Tolerance")),
         materials=_sixes([float(x) for x in getattr(obj, "MaterialRegions", [])]))
@@ -292,11 +313,12 @@ def is_pde_surface(obj) -> bool:
 
 def make_pde_surface(u0, u1, derivative0=None, derivative1=None, v0=None, v1=None, u_curves=(), v_curves=(),
                      face0=None, face1=None, a: float = 1.0, regions=(), blend: float = 0.0, magnitude0: float = 1.0,
-                     magnitude1: float = 1.0, tolerance=None, doc=None, name: str = "PdeSurface"):
+                     magnitude1: float = 1.0, tolerance=None, doc=None, name: str = "PdeSurface", loops=()):
     """Add a PdeSurface (computed at the next recompute). Curves are (object, "EdgeN"); face0 and
     face1 (object, "FaceN") give the tangents across U0 and U1 from the faces they bound (G1);
     u_curves and v_curves are ((object, "EdgeN"), parameter) pairs (Gordon networks); regions are
-    (a, u0, u1, v0, v1) rectangles (0..1) painting the coefficient."""
+    (a, u0, u1, v0, v1) rectangles (0..1) painting the coefficient, loops (a, ((u, v), ...)) closed
+    polygons painting it over them."""
     if doc is None:
         doc = u0[0].Document
     obj = doc.addObject("Part::FeaturePython", name)
@@ -311,6 +333,7 @@ def make_pde_surface(u0, u1, derivative0=None, derivative1=None, v0=None, v1=Non
     obj.VCurveParameters = [float(at) for _, at in v_curves]
     obj.PdeA = float(a)
     obj.PdeRegions = [float(x) for region in regions for x in region]
+    obj.PdeLoops = flat_loops(loops)
     obj.PdeBlend = float(blend)
     obj.Magnitude0, obj.Magnitude1 = float(magnitude0), float(magnitude1)
     if tolerance is not None:

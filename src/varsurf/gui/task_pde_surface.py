@@ -6,17 +6,20 @@ from __future__ import annotations
 
 from PySide import QtGui
 
+from varsurf.app import pde_surface as pde_feature
 from varsurf.gui import table_fit
 from varsurf.gui.region_painter import RegionPainter
 from varsurf.gui.region_table import RegionTable
-from varsurf.gui.task_base import PropertyTaskPanel
+from varsurf.gui.task_base import PropertyTaskPanel, translate
+from varsurf.solve import pde_surface as pde_solve
+from varsurf.solve.errors import SheetError
 
 
 class TaskPanelPdeSurface(PropertyTaskPanel):
     UI = "pde_surface.ui"
     ICON = "VarSurf_PdeSurface.svg"
     TRANSACTION = "Edit VarSurf PDE surface"
-    EDITABLE = ("PdeA", "PdeBlend", "PdeRegions", "Magnitude0", "Magnitude1", "Tolerance", "MinSpans",
+    EDITABLE = ("PdeA", "PdeBlend", "PdeRegions", "PdeLoops", "Magnitude0", "Magnitude1", "Tolerance", "MinSpans",
                 "MaxSpans", "DragMode", "Mass", "Damping", "Spring", "MaterialRegions")
     #: The dynamic drag's numbers: property, spin box.
     DYNAMICS = (("Mass", "massSpin"), ("Damping", "dampingSpin"), ("Spring", "springSpin"))
@@ -46,6 +49,12 @@ class TaskPanelPdeSurface(PropertyTaskPanel):
         self.paint_value = self.child(QtGui.QDoubleSpinBox, "paintSpin")
         self.paint_button = self.child(QtGui.QPushButton, "paintButton")
         self.paint_button.toggled.connect(self.paint)
+        self.paint_shape = self.child(QtGui.QComboBox, "paintShapeCombo")
+        self.paint_shape.addItems([translate("VarSurf", "Rectangle"), translate("VarSurf", "Loop")])
+        self.paint_shape.currentIndexChanged.connect(self._shape_changed)
+        self.loops_label = self.child(QtGui.QLabel, "loopsValue")
+        self.child(QtGui.QPushButton, "removeLoopButton").clicked.connect(self.remove_loop)
+        self.loops = []
         self.painter = None
         for table, add, remove in ((self.regions, "addRegionButton", "removeRegionButton"),
                                    (self.materials, "addMaterialButton", "removeMaterialButton")):
@@ -82,26 +91,59 @@ class TaskPanelPdeSurface(PropertyTaskPanel):
         self.regions.load(obj)
         self.materials.load(obj)
         self.paint_value.setValue(2.0 * float(obj.PdeA))
+        try:
+            self.loops = list(pde_feature.loops_of([float(x) for x in obj.PdeLoops]))
+        except SheetError:
+            self.loops = []  # unreadable: the object says so; painting starts the list again
+        self._show_loops()
 
     def paint(self, on):
-        """Paint in view: rectangles dragged over the surface are added to the table with the
-        Paint a value and previewed at once; the painted ones are outlined while painting."""
+        """Paint in view: a rectangle dragged over the surface (or a loop drawn on it) is added
+        with the Paint a value and previewed at once; the painted ones are outlined meanwhile."""
         if on and self.painter is None:
-            self.painter = RegionPainter(self.obj, self.painted)
-            self.painter.show(self._painted_rects())
+            self.painter = RegionPainter(self.obj, self.painted, self.painted_loop)
+            self._shape_changed()
+            self._outline()
         elif not on and self.painter is not None:
             self.painter.stop()
             self.painter = None
 
-    def _painted_rects(self):
-        flat = [float(x) for x in self.obj.PdeRegions]
-        return [tuple(flat[k + 1:k + 5]) for k in range(0, len(flat) - len(flat) % 5, 5)]
+    def _shape_changed(self, *_):
+        if self.painter is not None:
+            self.painter.loop = self.paint_shape.currentIndex() == 1
+
+    def _outline(self):
+        if self.painter is not None:
+            numbers = self.regions.numbers() or []
+            rects = [tuple(numbers[k + 1:k + 5]) for k in range(0, len(numbers) - len(numbers) % 5, 5)]
+            self.painter.show(rects, [points for _a, points in self.loops])
+
+    def _show_loops(self):
+        self.loops_label.setText(translate("VarSurf", "{} loops").format(len(self.loops)))
 
     def painted(self, u0, u1, v0, v1):
         self.regions.append([float(self.paint_value.value())] + [round(x, 4) for x in (u0, u1, v0, v1)])
         self.update()
-        if self.painter is not None:
-            self.painter.show(self._painted_rects())
+        self._outline()
+
+    def painted_loop(self, points):
+        """A loop drawn in the view: painted if it encloses an area without crossing itself."""
+        loop = (float(self.paint_value.value()), tuple((round(u, 4), round(v, 4)) for u, v in points))
+        try:
+            pde_solve.check(pde_solve.PdeSurfaceSettings(loops=(loop,)))
+        except SheetError as error:
+            self.status.setText(str(error))
+            return
+        self.loops.append(loop)
+        self._show_loops()
+        self.update()
+        self._outline()
+
+    def remove_loop(self):
+        if self.loops:
+            self.loops.pop()
+            self._show_loops()
+            self._outline()
 
     def accept(self):
         self.paint(False)
@@ -133,6 +175,9 @@ class TaskPanelPdeSurface(PropertyTaskPanel):
                 setattr(obj, name, spin.value())
         self.regions.store(obj)
         self.materials.store(obj)
+        flat = pde_feature.flat_loops(self.loops)
+        if flat != [float(x) for x in obj.PdeLoops]:
+            obj.PdeLoops = flat
 
     def show_results(self):
         obj = self.obj

@@ -31,6 +31,8 @@ ROLES = ("u0", "u1", "d0", "d1", "v0", "v1")
 class PdeSurfaceSettings:
     a: float = 1.0
     regions: Sequence[Tuple[float, float, float, float, float]] = ()  # (a, u0, u1, v0, v1), 0..1
+    # a painted inside closed (u, v) polygons, over the rectangles: (a, ((u, v), ...)), 0..1.
+    loops: Sequence[Tuple[float, Sequence[Tuple[float, float]]]] = ()
     blend: float = 0.0
     magnitude0: float = 1.0
     magnitude1: float = 1.0
@@ -92,6 +94,10 @@ def _named(message: str, labels: Dict[str, str]) -> str:
     return message
 
 
+def _loop_paint(nat, a, points):
+    return nat.PaintedCoefficient(nat.Region(loop=[(float(u), float(v)) for u, v in points]), float(a))
+
+
 def boundary(nat, settings: PdeSurfaceSettings, curves: Dict[str, object],
              u_curves: Sequence[Tuple[float, object]] = (), v_curves: Sequence[Tuple[float, object]] = ()):
     """The native PdeBoundary: curves by role (native BSplineCurves, None where not given)."""
@@ -104,6 +110,7 @@ def boundary(nat, settings: PdeSurfaceSettings, curves: Dict[str, object],
     b.v_curves = [nat.IsoCurve(float(at), c) for at, c in v_curves]
     unit = nat.SplineSpace.uniform(1, 1, 1, 1)
     painted = [nat.PaintedCoefficient(nat.Region(u0, u1, v0, v1), float(a)) for a, u0, u1, v0, v1 in settings.regions]
+    painted += [_loop_paint(nat, a, points) for a, points in settings.loops]
     b.a = nat.PdeCoefficient(a=float(settings.a), painted=painted, blend=float(settings.blend))
     b.a.validate(unit)
     return b
@@ -148,7 +155,8 @@ def solve(settings: PdeSurfaceSettings, curves: Dict[str, object], labels: Dict[
     try:
         b = boundary(nat, settings, curves, u_curves, v_curves)
     except nat.InvalidInput as error:
-        raise SheetError(advised(f"PDE coefficient: {error}", "check PdeA, PdeRegions and PdeBlend")) from error
+        raise SheetError(advised(f"PDE coefficient: {error}",
+                                 "check PdeA, PdeRegions, PdeLoops and PdeBlend")) from error
     measured = [(labels.get(r, r), curves[r]) for r in ("u0", "u1", "v0", "v1") if curves.get(r) is not None]
     measured += [(labels.get(f"u-curve {k + 1}", f"u-curve {k + 1}"), c) for k, (_, c) in enumerate(u_curves)]
     measured += [(labels.get(f"v-curve {k + 1}", f"v-curve {k + 1}"), c) for k, (_, c) in enumerate(v_curves)]
@@ -217,6 +225,16 @@ def check(settings: PdeSurfaceSettings) -> None:
                              "and 0 <= v0 < v1 <= 1")
     if not (0.0 <= settings.blend <= 0.5):
         raise SheetError(f"PdeBlend must be in [0, 0.5] (got {settings.blend}): 0 for a sharp border")
+    nat = native() if settings.loops else None
+    for k, (a, points) in enumerate(settings.loops):
+        if not (0.0 < float(a) < float("inf")):
+            raise SheetError(f"PdeLoops: loop {k + 1} paints a = {a}; give it a number above 0")
+        if not all(0.0 <= float(x) <= 1.0 for point in points for x in point):
+            raise SheetError(f"PdeLoops: loop {k + 1} leaves the domain; give u and v from 0 to 1")
+        try:  # the core's check: at least three points enclosing an area, not crossing itself
+            nat.PdeCoefficient(painted=[_loop_paint(nat, a, points)]).validate(nat.SplineSpace.uniform(1, 1, 1, 1))
+        except nat.InvalidInput as error:
+            raise SheetError(f"PdeLoops: loop {k + 1}: {str(error).split(': ', 1)[-1]}; draw it again") from error
     for k, region in enumerate(settings.materials):
         mass, damping, u0, u1, v0, v1 = (float(x) for x in region)
         if not (0.0 < mass < float("inf")):
