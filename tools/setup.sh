@@ -5,7 +5,7 @@ set -euo pipefail
 
 PACKAGES=(
   build-essential cmake pkg-config dpkg-dev
-  libeigen3-dev libsuitesparse-dev libopenblas0-pthread libblas-dev liblapack-dev
+  libeigen3-dev libsuitesparse-dev libopenblas0-pthread libblas-dev liblapack-dev libosd-dev
   libocct-foundation-dev libocct-modeling-data-dev libocct-modeling-algorithms-dev
   libocct-data-exchange-dev libocct-ocaf-dev libocct-visualization-dev
   pybind11-dev python3-pybind11 python3-dev python3-numpy python3-pytest python3-pytest-xdist
