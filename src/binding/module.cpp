@@ -17,4 +17,5 @@ PYBIND11_MODULE(_native, m) {
   varsurf::binding::bind_occ_bridge(m);
   varsurf::binding::bind_model(m);
   varsurf::binding::bind_hierarchical(m);
+  varsurf::binding::bind_subdivision(m);
 }

@@ -503,6 +503,36 @@ def signatures(fn, name):
     return out
 
 
+def subdivision_mesh():
+    """A 3 x 3 quad grid (16 points), one creased edge."""
+    points = np.array([[i, j, 0.1 * i * j] for i in range(4) for j in range(4)], dtype=float)
+    faces = [[4 * i + j, 4 * (i + 1) + j, 4 * (i + 1) + j + 1, 4 * i + j + 1] for i in range(3) for j in range(3)]
+    return nat.SubdivisionMesh(points, faces, [((5, 9), 2.0)])
+
+
+def hostile_faces():
+    return [[], [[]], [[0, 1]], [[0, 1, 99]], [[-1, 0, 1, 2]], [[0, 0, 0, 0]], [[0, 1, 2]] * 5,
+            [[0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15]], [[2 ** 31 - 1, 0, 1]]]
+
+
+def hostile_subdivision_meshes():
+    out = []
+    good = subdivision_mesh()
+    for faces in hostile_faces():
+        out.append(nat.SubdivisionMesh(good.points, faces))
+    for x in hostile_floats():
+        points = good.points.copy()
+        points[5, 1] = x
+        out.append(nat.SubdivisionMesh(points, good.faces))
+    out.append(nat.SubdivisionMesh(np.zeros((0, 3)), good.faces))
+    for crease in (((0, 15), 1.0), ((5, 9), NAN), ((5, 9), -1.0), ((5, 9), INF), ((5, 5), 1.0), ((-3, 99), 1.0)):
+        out.append(nat.SubdivisionMesh(good.points, good.faces, [crease]))
+    # Non-manifold: three faces on one edge; a bow tie through one vertex.
+    out.append(nat.SubdivisionMesh(good.points, good.faces + [[0, 1, 12], [1, 0, 13]]))
+    out.append(nat.SubdivisionMesh(good.points, [[0, 1, 5], [0, 10, 11], [0, 14, 15]]))
+    return out
+
+
 CLASS_VALUES = {
     "SplineSpace": (space, hostile_spaces),
     "BSplineSurface": (surface, hostile_surfaces),
@@ -516,6 +546,11 @@ CLASS_VALUES = {
     "PdeBoundary": (pde_boundary, hostile_pde_boundaries),
     "DynamicsParameters": (nat.DynamicsParameters, hostile_dynamics),
     "MultigridOptions": (nat.MultigridOptions, hostile_multigrid),
+    "SubdivisionMesh": (subdivision_mesh, hostile_subdivision_meshes),
+    "List[List[int]]": (lambda: subdivision_mesh().faces, hostile_faces),
+    "List[Tuple[Tuple[int, int], float]]": (lambda: [((5, 9), 2.0)],
+                                            lambda: [[((0, 15), 1.0)], [((5, 9), NAN)], [((5, 9), -1.0)],
+                                                     [((-3, 99), 1.0)], [((5, 9), INF)] * 3]),
     "List[Spring]": (lambda: [nat.Spring(0.5, 0.5, np.array([1.0, 2.0, 3.0]), 1.0)],
                      lambda: [[]] + [[nat.Spring(x, 0.5, np.array([1.0, 2.0, 3.0]), 1.0)] for x in hostile_floats()]
                      + [[nat.Spring(0.5, 0.5, np.array([x, 2.0, 3.0]), x)] for x in hostile_floats()]),
