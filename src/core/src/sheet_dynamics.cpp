@@ -290,7 +290,7 @@ Eigen::MatrixX3d DynamicSheet::equilibrium() const {
 }
 
 PinStiffness pin_stiffness(const SheetProblem& problem, double u, double v) {
-  DynamicsParameters unit;  // unit mass density: the lumped masses are the poles' shares
+  DynamicsParameters unit;         // unit mass density: the lumped masses are the poles' shares
   SheetProblem at_rest = problem;  // the start is the rest shape: only the spring moves it
   at_rest.rest_poles = problem.initial_poles;
   DynamicSheet probe(at_rest, unit);
