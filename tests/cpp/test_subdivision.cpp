@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -166,6 +167,17 @@ TEST(Subdivision, BadMeshesAreRefusedByName) {
   m = grid();
   EXPECT_NE(message(m, 9).find("levels must be in 0..8"), std::string::npos);
   EXPECT_NE(message(SubdivisionMesh()).find("no faces"), std::string::npos);
+  // A face turned over runs its edges the same way as its neighbours.
+  m = grid();
+  std::reverse(m.faces[10].begin(), m.faces[10].end());
+  EXPECT_NE(message(m).find("inconsistently oriented"), std::string::npos) << message(m);
+  // A third face on an edge (a fin) makes the mesh non-manifold.
+  m = grid();
+  m.points.conservativeResize(m.points.rows() + 1, 3);
+  m.points.row(m.points.rows() - 1) << 3.5, 3.5, 9.0;
+  m.faces.push_back({3 * kGrid + 4, 3 * kGrid + 3, static_cast<int>(m.points.rows() - 1)});
+  m.faces.push_back({3 * kGrid + 3, 3 * kGrid + 4, static_cast<int>(m.points.rows() - 1)});
+  EXPECT_NE(message(m).find("not manifold"), std::string::npos) << message(m);
   // A creased edge is accepted and keeps the refined mesh on it sharper than without.
   m = grid();
   m.creases.push_back({{3 * kGrid + 3, 4 * kGrid + 3}, 10.0});

@@ -9,10 +9,14 @@
 namespace varsurf {
 
 Eigen::MatrixX3d local_frames(const SubdivisionLevels& s) {
-  const Eigen::Index n = s.limit_points.rows();
+  return frames_of(s.limit_tangent_u, s.limit_tangent_v);
+}
+
+Eigen::MatrixX3d frames_of(const Eigen::MatrixX3d& tangent_u, const Eigen::MatrixX3d& tangent_v) {
+  const Eigen::Index n = tangent_u.rows();
   Eigen::MatrixX3d frames(3 * n, 3);
   for (Eigen::Index k = 0; k < n; ++k) {
-    const Eigen::Vector3d tu = s.limit_tangent_u.row(k), tv = s.limit_tangent_v.row(k);
+    const Eigen::Vector3d tu = tangent_u.row(k), tv = tangent_v.row(k);
     const Eigen::Vector3d normal = tu.cross(tv);
     Eigen::Matrix3d f = Eigen::Matrix3d::Identity();
     // A relative test: the tangents' lengths scale with the mesh.

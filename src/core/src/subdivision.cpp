@@ -3,10 +3,12 @@
 
 #include <opensubdiv/far/error.h>
 #include <opensubdiv/far/primvarRefiner.h>
+#include <opensubdiv/far/stencilTableFactory.h>
 #include <opensubdiv/far/topologyDescriptor.h>
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <set>
@@ -48,6 +50,11 @@ void validate(const SubdivisionMesh& mesh, int levels) {
   if (!mesh.points.allFinite())
     throw InvalidInput("the control mesh has points that are not finite");
   std::set<std::pair<int, int>> edges;
+  // Each directed edge names the face running it: a second face running it the same way is an
+  // inconsistent orientation, a third face on an edge a non-manifold edge (OpenSubdiv would
+  // accept both and refine a surface whose normals flip).
+  std::map<std::pair<int, int>, size_t> directed;
+  std::map<std::pair<int, int>, int> uses;
   for (size_t f = 0; f < mesh.faces.size(); ++f) {
     const std::vector<int>& face = mesh.faces[f];
     if (face.size() < 3)
@@ -59,7 +66,19 @@ void validate(const SubdivisionMesh& mesh, int levels) {
                            std::to_string(face[k]) + ", not one of the mesh's " +
                            std::to_string(n));
       const int a = face[k], b = face[(k + 1) % face.size()];
+      if (a == b)
+        throw InvalidInput("face " + std::to_string(f) + " repeats vertex " + std::to_string(a) +
+                           " along an edge");
       edges.insert({std::min(a, b), std::max(a, b)});
+      if (++uses[{std::min(a, b), std::max(a, b)}] > 2)
+        throw InvalidInput("edge " + std::to_string(a) + "-" + std::to_string(b) +
+                           " has more than two faces: the mesh is not manifold");
+      const auto [other, fresh] = directed.insert({{a, b}, f});
+      if (!fresh)
+        throw InvalidInput("faces " + std::to_string(other->second) + " and " + std::to_string(f) +
+                           " both run edge " + std::to_string(a) + "-" + std::to_string(b) +
+                           " the same way: the mesh is inconsistently oriented (turn one of "
+                           "them over)");
     }
   }
   for (const auto& [edge, sharpness] : mesh.creases) {
@@ -74,8 +93,11 @@ void validate(const SubdivisionMesh& mesh, int levels) {
 
 }  // namespace
 
-SubdivisionLevels subdivide(const SubdivisionMesh& mesh, int levels) {
-  validate(mesh, levels);
+namespace {
+
+// OpenSubdiv's refiner of a checked mesh: Catmull-Clark, boundary corners sharp (an open mesh's
+// corner vertices are interpolated), the creases as given.
+std::unique_ptr<Far::TopologyRefiner> make_refiner(const SubdivisionMesh& mesh) {
   std::vector<int> counts, indices, crease_pairs;
   std::vector<float> crease_weights;
   for (const std::vector<int>& face : mesh.faces) {
@@ -96,19 +118,24 @@ SubdivisionLevels subdivide(const SubdivisionMesh& mesh, int levels) {
   desc.creaseVertexIndexPairs = crease_pairs.data();
   desc.creaseWeights = crease_weights.data();
   Sdc::Options options;
-  // Boundary corners stay sharp: an open mesh's corner vertices are interpolated.
   options.SetVtxBoundaryInterpolation(Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER);
   std::unique_ptr<Far::TopologyRefiner> refiner;
-  {
-    std::lock_guard<std::mutex> lock(error_lock);
-    last_error.clear();
-    Far::SetErrorCallback(keep_error);
-    refiner.reset(Factory::Create(desc, Factory::Options(Sdc::SCHEME_CATMARK, options)));
-    Far::SetErrorCallback(nullptr);
-    if (!refiner)
-      throw InvalidInput("OpenSubdiv refused the control mesh: " +
-                         (last_error.empty() ? std::string("invalid topology") : last_error));
-  }
+  std::lock_guard<std::mutex> lock(error_lock);
+  last_error.clear();
+  Far::SetErrorCallback(keep_error);
+  refiner.reset(Factory::Create(desc, Factory::Options(Sdc::SCHEME_CATMARK, options)));
+  Far::SetErrorCallback(nullptr);
+  if (!refiner)
+    throw InvalidInput("OpenSubdiv refused the control mesh: " +
+                       (last_error.empty() ? std::string("invalid topology") : last_error));
+  return refiner;
+}
+
+}  // namespace
+
+SubdivisionLevels subdivide(const SubdivisionMesh& mesh, int levels) {
+  validate(mesh, levels);
+  std::unique_ptr<Far::TopologyRefiner> refiner = make_refiner(mesh);
   Far::TopologyRefiner::UniformOptions uniform(levels);
   uniform.fullTopologyInLastLevel = true;
   refiner->RefineUniform(uniform);
@@ -131,6 +158,13 @@ SubdivisionLevels subdivide(const SubdivisionMesh& mesh, int levels) {
       const Far::ConstIndexArray verts = topo.GetFaceVertices(f);
       refined.faces.emplace_back(verts.begin(), verts.end());
     }
+    // The creases' sharpness as refinement left it (boundary edges are sharp by the boundary
+    // rule already), so that refining this level again continues the base's creases.
+    for (int e = 0; e < topo.GetNumEdges(); ++e)
+      if (topo.GetEdgeSharpness(e) > 0.0f && topo.GetEdgeFaces(e).size() == 2) {
+        const Far::ConstIndexArray ends = topo.GetEdgeVertices(e);
+        refined.creases.push_back({{ends[0], ends[1]}, topo.GetEdgeSharpness(e)});
+      }
     out.levels.push_back(std::move(refined));
     current = std::move(next);
   }
@@ -146,6 +180,61 @@ SubdivisionLevels subdivide(const SubdivisionMesh& mesh, int levels) {
       out.limit_tangent_u(static_cast<Eigen::Index>(i), c) = du[i].p[c];
       out.limit_tangent_v(static_cast<Eigen::Index>(i), c) = dv[i].p[c];
     }
+  return out;
+}
+
+namespace {
+
+// A point as a combination of the next level's points: OpenSubdiv's limit evaluation applied to
+// these gives the limit stencils as rows of a matrix.
+struct Combination {
+  std::vector<std::pair<int, double>> terms;
+  void Clear() { terms.clear(); }
+  void AddWithWeight(const Combination& src, double w) {
+    for (const auto& [index, weight] : src.terms) terms.push_back({index, w * weight});
+  }
+};
+
+Eigen::SparseMatrix<double> to_matrix(const std::vector<Combination>& rows, Eigen::Index cols) {
+  std::vector<Eigen::Triplet<double>> entries;
+  for (size_t r = 0; r < rows.size(); ++r)
+    for (const auto& [index, weight] : rows[r].terms)
+      entries.emplace_back(static_cast<int>(r), index, weight);
+  Eigen::SparseMatrix<double> m(static_cast<Eigen::Index>(rows.size()), cols);
+  m.setFromTriplets(entries.begin(), entries.end());  // sums repeated terms
+  return m;
+}
+
+}  // namespace
+
+SubdivisionStep subdivision_step(const SubdivisionMesh& mesh) {
+  validate(mesh, 1);
+  std::unique_ptr<Far::TopologyRefiner> refiner = make_refiner(mesh);
+  Far::TopologyRefiner::UniformOptions uniform(1);
+  uniform.fullTopologyInLastLevel = true;
+  refiner->RefineUniform(uniform);
+  Far::StencilTableFactoryReal<double>::Options options;
+  options.generateIntermediateLevels = false;
+  options.generateOffsets = true;
+  options.maxLevel = 1;
+  std::unique_ptr<const Far::StencilTableReal<double>> table(
+      Far::StencilTableFactoryReal<double>::Create(*refiner, options));
+  const int rows = table->GetNumStencils();
+  std::vector<Combination> refine(static_cast<size_t>(rows));
+  for (int r = 0; r < rows; ++r) {
+    const auto stencil = table->GetStencil(r);
+    for (int k = 0; k < stencil.GetSize(); ++k)
+      refine[static_cast<size_t>(r)].terms.push_back(
+          {stencil.GetVertexIndices()[k], stencil.GetWeights()[k]});
+  }
+  SubdivisionStep out;
+  out.refine = to_matrix(refine, mesh.points.rows());
+  std::vector<Combination> unit(static_cast<size_t>(rows)), pos(unit.size()), du(unit.size()),
+      dv(unit.size());
+  for (int r = 0; r < rows; ++r) unit[static_cast<size_t>(r)].terms.push_back({r, 1.0});
+  Far::PrimvarRefinerReal<double>(*refiner).Limit(unit, pos, du, dv);
+  out.limit_u = to_matrix(du, rows);
+  out.limit_v = to_matrix(dv, rows);
   return out;
 }
 

@@ -25,6 +25,8 @@ struct Multiresolution {
 // tangents are degenerate (a corner, a dart), the frame falls back to the coordinate axes: the
 // same mesh always gives the same frames, which is all reconstruction needs.
 Eigen::MatrixX3d local_frames(const SubdivisionLevels& subdivided);
+// The same frames from the two tangents at each vertex (one row each).
+Eigen::MatrixX3d frames_of(const Eigen::MatrixX3d& tangent_u, const Eigen::MatrixX3d& tangent_v);
 
 // Every level's mesh: level 0 the base, level k + 1 the subdivided level k plus its details.
 // InvalidInput for details whose rows do not match their level's vertices, or a bad base mesh.

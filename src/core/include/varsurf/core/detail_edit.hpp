@@ -1,0 +1,80 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+// Detail-preserving editing of a multiresolution Catmull-Clark surface (Boier-Martin, Ronfard &
+// Bernardini sec. 4): pins on vertices of any level, each propagated through the Catmull-Clark
+// masks (their Table 1, composed over levels) to a coarser level, its region of influence. The
+// deformation is solved there, on the pins' masks grown by a few rings, and the finer levels
+// follow by subdivision with their details riding in the turned local frames: coarse = global,
+// fine = local, and the fine detail is kept either way.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <vector>
+
+#include "varsurf/core/detail_energy.hpp"
+#include "varsurf/core/multiresolution.hpp"
+
+namespace varsurf {
+
+struct DetailPin {
+  int level = 0;   // the level of the pinned vertex (0: the base)
+  int vertex = 0;  // its index at that level
+  Eigen::Vector3d target = Eigen::Vector3d::Zero();
+  int influence = 0;  // the level it is propagated to, 0 .. level: its region of influence
+};
+
+enum class DetailSolve {
+  approximate,  // the pins' masks moved by least norm, the rest by subdivision (during drags)
+  direct,       // the energy's minimum on the region, by a sparse direct solve of its KKT system
+  sor,          // the paper's: masks fixed by least norm, the region relaxed by SOR sweeps
+};
+
+struct DetailEditOptions {
+  DetailEnergyWeights weights;
+  int rings = 1;  // the region: the pins' masks grown by this many rings of faces
+  DetailSolve solve = DetailSolve::direct;
+  double omega = 1.7;  // SOR's relaxation, in (0, 2)
+  int max_sweeps = 20000;
+  int max_rounds = 12;      // re-solves while the details' frames turn with the edit
+  double tolerance = 1e-9;  // on the pins, relative to the model's size
+};
+
+struct DetailEditReport {
+  double max_residual = 0.0;  // the worst pin's distance from its target after the edit
+  int rounds = 0;
+  int sweeps = 0;                  // SOR's, over all rounds
+  std::vector<int> region_sizes;   // the vertices free at each influence level solved
+  std::vector<int> region_levels;  // those levels
+};
+
+struct DetailEditResult {
+  Multiresolution surface;
+  DetailEditReport report;
+};
+
+// The operators of a multiresolution surface's topology (each level's refinement and limit
+// tangents, from OpenSubdiv's stencils), built once and shared by every edit of surfaces with
+// this base topology and number of levels.
+class DetailEditor {
+ public:
+  // InvalidInput for a bad base mesh or levels outside 1..8.
+  DetailEditor(const SubdivisionMesh& base, int levels);
+  int levels() const { return static_cast<int>(steps_.size()); }
+  int vertices(int level) const;
+  const SubdivisionMesh& topology(int level) const;  // faces and creases of a level
+  // Every level's points, level 0 the base (the same as reconstruct's, without OpenSubdiv's
+  // topology analysis on each call).
+  std::vector<Eigen::MatrixX3d> points(const Multiresolution& surface) const;
+  // The surface edited by the pins. InvalidInput for a surface of another topology, pins on
+  // vertices or levels that do not exist (naming them), an influence coarser than 0 or finer
+  // than the pin's level, targets not finite, two pins on one vertex, bad options.
+  DetailEditResult edit(const Multiresolution& surface, const std::vector<DetailPin>& pins,
+                        const DetailEditOptions& options) const;
+
+ private:
+  void check(const Multiresolution& surface) const;
+  std::vector<SubdivisionMesh> meshes_;  // topology and creases per level 0 .. L
+  std::vector<SubdivisionStep> steps_;   // level k to k + 1
+};
+
+}  // namespace varsurf
