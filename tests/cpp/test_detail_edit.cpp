@@ -132,7 +132,9 @@ TEST(DetailEdit, TheInfluenceLevelSetsHowMuchOfTheSurfaceMoves) {
     const DetailEditResult r = editor.edit(m, {{levels, v, target, influence}}, {});
     fraction[influence] = moved_fraction(before, editor.points(r.surface).back());
     EXPECT_LT(r.report.max_residual, 1e-9 * kSize * 2) << influence;
-    if (influence > 0) EXPECT_LT(fraction[influence], fraction[influence - 1]) << influence;
+    if (influence > 0) {
+      EXPECT_LT(fraction[influence], fraction[influence - 1]) << influence;
+    }
   }
   EXPECT_GE(fraction[0], 0.5);
   EXPECT_LT(fraction[levels - 2], 0.05);

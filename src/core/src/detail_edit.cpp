@@ -129,7 +129,6 @@ DetailEditResult DetailEditor::edit(const Multiresolution& surface,
 
   for (const int level : influence_levels) {
     const SubdivisionMesh& topo = meshes_[static_cast<size_t>(level)];
-    const Eigen::Index n = topo.points.rows();
     // Every pin solved at this level or a coarser one, as a row on this level's points (the
     // Catmull-Clark masks composed from the pin's level down); the finer ones come later.
     std::vector<const DetailPin*> active;
