@@ -2,6 +2,8 @@
 #include "varsurf/core/multiresolution.hpp"
 
 #include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "varsurf/core/errors.hpp"
@@ -66,6 +68,8 @@ Multiresolution capture(const SubdivisionMesh& base, int levels,
   if (levels < 1 || levels > 8) throw InvalidInput("capture levels must be in 1..8");
   Multiresolution out{base, {}};
   SubdivisionMesh current = base;
+  subdivide(base, 0);  // checks the base mesh
+  const double size = (base.points.colwise().maxCoeff() - base.points.colwise().minCoeff()).norm();
   for (int level = 0; level < levels; ++level) {
     const SubdivisionLevels s = subdivide(current, 1);
     const Eigen::MatrixX3d frames = local_frames(s);
@@ -77,13 +81,36 @@ Multiresolution capture(const SubdivisionMesh& base, int levels,
       if (!target.allFinite())
         throw InvalidInput("the target's closest point to a level-" + std::to_string(level + 1) +
                            " vertex is not finite");
-      // The frame is orthonormal: its transpose takes the move into it.
+      // A cage far from the target folds onto it: refuse rather than fit nonsense.
+      if (level == 0 && (target - p).norm() > size)
+        throw InvalidInput("the target lies too far from the cage: level-1 vertex " +
+                           std::to_string(k) + " moves " + std::to_string((target - p).norm()) +
+                           ", more than the cage's size " + std::to_string(size) +
+                           "; place the cage around the target");
+      // The frame is orthonormal: it takes the move into its coordinates.
       detail.row(k) = (frames.middleRows(3 * k, 3) * (target - p)).transpose();
     }
     out.details.push_back(detail);
     current = refined(current, detail, static_cast<size_t>(level));
   }
   return out;
+}
+
+CaptureFit capture_fit(const Multiresolution& surface,
+                       const std::function<Eigen::Vector3d(const Eigen::Vector3d&)>& closest) {
+  const std::vector<SubdivisionMesh> levels = reconstruct(surface);
+  const SubdivisionLevels limit = subdivide(levels.back(), 0);
+  CaptureFit fit;
+  double sum = 0.0;
+  const Eigen::Index n = limit.limit_points.rows();
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const Eigen::Vector3d p = limit.limit_points.row(k).transpose();
+    const double d = (closest(p) - p).norm();
+    fit.max_distance = std::max(fit.max_distance, d);
+    sum += d * d;
+  }
+  fit.rms_distance = std::sqrt(sum / static_cast<double>(std::max<Eigen::Index>(n, 1)));
+  return fit;
 }
 
 }  // namespace varsurf

@@ -34,8 +34,17 @@ std::vector<SubdivisionMesh> reconstruct(const Multiresolution& surface);
 
 // Detail captured from a target, level by level (sec. 3.1, "fit the hierarchy"): each level's
 // subdivided vertices moved to `closest(point)` on the target, the moves stored as details.
-// `levels` 1..8. InvalidInput for a bad base mesh or a closest point that is not finite.
+// `levels` 1..8. InvalidInput for a bad base mesh, a closest point that is not finite, and a
+// target so far from the cage that a first-level vertex would move more than the cage's size.
 Multiresolution capture(const SubdivisionMesh& base, int levels,
                         const std::function<Eigen::Vector3d(const Eigen::Vector3d&)>& closest);
+
+// How far the limit surface lies from the target: the distances at the finest level's limit
+// points (the fit capture reports).
+struct CaptureFit {
+  double max_distance = 0.0, rms_distance = 0.0;
+};
+CaptureFit capture_fit(const Multiresolution& surface,
+                       const std::function<Eigen::Vector3d(const Eigen::Vector3d&)>& closest);
 
 }  // namespace varsurf
