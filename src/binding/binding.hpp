@@ -14,6 +14,6 @@ void bind_occ_bridge(pybind11::module_& m);      // BREP/STEP bridge to FreeCAD
 void bind_model(pybind11::module_& m);           // several sheets and curves as one system
 void bind_hierarchical(pybind11::module_& m);    // locally refined sheets
 void bind_pde(pybind11::module_& m);             // the PDE energy's coefficient
-void bind_subdivision(pybind11::module_& m);     // Catmull-Clark control meshes
+void bind_subdivision(pybind11::module_& m);     // Catmull-Clark meshes, multiresolution, edits
 
 }  // namespace varsurf::binding

@@ -3,14 +3,19 @@
 #include <pybind11/stl.h>
 
 #include "binding.hpp"
+#include "varsurf/core/detail_edit.hpp"
+#include "varsurf/core/multiresolution.hpp"
 #include "varsurf/core/subdivision.hpp"
+#include "varsurf/core/triangle_surface.hpp"
 
 namespace py = pybind11;
 using namespace pybind11::literals;
 
 namespace varsurf::binding {
 
-void bind_subdivision(py::module_& m) {
+namespace {
+
+void bind_meshes(py::module_& m) {
   py::class_<SubdivisionMesh>(m, "SubdivisionMesh",
                               "A Catmull-Clark control mesh: points (n x 3), faces (vertex index "
                               "lists), creases (((a, b), sharpness) per creased edge).")
@@ -34,6 +39,111 @@ void bind_subdivision(py::module_& m) {
   m.def("subdivide", &subdivide, "mesh"_a, "levels"_a, py::call_guard<py::gil_scoped_release>(),
         "Catmull-Clark refinement of the mesh `levels` times (OpenSubdiv), with the limit "
         "surface's points and tangents at the finest level's vertices.");
+}
+
+void bind_multiresolution(py::module_& m) {
+  py::class_<Multiresolution>(m, "Multiresolution",
+                              "A base mesh and, per level, detail vectors in local frames.")
+      .def(py::init([](SubdivisionMesh base, std::vector<Eigen::MatrixX3d> details) {
+             return Multiresolution{std::move(base), std::move(details)};
+           }),
+           "base"_a, "details"_a)
+      .def_readwrite("base", &Multiresolution::base)
+      .def_readwrite("details", &Multiresolution::details);
+  py::class_<CaptureFit>(m, "CaptureFit", "The limit surface's distance from a captured target.")
+      .def_readonly("max_distance", &CaptureFit::max_distance)
+      .def_readonly("rms_distance", &CaptureFit::rms_distance);
+  py::class_<TriangleSurface>(m, "TriangleSurface",
+                              "A triangle mesh to find closest points on (a capture target).")
+      .def(py::init<Eigen::MatrixX3d, std::vector<std::array<int, 3>>>(), "points"_a, "triangles"_a)
+      .def(
+          "closest",
+          [](const TriangleSurface& s, const Eigen::MatrixX3d& points) {
+            Eigen::MatrixX3d out(points.rows(), 3);
+            for (Eigen::Index k = 0; k < points.rows(); ++k)
+              out.row(k) = s.closest(points.row(k).transpose()).transpose();
+            return out;
+          },
+          "points"_a, py::call_guard<py::gil_scoped_release>(),
+          "The closest point on the mesh to each row.")
+      .def("size", &TriangleSurface::size, "The bounding box's diagonal.");
+  m.def(
+      "capture",
+      [](const SubdivisionMesh& base, int levels, const TriangleSurface& target) {
+        return capture(base, levels, [&](const Eigen::Vector3d& p) { return target.closest(p); });
+      },
+      "base"_a, "levels"_a, "target"_a, py::call_guard<py::gil_scoped_release>(),
+      "Detail captured from the target onto the base mesh, level by level.");
+  m.def(
+      "capture_fit",
+      [](const Multiresolution& surface, const TriangleSurface& target) {
+        return capture_fit(surface, [&](const Eigen::Vector3d& p) { return target.closest(p); });
+      },
+      "surface"_a, "target"_a, py::call_guard<py::gil_scoped_release>(),
+      "How far the surface's limit lies from the target.");
+  m.def("reconstruct", &reconstruct, "surface"_a, py::call_guard<py::gil_scoped_release>(),
+        "Every level's mesh of a multiresolution surface.");
+}
+
+void bind_detail_edit(py::module_& m) {
+  py::class_<DetailPin>(m, "DetailPin",
+                        "A vertex of a level moved to a target, propagated to its influence "
+                        "level.")
+      .def(py::init([](int level, int vertex, Eigen::Vector3d target, int influence) {
+             return DetailPin{level, vertex, target, influence};
+           }),
+           "level"_a, "vertex"_a, "target"_a, "influence"_a)
+      .def_readwrite("level", &DetailPin::level)
+      .def_readwrite("vertex", &DetailPin::vertex)
+      .def_readwrite("target", &DetailPin::target)
+      .def_readwrite("influence", &DetailPin::influence);
+  py::enum_<DetailSolve>(m, "DetailSolve")
+      .value("approximate", DetailSolve::approximate)
+      .value("direct", DetailSolve::direct)
+      .value("sor", DetailSolve::sor);
+  py::class_<DetailEditOptions>(m, "DetailEditOptions", "How a detail edit is solved.")
+      .def(py::init<>())
+      .def_property(
+          "stretch", [](const DetailEditOptions& o) { return o.weights.stretch; },
+          [](DetailEditOptions& o, double v) { o.weights.stretch = v; })
+      .def_property(
+          "bend", [](const DetailEditOptions& o) { return o.weights.bend; },
+          [](DetailEditOptions& o, double v) { o.weights.bend = v; })
+      .def_readwrite("rings", &DetailEditOptions::rings)
+      .def_readwrite("solve", &DetailEditOptions::solve)
+      .def_readwrite("omega", &DetailEditOptions::omega)
+      .def_readwrite("max_sweeps", &DetailEditOptions::max_sweeps)
+      .def_readwrite("max_rounds", &DetailEditOptions::max_rounds)
+      .def_readwrite("tolerance", &DetailEditOptions::tolerance);
+  py::class_<DetailEditReport>(m, "DetailEditReport")
+      .def_readonly("max_residual", &DetailEditReport::max_residual)
+      .def_readonly("rounds", &DetailEditReport::rounds)
+      .def_readonly("sweeps", &DetailEditReport::sweeps)
+      .def_readonly("region_sizes", &DetailEditReport::region_sizes)
+      .def_readonly("region_levels", &DetailEditReport::region_levels);
+  py::class_<DetailEditResult>(m, "DetailEditResult")
+      .def_readonly("surface", &DetailEditResult::surface)
+      .def_readonly("report", &DetailEditResult::report);
+  py::class_<DetailEditor>(m, "DetailEditor",
+                           "The refinement operators of a multiresolution surface's topology, "
+                           "shared by its edits.")
+      .def(py::init<const SubdivisionMesh&, int>(), "base"_a, "levels"_a,
+           py::call_guard<py::gil_scoped_release>())
+      .def("levels", &DetailEditor::levels)
+      .def("vertices", &DetailEditor::vertices, "level"_a)
+      .def("topology", &DetailEditor::topology, "level"_a)
+      .def("points", &DetailEditor::points, "surface"_a, py::call_guard<py::gil_scoped_release>(),
+           "Every level's points, the base first.")
+      .def("edit", &DetailEditor::edit, "surface"_a, "pins"_a, "options"_a,
+           py::call_guard<py::gil_scoped_release>(), "The surface edited by the pins.");
+}
+
+}  // namespace
+
+void bind_subdivision(py::module_& m) {
+  bind_meshes(m);
+  bind_multiresolution(m);
+  bind_detail_edit(m);
 }
 
 }  // namespace varsurf::binding

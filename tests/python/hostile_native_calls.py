@@ -533,6 +533,71 @@ def hostile_subdivision_meshes():
     return out
 
 
+def triangle_target():
+    """A tetrahedron around the 3 x 3 grid of subdivision_mesh()."""
+    points = np.array([[1.5, 1.5, 8.0], [-4.0, -4.0, -3.0], [8.0, -2.0, -3.0], [1.0, 8.0, -3.0]])
+    return nat.TriangleSurface(points, [[0, 1, 2], [0, 2, 3], [0, 3, 1], [1, 3, 2]])
+
+
+def hostile_triangle_targets():
+    far = np.array([[1e6, 0, 0], [1e6 + 1, 0, 0], [1e6, 1, 0]])
+    flat = np.zeros((3, 3))
+    huge = np.array([[1e300, 0, 0], [-1e300, 0, 0], [0, 1e300, 0]])
+    return [nat.TriangleSurface(far, [[0, 1, 2]]), nat.TriangleSurface(flat, [[0, 1, 2]]),
+            nat.TriangleSurface(huge, [[0, 1, 2]])]
+
+
+def multiresolution(levels=2):
+    base = subdivision_mesh()
+    counts = [len(level.points) for level in nat.subdivide(base, levels).levels[1:]]
+    return nat.Multiresolution(base, [np.zeros((n, 3)) for n in counts])
+
+
+def hostile_multiresolutions():
+    good = multiresolution()
+    out = [nat.Multiresolution(good.base, good.details[:1]), nat.Multiresolution(good.base, good.details * 5),
+           nat.Multiresolution(good.base, [d[:-1] for d in good.details])]
+    for x in hostile_floats():
+        details = [d.copy() for d in good.details]
+        details[-1][3, 2] = x
+        out.append(nat.Multiresolution(good.base, details))
+    for mesh in hostile_subdivision_meshes()[:6]:
+        out.append(nat.Multiresolution(mesh, good.details))
+    return out
+
+
+def hostile_pins():
+    out = [[]]
+    for level, vertex, influence in ((3, 0, 0), (2, -1, 0), (2, 10 ** 6, 0), (2, 5, 3), (2, 5, -1), (-1, 0, 0),
+                                     (2 ** 31 - 1, 0, 0)):
+        out.append([nat.DetailPin(level, vertex, np.array([1.0, 2.0, 3.0]), influence)])
+    for x in hostile_floats():
+        out.append([nat.DetailPin(2, 5, np.array([x, 2.0, 3.0]), 1)])
+    out.append([nat.DetailPin(2, 5, np.array([1.0, 2.0, 3.0]), 1)] * 2)
+    out.append([nat.DetailPin(2, k, np.array([1e6 * k, 0.0, 0.0]), 0) for k in range(40)])
+    return out
+
+
+def hostile_edit_options():
+    out = []
+    for name in ("stretch", "bend", "omega", "tolerance"):
+        for x in hostile_floats():
+            o = nat.DetailEditOptions()
+            setattr(o, name, x)
+            out.append(o)
+    for name in ("rings", "max_sweeps", "max_rounds"):
+        for n in hostile_ints():
+            o = nat.DetailEditOptions()
+            setattr(o, name, n)
+            out.append(o)
+    for solve in nat.DetailSolve.__members__.values():
+        o = nat.DetailEditOptions()
+        o.solve = solve
+        o.stretch = 0.0
+        out.append(o)
+    return out
+
+
 CLASS_VALUES = {
     "SplineSpace": (space, hostile_spaces),
     "BSplineSurface": (surface, hostile_surfaces),
@@ -547,6 +612,12 @@ CLASS_VALUES = {
     "DynamicsParameters": (nat.DynamicsParameters, hostile_dynamics),
     "MultigridOptions": (nat.MultigridOptions, hostile_multigrid),
     "SubdivisionMesh": (subdivision_mesh, hostile_subdivision_meshes),
+    "TriangleSurface": (triangle_target, hostile_triangle_targets),
+    "Multiresolution": (multiresolution, hostile_multiresolutions),
+    "List[List[int[3]]]": (lambda: [[0, 1, 2]], lambda: [[], [[0, 1, 99]], [[-1, 0, 1]], [[2 ** 31 - 1, 0, 1]]]),
+    "List[DetailPin]": (lambda: [nat.DetailPin(2, 5, np.array([1.0, 2.0, 3.0]), 1)], hostile_pins),
+    "DetailEditOptions": (nat.DetailEditOptions, hostile_edit_options),
+    "DetailEditor": (lambda: nat.DetailEditor(subdivision_mesh(), 2), lambda: []),
     "List[List[int]]": (lambda: subdivision_mesh().faces, hostile_faces),
     "List[Tuple[Tuple[int, int], float]]": (lambda: [((5, 9), 2.0)],
                                             lambda: [[((0, 15), 1.0)], [((5, 9), NAN)], [((5, 9), -1.0)],
@@ -655,6 +726,9 @@ def valid_and_hostile(pname, ptype):
             [[nat.JoinedSheet(s, [0], [line2()])] for s in hostile_surfaces()[:8]]
     if t.startswith("List[numpy.ndarray") and "[3, 1]" in t:  # 3D points (spring targets)
         return [np.array([1.0, 2.0, 3.0])], [[], [np.array([NAN, 0.0, 0.0])], [np.array([1e308, 0.0, 0.0])] * 2]
+    if t.startswith("List[numpy.ndarray") and "[m, 3]" in t:  # detail vectors per level
+        good = multiresolution().details
+        return good, [[], good[:1], good * 5, [d[:-1] for d in good], [np.full(d.shape, NAN) for d in good]]
     if t.startswith("List[numpy.ndarray"):
         return [np.array([0.1, 0.1]), np.array([0.9, 0.1]), np.array([0.5, 0.9])], \
             [[], [np.array([NAN, 0.5])] * 3, [np.array([1e308, 0.0])] * 3]

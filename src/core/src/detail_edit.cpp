@@ -50,7 +50,7 @@ DetailEditor::DetailEditor(const SubdivisionMesh& base, int levels) {
 }
 
 int DetailEditor::vertices(int level) const {
-  return static_cast<int>(meshes_.at(static_cast<size_t>(level)).points.rows());
+  return static_cast<int>(topology(level).points.rows());
 }
 
 const SubdivisionMesh& DetailEditor::topology(int level) const {
@@ -107,16 +107,17 @@ DetailEditResult DetailEditor::edit(const Multiresolution& surface,
     if (pin.level < 0 || pin.level > levels())
       throw InvalidInput(name(pin) + ": level " + std::to_string(pin.level) +
                          " does not exist (the surface has levels 0.." + std::to_string(levels()) +
-                         ")");
+                         "): set one of those");
     if (pin.vertex < 0 || pin.vertex >= vertices(pin.level))
       throw InvalidInput(name(pin) + ": level " + std::to_string(pin.level) + " has vertices 0.." +
-                         std::to_string(vertices(pin.level) - 1));
+                         std::to_string(vertices(pin.level) - 1) + "; pick one of those");
     if (pin.influence < 0 || pin.influence > pin.level)
       throw InvalidInput(name(pin) + ": its influence level must lie in 0.." +
-                         std::to_string(pin.level));
-    if (!pin.target.allFinite()) throw InvalidInput(name(pin) + " has a target that is not finite");
+                         std::to_string(pin.level) + "; set it so");
+    if (!pin.target.allFinite())
+      throw InvalidInput(name(pin) + " has a target that is not finite: give a point");
     if (!seen.insert({pin.level, pin.vertex}).second)
-      throw InvalidInput(name(pin) + " is given twice: keep one");
+      throw InvalidInput(name(pin) + " is given twice: remove one");
   }
 
   DetailEditResult out{surface, {}};

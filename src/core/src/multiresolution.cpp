@@ -86,7 +86,7 @@ Multiresolution capture(const SubdivisionMesh& base, int levels,
         throw InvalidInput("the target lies too far from the cage: level-1 vertex " +
                            std::to_string(k) + " moves " + std::to_string((target - p).norm()) +
                            ", more than the cage's size " + std::to_string(size) +
-                           "; place the cage around the target");
+                           ": move the cage around the target");
       // The frame is orthonormal: it takes the move into its coordinates.
       detail.row(k) = (frames.middleRows(3 * k, 3) * (target - p)).transpose();
     }

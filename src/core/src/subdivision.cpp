@@ -71,8 +71,9 @@ void validate(const SubdivisionMesh& mesh, int levels) {
                            " along an edge");
       edges.insert({std::min(a, b), std::max(a, b)});
       if (++uses[{std::min(a, b), std::max(a, b)}] > 2)
-        throw InvalidInput("edge " + std::to_string(a) + "-" + std::to_string(b) +
-                           " has more than two faces: the mesh is not manifold");
+        throw InvalidInput(
+            "edge " + std::to_string(a) + "-" + std::to_string(b) +
+            " has more than two faces: the mesh is not manifold (remove the extra faces)");
       const auto [other, fresh] = directed.insert({{a, b}, f});
       if (!fresh)
         throw InvalidInput("faces " + std::to_string(other->second) + " and " + std::to_string(f) +

@@ -223,6 +223,18 @@ class ViewProviderPdeSurface(_EditedInPanel, _ViewProvider):
         return list(getattr(obj, "Constraints", None) or []) if obj is not None else []
 
 
+class ViewProviderSubdSurface(_ViewProvider):
+    """Tree icon of a SubdSurface (a multiresolution Catmull-Clark surface), with its cage and
+    target as children (hidden when it is made)."""
+
+    TYPE = "VarSurf::ViewProviderSubdSurface"
+    ICON = "VarSurf_SubdSurface.svg"
+
+    def claimChildren(self):
+        obj = getattr(self, "Object", None)
+        return [o for o in (getattr(obj, "Source", None), getattr(obj, "Target", None)) if o is not None]
+
+
 class ViewProviderSpaceCurve(_ViewProvider):
     """Tree icon of a variational SpaceCurve, drawn thick so it reads as a handle-driven curve,
     with a draggable pin on each handle (gui.handles.CurveHandles)."""

@@ -1,0 +1,129 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""The SubdSurface feature: a multiresolution Catmull-Clark surface (Boier-Martin, Ronfard &
+Bernardini) of a cage (a Mesh, a Part shape's faces, a VarSurf sheet's pole net), with the detail
+of a Target captured level by level and pins that move vertices of any level with a region of
+influence set by the level they are propagated to; its Mesh is the limit surface. Parametric:
+editing the cage, the target or a pin recomputes it. The computation is
+varsurf.solve.multiresolution."""
+
+from __future__ import annotations
+
+import FreeCAD
+
+from varsurf.app import subdivision
+from varsurf.app.feature import FeatureProxy, mark_failed, value
+from varsurf.app.view_link import attach as attach_view_provider
+from varsurf.solve import errors, multiresolution
+
+TYPE = "VarSurf::SubdSurface"
+
+# name, type, group, tooltip, output?
+_PROPERTIES = [
+    ("Source", "App::PropertyLink", "SubdSurface", "The cage: a Mesh, a shape whose faces are the control mesh (a box, a cage of planar faces), or a VarSurf sheet's pole net", False),
+    ("Target", "App::PropertyLink", "SubdSurface", "Optional: a Mesh (a scan) or a shape whose detail is captured onto the levels", False),
+    ("TargetTolerance", "App::PropertyLength", "SubdSurface", "How finely a shape Target is tessellated for the capture (mm; 0: 5e-4 of its size)", False),
+    ("Levels", "App::PropertyIntegerConstraint", "SubdSurface", "Catmull-Clark refinements of the cage: each makes four faces of one", False),
+    ("PinVertices", "App::PropertyIntegerList", "Pins", "Per pin: the vertex it moves, numbered at its level", False),
+    ("PinLevels", "App::PropertyIntegerList", "Pins", "Per pin: the level of its vertex (0: the cage)", False),
+    ("PinInfluence", "App::PropertyIntegerList", "Pins", "Per pin: the level it is propagated to, its region of influence: 0 moves the whole shape, finer levels a smaller patch", False),
+    ("PinTargets", "App::PropertyVectorList", "Pins", "Per pin: where its vertex goes", False),
+    ("Solve", "App::PropertyEnumeration", "Pins", "Direct: the energy's minimum on each region; SOR: the paper's relaxation; Approximate: Catmull-Clark smoothing of the pins' moves (what a drag shows)", False),
+    ("Rings", "App::PropertyIntegerConstraint", "Pins", "How far each region reaches beyond the pins' masks, in rings of faces at its level", False),
+    ("FitMax", "App::PropertyFloat", "Result", "The limit surface's largest distance from the Target (mm)", True),
+    ("FitRms", "App::PropertyFloat", "Result", "The limit surface's RMS distance from the Target (mm)", True),
+    ("PinResidual", "App::PropertyFloat", "Result", "The worst pin's distance from its target (mm)", True),
+    ("FaceCount", "App::PropertyInteger", "Result", "Faces of the finest level", True),
+    ("Status", "App::PropertyString", "Result", "OK, or what went wrong", True),
+]
+
+
+def _set_enumeration(obj):
+    obj.Solve = list(multiresolution.SOLVES)
+    obj.Solve = "Direct"
+
+
+class SubdSurfaceFeature(FeatureProxy):
+    """Proxy of a VarSurf SubdSurface (Mesh::FeaturePython)."""
+
+    Type = TYPE
+    TYPE = TYPE
+    VIEW_PROVIDER = "ViewProviderSubdSurface"
+    PROPERTIES = _PROPERTIES
+    DEFAULTS = {"Levels": (3, 1, 8, 1), "Rings": (1, 0, 8, 1), "Solve": _set_enumeration}
+
+    def consumed(self, obj):
+        return [o for o in (getattr(obj, "Source", None), getattr(obj, "Target", None)) if o is not None]
+
+    def execute(self, obj):
+        try:
+            result = compute(obj)
+        except Exception as error:
+            raise mark_failed(obj, error) from error
+        obj.Mesh = subdivision.mesh_of(result.points, result.triangles)
+        self.outcome = result
+        obj.FitMax = result.fit_max if result.fit_max is not None else 0.0
+        obj.FitRms = result.fit_rms if result.fit_rms is not None else 0.0
+        obj.PinResidual = result.residual
+        obj.FaceCount = len(result.faces[-1])
+        obj.Status = f"OK: {obj.FaceCount} faces at level {obj.Levels}"
+        if result.fit_max is not None:
+            obj.Status += f", {obj.Target.Label} captured within {result.fit_max:.3g} mm (RMS {result.fit_rms:.3g})"
+        if result.region_sizes:
+            obj.Status += f", pins met within {result.residual:.2g} mm"
+
+
+def pins_of(obj):
+    """The pins of a SubdSurface's Pins lists, all of one length."""
+    lists = [list(obj.PinVertices), list(obj.PinLevels), list(obj.PinInfluence), list(value(obj, "PinTargets"))]
+    if len({len(v) for v in lists}) != 1:
+        raise errors.SheetError(f"PinVertices, PinLevels, PinInfluence and PinTargets have {', '.join(str(len(v)) for v in lists)} "
+                                "entries: give each pin one of each")
+    return [multiresolution.Pin(int(lv), int(v), (t.x, t.y, t.z), int(inf))
+            for v, lv, inf, t in zip(*lists)]
+
+
+def compute(obj):
+    """The SubdSurface's MultiresResult (see varsurf.solve.multiresolution.build)."""
+    if obj.Source is None:
+        raise errors.SheetError("no Source: link the cage (a Mesh, a shape with faces, or a VarSurf sheet)")
+    points, faces = subdivision.control_mesh(obj.Source)
+    target = None
+    if obj.Target is not None:
+        target = subdivision.target_triangles(obj.Target, float(value(obj, "TargetTolerance")))
+    try:
+        return multiresolution.build(points, faces, int(obj.Levels), target=target, pins=pins_of(obj),
+                                     solve=str(obj.Solve), rings=int(obj.Rings))
+    except errors.SheetError as error:
+        raise errors.SheetError(f"{error} ({obj.Source.Label} as the cage"
+                                + (f", {obj.Target.Label} as the target)" if obj.Target is not None else ")")) from error
+
+
+def make_subd_surface(source, levels: int = 3, target=None, pins=(), solve: str = "Direct", rings: int = 1,
+                      doc=None, name: str = "SubdSurface"):
+    """Add a SubdSurface (computed at the next recompute): ``source`` the cage (a Mesh, a shape's
+    faces, or a VarSurf sheet), ``target`` an optional Mesh or shape whose detail is captured,
+    ``pins`` (level, vertex, (x, y, z), influence) tuples."""
+    doc = doc or source.Document
+    obj = doc.addObject("Mesh::FeaturePython", name)
+    SubdSurfaceFeature(obj)
+    obj.Source = source
+    obj.Target = target
+    obj.Levels = int(levels)
+    set_pins(obj, pins)
+    obj.Solve = solve
+    obj.Rings = int(rings)
+    attach_view_provider(obj, "ViewProviderSubdSurface")
+    return obj
+
+
+def set_pins(obj, pins):
+    """Replace a SubdSurface's pins by (level, vertex, (x, y, z), influence) tuples."""
+    pins = [tuple(p) for p in pins]
+    obj.PinLevels = [int(p[0]) for p in pins]
+    obj.PinVertices = [int(p[1]) for p in pins]
+    obj.PinTargets = [FreeCAD.Vector(*map(float, p[2])) for p in pins]
+    obj.PinInfluence = [int(p[3]) for p in pins]
+
+
+def is_subd_surface(obj) -> bool:
+    return getattr(getattr(obj, "Proxy", None), "Type", None) == TYPE

@@ -1,0 +1,151 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""Multiresolution Catmull-Clark surfaces without a document (Boier-Martin, Ronfard & Bernardini):
+a control mesh refined a number of levels, detail captured from a target mesh, pins moving
+vertices of any level with their region of influence, and the limit surface as triangles. The
+mathematics is the core's (OpenSubdiv, the detail energy and its solves); this module builds its
+inputs, keeps the editor of a topology for the next recompute and words its errors."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import List, Optional, Sequence, Tuple
+
+import numpy as np
+
+from varsurf.solve.errors import SheetError
+from varsurf.solve.native import native
+
+Point = Tuple[float, float, float]
+
+#: Solves of a detail edit, as a feature names them.
+SOLVES = ("Direct", "SOR", "Approximate")
+
+#: Bytes a multiresolution surface takes per face of its finest level while it is built and
+#: edited, measured by bench/multires.py (the process's peak over the finest faces: 3.3 kB at
+#: 100k faces, 2.7 kB at 400k, the growth between them 2.5 kB), rounded.
+BYTES_PER_FINEST_FACE = 3000
+#: The largest surface built: 2 GB at the figure above (about 660,000 finest faces).
+MAX_BYTES = 2_000_000_000
+
+
+@dataclass
+class Pin:
+    level: int
+    vertex: int
+    target: Point
+    influence: int
+
+
+@dataclass
+class MultiresResult:
+    points: np.ndarray  # the limit surface at the finest level's vertices
+    triangles: List[Tuple[int, int, int]]  # the finest level's quads split
+    levels: List[np.ndarray]  # every level's points, the base first
+    faces: List[List[List[int]]]  # every level's faces
+    fit_max: Optional[float] = None  # the limit's distance from a captured target
+    fit_rms: Optional[float] = None
+    residual: float = 0.0  # the worst pin's distance from its target
+    rounds: int = 0
+    region_sizes: List[int] = field(default_factory=list)
+    region_levels: List[int] = field(default_factory=list)
+
+
+def finest_faces(faces: Sequence[Sequence[int]], levels: int) -> int:
+    """Faces of the finest level: an n-gon makes n quads, each quad four more per level."""
+    first = sum(len(f) for f in faces)
+    return first * 4 ** (levels - 1) if levels >= 1 else len(faces)
+
+
+def check_size(faces: Sequence[Sequence[int]], levels: int) -> None:
+    """SheetError, before anything is allocated, when the surface would not fit in memory."""
+    count = finest_faces(faces, levels)
+    need = count * BYTES_PER_FINEST_FACE
+    if need > MAX_BYTES:
+        fits = levels
+        while fits > 1 and finest_faces(faces, fits) * BYTES_PER_FINEST_FACE > MAX_BYTES:
+            fits -= 1
+        raise SheetError(f"{levels} levels on {len(faces)} faces make {count:,} faces (about "
+                         f"{need / 1e9:.1f} GB, more than {MAX_BYTES / 1e9:.1f} GB): lower Levels to {fits} or "
+                         "less, or use a coarser mesh")
+
+
+class _Editors:
+    """The editor of the last topologies asked for: building it (OpenSubdiv's stencils of every
+    level) costs more than an edit, and a recompute usually keeps the topology."""
+
+    def __init__(self, size: int = 4):
+        self.size = size
+        self.items: list = []
+
+    def get(self, points, faces, levels):
+        nat = native()
+        key = (tuple(tuple(f) for f in faces), len(points), levels)
+        for k, editor in self.items:
+            if k == key:
+                return editor
+        editor = nat.DetailEditor(nat.SubdivisionMesh(np.asarray(points, float), [list(f) for f in faces]), levels)
+        self.items = [(key, editor)] + self.items[: self.size - 1]
+        return editor
+
+
+_editors = _Editors()
+
+
+def _solve(name: str):
+    nat = native()
+    try:
+        return {"Direct": nat.DetailSolve.direct, "SOR": nat.DetailSolve.sor,
+                "Approximate": nat.DetailSolve.approximate}[name]
+    except KeyError:
+        raise SheetError(f"the solve {name!r} is not one of {', '.join(SOLVES)}") from None
+
+
+def build(points: Sequence[Point], faces: Sequence[Sequence[int]], levels: int,
+          target: Optional[Tuple[Sequence[Point], Sequence[Tuple[int, int, int]]]] = None,
+          pins: Sequence[Pin] = (), solve: str = "Direct", rings: int = 1) -> MultiresResult:
+    """The surface of the cage (points, faces) refined `levels` times, with the detail of
+    `target` (points, triangles) captured when given, edited by `pins`. SheetError says what is
+    wrong with bad input (the mesh, the target, a pin)."""
+    nat = native()
+    levels = int(levels)
+    if not 1 <= levels <= 8:
+        raise SheetError(f"Levels must be 1 to 8, not {levels}")
+    check_size(faces, levels)
+    cage = np.asarray(points, dtype=float).reshape(-1, 3)
+    try:
+        base = nat.SubdivisionMesh(cage, [[int(i) for i in f] for f in faces])
+        editor = _editors.get(cage, base.faces, levels)
+        fit = None
+        if target is not None:
+            surface = nat.TriangleSurface(np.asarray(target[0], float).reshape(-1, 3),
+                                          [[int(i) for i in t] for t in target[1]])
+            multires = nat.capture(base, levels, surface)
+            fit = nat.capture_fit(multires, surface)
+        else:
+            details = [np.zeros((editor.vertices(k), 3)) for k in range(1, levels + 1)]
+            multires = nat.Multiresolution(base, details)
+        report = None
+        if pins:
+            options = nat.DetailEditOptions()
+            options.solve = _solve(solve)
+            options.rings = int(rings)
+            edited = editor.edit(multires, [nat.DetailPin(p.level, p.vertex, np.asarray(p.target, float),
+                                                          p.influence) for p in pins], options)
+            multires, report = edited.surface, edited.report
+        level_points = [np.asarray(p) for p in editor.points(multires)]
+        finest = editor.topology(levels)
+        finest.points = level_points[-1]
+        limit = nat.subdivide(finest, 0).limit_points
+    except nat.InvalidInput as error:
+        raise SheetError(str(error)) from error
+    triangles = []
+    for face in finest.faces:
+        triangles += [(face[0], face[k], face[k + 1]) for k in range(1, len(face) - 1)]
+    result = MultiresResult(np.asarray(limit), triangles, level_points,
+                            [editor.topology(k).faces for k in range(levels + 1)])
+    if fit is not None:
+        result.fit_max, result.fit_rms = fit.max_distance, fit.rms_distance
+    if report is not None:
+        result.residual, result.rounds = report.max_residual, report.rounds
+        result.region_sizes, result.region_levels = list(report.region_sizes), list(report.region_levels)
+    return result

@@ -1,0 +1,203 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""The SubdSurface feature (Boier-Martin, Ronfard & Bernardini's multiresolution surfaces) on
+FreeCAD inputs: a Part Box's faces as the cage capture a Part Sphere, the fit measured again
+against the exact sphere and converging with the levels; a Mesh sphere as a scan; a VarSurf
+sheet's pole net as a cage; pins with their region of influence; rigid motion; saving, reopening
+and undo; bad input named with the object in error and the document intact."""
+
+import math
+
+import FreeCAD
+import Mesh
+import Part
+import pytest
+
+import varsurf
+from scenes import reopened, railed_sheet
+
+V = FreeCAD.Vector
+RADIUS = 13.0
+
+
+def box_and_sphere(doc, place=FreeCAD.Placement()):
+    box = doc.addObject("Part::Box", "Cage")
+    box.Length = box.Width = box.Height = 20.0
+    box.Placement = place.multiply(FreeCAD.Placement(V(-10, -10, -10), FreeCAD.Rotation()))
+    sphere = doc.addObject("Part::Sphere", "Target")
+    sphere.Radius = RADIUS
+    sphere.Placement = place
+    doc.recompute()
+    return box, sphere
+
+
+def limit_points(subd):
+    return [V(*p) for p in subd.Proxy.outcome.points]
+
+
+def test_a_box_cage_captures_a_sphere_and_converges_with_the_levels(doc):
+    box, sphere = box_and_sphere(doc)
+    subd = varsurf.make_subd_surface(box, levels=3, target=sphere)
+    doc.recompute()
+    assert subd.isValid(), subd.getStatusString()
+    assert subd.FaceCount == 6 * 4 ** 3
+    assert subd.Mesh.CountFacets == 2 * subd.FaceCount and subd.Mesh.isSolid()
+    assert not box.Visibility and not sphere.Visibility  # the cage and target stand behind it
+    # Measured again against the exact sphere: the reported fit (against the tessellated target)
+    # agrees within the tessellation's tolerance.
+    exact = max(abs(p.Length - RADIUS) for p in limit_points(subd))
+    tolerance = 5e-4 * sphere.Shape.BoundBox.DiagonalLength
+    assert abs(exact - subd.FitMax) < 2 * tolerance, (exact, subd.FitMax)
+    assert subd.FitRms <= subd.FitMax
+    errors = {3: exact}
+    subd.Levels = 4
+    doc.recompute()
+    errors[4] = max(abs(p.Length - RADIUS) for p in limit_points(subd))
+    # The limit surface between captured vertices converges at second order.
+    assert errors[4] < errors[3] / 3, errors
+    assert "captured within" in subd.Status
+
+
+def test_a_mesh_scan_as_target_and_a_sheets_pole_net_as_cage(doc):
+    import MeshPart
+
+    scan = doc.addObject("Mesh::Feature", "Scan")
+    deflection = 0.02
+    scan.Mesh = MeshPart.meshFromShape(Part.makeSphere(RADIUS), LinearDeflection=deflection)
+    box, _ = box_and_sphere(doc)
+    subd = varsurf.make_subd_surface(box, levels=3, target=scan)
+    doc.recompute()
+    assert subd.isValid(), subd.getStatusString()
+    # Measured on the exact sphere, the fit differs from the one reported against the scan by no
+    # more than the scan's own deflection.
+    exact = max(abs(p.Length - RADIUS) for p in limit_points(subd))
+    assert abs(exact - subd.FitMax) < 2 * deflection, (exact, subd.FitMax)
+    sheet = railed_sheet(doc)
+    net = varsurf.make_subd_surface(sheet, levels=2, name="FromSheet")
+    doc.recompute()
+    assert net.isValid(), net.getStatusString()
+    poles = sheet.Shape.Faces[0].Surface.getPoles()
+    assert net.FaceCount == (len(poles) - 1) * (len(poles[0]) - 1) * 16
+    # A pole net's limit surface lies within the poles' box and near the sheet.
+    face = sheet.Shape.Faces[0]
+    assert max(face.distToShape(Part.Vertex(p))[0] for p in limit_points(net)[::37]) < 1.0
+
+
+def pin_scene(doc, influence, levels=3, captured=True):
+    box, sphere = box_and_sphere(doc)
+    subd = varsurf.make_subd_surface(box, levels=levels, target=sphere if captured else None)
+    doc.recompute()
+    points = limit_points(subd)
+    finest = subd.Proxy.outcome.levels[-1]
+    top = min(range(len(finest)), key=lambda k: (V(*finest[k]) - V(0, 0, RADIUS)).Length)
+    target = V(*finest[top]) + V(0, 0, 6.0)
+    varsurf.set_pins(subd, [(levels, top, target, influence)])
+    doc.recompute()
+    return subd, points, top, target
+
+
+def test_a_pin_moves_its_region_of_influence(doc):
+    """The same pin on a 6,144-face surface propagated to the cage moves most of it; to finer
+    levels, less and less."""
+    subd, before, top, target = pin_scene(doc, 0, levels=5)
+    fractions = []
+    for influence in range(6):
+        varsurf.set_pins(subd, [(5, top, target, influence)])
+        doc.recompute()
+        assert subd.isValid(), subd.getStatusString()
+        assert subd.PinResidual < 1e-6
+        assert (V(*subd.Proxy.outcome.levels[-1][top]) - target).Length < 1e-6
+        after = limit_points(subd)
+        fractions.append(sum((p - q).Length > 1e-6 for p, q in zip(before, after)) / len(after))
+    # Level 3 has 384 faces: its region (the mask and one ring, about 5 x 5 faces) is a fifth of
+    # them; level 4's, with 1,536 faces, under a twentieth.
+    assert fractions[0] >= 0.5 and fractions[3] < 0.25 and fractions[4] < 0.05 and fractions[5] < 0.01, fractions
+    assert all(a >= b for a, b in zip(fractions, fractions[1:])) and fractions[2] > fractions[3], fractions
+
+
+def test_the_surface_moves_rigidly_with_its_scene(doc):
+    subd, _, top, target = pin_scene(doc, 1, captured=False)
+    reference = limit_points(subd)
+    motion = FreeCAD.Placement(V(40, -25, 7), FreeCAD.Rotation(V(1, 2, -1), 35))
+    for name in ("Cage", "Target"):
+        obj = doc.getObject(name)
+        obj.Placement = motion.multiply(obj.Placement)
+    varsurf.set_pins(subd, [(3, top, motion.multVec(target), 1)])
+    doc.recompute()
+    assert subd.isValid(), subd.getStatusString()
+    moved = limit_points(subd)
+    # The cage's vertex numbering is the same (a box's), so the points correspond one to one.
+    assert max((motion.multVec(p) - q).Length for p, q in zip(reference, moved)) < 1e-4
+
+
+def test_saves_reopens_and_undoes(doc, tmp_path):
+    subd, _, top, target = pin_scene(doc, 1)
+    pinned = [tuple(p) for p in subd.Proxy.outcome.points]
+    doc.openTransaction("Move pin")
+    varsurf.set_pins(subd, [(3, top, target + V(3, 0, 0), 1)])
+    doc.commitTransaction()
+    doc.recompute()
+    assert max((V(*p) - V(*q)).Length for p, q in zip(pinned, subd.Proxy.outcome.points)) > 1.0
+    doc.undo()
+    doc.recompute()
+    assert max((V(*p) - V(*q)).Length for p, q in zip(pinned, subd.Proxy.outcome.points)) < 1e-9
+    name = subd.Name
+    with reopened(doc, tmp_path / "subd.FCStd") as again:
+        copy = again.getObject(name)
+        assert copy.Mesh.CountFacets == subd_facets(pinned)
+        copy.touch()
+        again.recompute()
+        assert copy.isValid(), copy.getStatusString()
+        assert max((V(*p) - V(*q)).Length for p, q in zip(pinned, copy.Proxy.outcome.points)) < 1e-9
+
+
+def subd_facets(points):
+    return 2 * (len(points) - 2)  # a closed quad mesh of genus 0: F = V - 2 quads, two triangles each
+
+
+def box_mesh():
+    import MeshPart
+
+    return MeshPart.meshFromShape(Part.makeBox(10, 10, 10), LinearDeflection=1.0)
+
+
+def fine_mesh():
+    import MeshPart
+
+    return MeshPart.meshFromShape(Part.makeSphere(10.0), LinearDeflection=0.2)
+
+
+def flipped_mesh():
+    points, facets = box_mesh().Topology
+    facets = [tuple(f) for f in facets]
+    facets[0] = facets[0][::-1]
+    out = Mesh.Mesh()
+    out.addFacets((points, facets))
+    return out
+
+
+@pytest.mark.parametrize("edit, words", [
+    (lambda d, s: setattr(d.getObject("Bad"), "Mesh", flipped_mesh()) or setattr(s, "Source", d.getObject("Bad")),
+     "inconsistently oriented"),
+    (lambda d, s: setattr(d.getObject("Target"), "Placement", FreeCAD.Placement(V(500, 0, 0), FreeCAD.Rotation())),
+     "too far from the cage"),
+    (lambda d, s: varsurf.set_pins(s, [(2, 10 ** 6, V(), 0)]), "pick one of those"),
+    (lambda d, s: varsurf.set_pins(s, [(3, 1, V(), 0)]), "level 3 does not exist"),
+    (lambda d, s: varsurf.set_pins(s, [(2, 3, V(), 3)]), "influence level must lie in 0..2"),
+    (lambda d, s: setattr(s, "PinLevels", [3, 3]), "give each pin one of each"),
+    (lambda d, s: setattr(d.getObject("Bad"), "Mesh", fine_mesh()) or setattr(s, "Source", d.getObject("Bad"))
+     or setattr(s, "Levels", 8), "lower Levels to"),
+    (lambda d, s: setattr(s, "Source", None), "no Source"),
+])
+def test_bad_input_is_named_and_leaves_the_document_intact(doc, edit, words):
+    doc.addObject("Mesh::Feature", "Bad").Mesh = box_mesh()
+    box, sphere = box_and_sphere(doc)
+    subd = varsurf.make_subd_surface(box, levels=2, target=sphere, pins=[(2, 5, V(0, 0, 12), 1)])
+    doc.recompute()
+    assert subd.isValid(), subd.getStatusString()
+    edit(doc, subd)
+    doc.recompute()
+    assert not subd.isValid()
+    assert words in subd.getStatusString(), subd.getStatusString()
+    assert subd.getStatusString().count("\n") == 0
+    assert box.isValid() and sphere.isValid()
+    assert math.isclose(box.Shape.Volume, 8000.0)
