@@ -14,6 +14,7 @@
 #include <set>
 #include <string>
 
+#include "osd_refiner.hpp"
 #include "varsurf/core/errors.hpp"
 
 namespace varsurf {
@@ -24,16 +25,7 @@ using namespace OpenSubdiv;
 using Descriptor = Far::TopologyDescriptor;
 using Factory = Far::TopologyRefinerFactory<Descriptor>;
 
-// A point OpenSubdiv's primvar refiner interpolates (its Clear / AddWithWeight protocol).
-struct Point {
-  double p[3];
-  void Clear() { p[0] = p[1] = p[2] = 0.0; }
-  void AddWithWeight(const Point& src, double w) {
-    p[0] += w * src.p[0];
-    p[1] += w * src.p[1];
-    p[2] += w * src.p[2];
-  }
-};
+using Point = OsdPoint;
 
 // OpenSubdiv reports topology errors through a global callback: the last message is kept (under
 // a lock, the callback being process-wide) and raised as InvalidInput.
@@ -43,7 +35,9 @@ void keep_error(Far::ErrorType, const char* message) {
   last_error = message ? message : "topology refused";
 }
 
-void validate(const SubdivisionMesh& mesh, int levels) {
+}  // namespace
+
+void validate_mesh(const SubdivisionMesh& mesh, int levels) {
   if (levels < 0 || levels > 8) throw InvalidInput("subdivision levels must be in 0..8");
   const int n = static_cast<int>(mesh.points.rows());
   if (n == 0 || mesh.faces.empty()) throw InvalidInput("the control mesh has no faces");
@@ -92,12 +86,6 @@ void validate(const SubdivisionMesh& mesh, int levels) {
   }
 }
 
-}  // namespace
-
-namespace {
-
-// OpenSubdiv's refiner of a checked mesh: Catmull-Clark, boundary corners sharp (an open mesh's
-// corner vertices are interpolated), the creases as given.
 std::unique_ptr<Far::TopologyRefiner> make_refiner(const SubdivisionMesh& mesh) {
   std::vector<int> counts, indices, crease_pairs;
   std::vector<float> crease_weights;
@@ -132,10 +120,8 @@ std::unique_ptr<Far::TopologyRefiner> make_refiner(const SubdivisionMesh& mesh) 
   return refiner;
 }
 
-}  // namespace
-
 SubdivisionLevels subdivide(const SubdivisionMesh& mesh, int levels) {
-  validate(mesh, levels);
+  validate_mesh(mesh, levels);
   std::unique_ptr<Far::TopologyRefiner> refiner = make_refiner(mesh);
   Far::TopologyRefiner::UniformOptions uniform(levels);
   uniform.fullTopologyInLastLevel = true;
@@ -209,7 +195,7 @@ Eigen::SparseMatrix<double> to_matrix(const std::vector<Combination>& rows, Eige
 }  // namespace
 
 SubdivisionStep subdivision_step(const SubdivisionMesh& mesh) {
-  validate(mesh, 1);
+  validate_mesh(mesh, 1);
   std::unique_ptr<Far::TopologyRefiner> refiner = make_refiner(mesh);
   Far::TopologyRefiner::UniformOptions uniform(1);
   uniform.fullTopologyInLastLevel = true;
