@@ -19,6 +19,7 @@
 #include "varsurf/occ/geom_convert.hpp"
 #include "varsurf/occ/mass_properties.hpp"
 #include "varsurf/occ/normal_field.hpp"
+#include "varsurf/occ/patch_shell.hpp"
 #include "varsurf/occ/point_projection.hpp"
 #include "varsurf/occ/seam_split.hpp"
 #include "varsurf/occ/shape_check.hpp"
@@ -187,6 +188,17 @@ void bind_occ_bridge(py::module_& m) {
   m.def("join_sheets", &occ::join_sheets, "curves"_a, "sheets"_a, "tolerance"_a = 1e-6,
         "Sheets sharing 3D curves as one shell (a solid when it closes): the shared edges are "
         "built once, with a pcurve on each sheet.");
+
+  py::class_<occ::PatchShell>(m, "PatchShell", "Patches sewn into a shell, with seam angles.")
+      .def_readonly("shell", &occ::PatchShell::shell)
+      .def_readonly("regular_angle", &occ::PatchShell::regular_angle)
+      .def_readonly("end_cap_angle", &occ::PatchShell::end_cap_angle)
+      .def_readonly("regular_seams", &occ::PatchShell::regular_seams)
+      .def_readonly("end_cap_seams", &occ::PatchShell::end_cap_seams);
+  m.def("patch_shell", &occ::patch_shell, "patches"_a, "end_cap"_a, "tolerance"_a = 1e-7,
+        "samples"_a = 11, py::call_guard<py::gil_scoped_release>(),
+        "A face per patch sewn into a shell (a solid when it closes), with the tangent-plane "
+        "angle across its seams (degrees).");
 
   m.def(
       "sew_faces_brep",

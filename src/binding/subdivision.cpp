@@ -4,6 +4,7 @@
 
 #include "binding.hpp"
 #include "varsurf/core/detail_edit.hpp"
+#include "varsurf/core/limit_patches.hpp"
 #include "varsurf/core/multiresolution.hpp"
 #include "varsurf/core/subdivision.hpp"
 #include "varsurf/core/triangle_surface.hpp"
@@ -138,10 +139,31 @@ void bind_detail_edit(py::module_& m) {
            py::call_guard<py::gil_scoped_release>(), "The surface edited by the pins.");
 }
 
+void bind_limit_patches(py::module_& m) {
+  py::class_<LimitPatch>(m, "LimitPatch", "A bicubic Bezier patch of a limit surface.")
+      .def_readonly("surface", &LimitPatch::surface)
+      .def_readonly("face", &LimitPatch::face)
+      .def_readonly("regular", &LimitPatch::regular)
+      .def_readonly("u0", &LimitPatch::u0)
+      .def_readonly("v0", &LimitPatch::v0)
+      .def_readonly("size", &LimitPatch::size);
+  py::class_<LimitPatches>(m, "LimitPatches")
+      .def_readonly("patches", &LimitPatches::patches)
+      .def_readonly("regular", &LimitPatches::regular)
+      .def_readonly("end_caps", &LimitPatches::end_caps);
+  m.def("limit_patches", &limit_patches, "mesh"_a, "isolation"_a,
+        py::call_guard<py::gil_scoped_release>(),
+        "The limit surface of a quad mesh as bicubic patches (OpenSubdiv's patch table).");
+  m.def("end_cap_deviation", &end_cap_deviation, "mesh"_a, "patches"_a,
+        "reference_isolation"_a = 10, "samples"_a = 9, py::call_guard<py::gil_scoped_release>(),
+        "The end caps' largest distance from the limit surface.");
+}
+
 }  // namespace
 
 void bind_subdivision(py::module_& m) {
   bind_meshes(m);
+  bind_limit_patches(m);
   bind_multiresolution(m);
   bind_detail_edit(m);
 }

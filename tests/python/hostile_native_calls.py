@@ -533,6 +533,13 @@ def hostile_subdivision_meshes():
     return out
 
 
+def cube_quads():
+    """A cube's 24 quads after one refinement: eight valence-3 vertices (end caps)."""
+    points = np.array([[(k & 1) * 2.0, (k & 2) * 1.0, (k & 4) * 0.5] for k in range(8)])
+    faces = [[0, 2, 3, 1], [4, 5, 7, 6], [0, 1, 5, 4], [2, 6, 7, 3], [0, 4, 6, 2], [1, 3, 7, 5]]
+    return nat.subdivide(nat.SubdivisionMesh(points, faces), 1).levels[1]
+
+
 def triangle_target():
     """A tetrahedron around the 3 x 3 grid of subdivision_mesh()."""
     points = np.array([[1.5, 1.5, 8.0], [-4.0, -4.0, -3.0], [8.0, -2.0, -3.0], [1.0, 8.0, -3.0]])
@@ -618,6 +625,12 @@ CLASS_VALUES = {
     "List[DetailPin]": (lambda: [nat.DetailPin(2, 5, np.array([1.0, 2.0, 3.0]), 1)], hostile_pins),
     "DetailEditOptions": (nat.DetailEditOptions, hostile_edit_options),
     "DetailEditor": (lambda: nat.DetailEditor(subdivision_mesh(), 2), lambda: []),
+    "LimitPatches": (lambda: nat.limit_patches(subdivision_mesh(), 2),
+                     lambda: [nat.limit_patches(nat.subdivide(subdivision_mesh(), 1).levels[1], 3),
+                              nat.limit_patches(cube_quads(), 2)]),
+    "List[BSplineSurface]": (lambda: [surface(), surface()],
+                             lambda: [[]] + [[s] for s in hostile_surfaces()] + [[surface()] * 3]),
+    "List[bool]": (lambda: [False, False], lambda: [[], [True], [True] * 9]),
     "List[List[int]]": (lambda: subdivision_mesh().faces, hostile_faces),
     "List[Tuple[Tuple[int, int], float]]": (lambda: [((5, 9), 2.0)],
                                             lambda: [[((0, 15), 1.0)], [((5, 9), NAN)], [((5, 9), -1.0)],

@@ -201,3 +201,51 @@ def test_bad_input_is_named_and_leaves_the_document_intact(doc, edit, words):
     assert subd.getStatusString().count("\n") == 0
     assert box.isValid() and sphere.isValid()
     assert math.isclose(box.Shape.Volume, 8000.0)
+
+
+def test_the_limit_surface_as_a_brep_solid_survives_step(doc, native, tmp_path):
+    """A captured SubdSurface as a SubdBRep: a closed solid of bicubic faces whose regular seams
+    are tangent to rounding, whose end caps lie within their measured deviation of the limit and
+    shrink with the isolation, and whose STEP file reads back through check(True)."""
+    from step_check import assert_reads_back
+
+    box, sphere = box_and_sphere(doc)
+    subd = varsurf.make_subd_surface(box, levels=2, target=sphere)
+    brep = varsurf.make_subd_brep(subd, isolation=3)
+    doc.recompute()
+    assert brep.isValid(), brep.getStatusString()
+    assert brep.Closed and brep.Shape.ShapeType == "Solid" and brep.Shape.isValid()
+    assert len(brep.Shape.Faces) == brep.PatchCount
+    assert brep.EndCapCount == 24  # the cube's 8 valence-3 corners, 3 faces each
+    assert brep.RegularSeamAngle < 1e-6
+    assert 0.0 < brep.EndCapSeamAngle < 1.0
+    # The faces lie on the limit surface: the limit points of the finest vertices (exact, from
+    # the core) are on the solid's boundary within the end caps' deviation.
+    boundary = brep.Shape.Shells[0]
+    worst = max(boundary.distToShape(Part.Vertex(V(*p)))[0] for p in subd.Proxy.outcome.points[::5])
+    assert worst <= brep.EndCapDeviation + 1e-7, (worst, brep.EndCapDeviation)
+    deviation = brep.EndCapDeviation
+    brep.Isolation = 5
+    doc.recompute()
+    assert brep.EndCapDeviation < deviation / 3 and brep.RegularSeamAngle < 1e-6
+    path = tmp_path / "subd.step"
+    varsurf.export_step(brep, str(path))
+    assert_reads_back(brep.Shape, path, native)
+    name, patches = brep.Name, brep.PatchCount
+    with reopened(doc, tmp_path / "subd_brep.FCStd") as again:
+        copy = again.getObject(name)
+        assert copy.Closed and len(copy.Shape.Faces) == patches
+        copy.touch()
+        again.recompute()
+        assert copy.isValid(), copy.getStatusString()
+
+
+def test_a_subd_brep_without_a_subd_surface_says_so(doc):
+    box, _ = box_and_sphere(doc)
+    subd = varsurf.make_subd_surface(box, levels=1)
+    brep = varsurf.make_subd_brep(subd)
+    doc.recompute()
+    assert brep.isValid(), brep.getStatusString()
+    brep.Base = box
+    doc.recompute()
+    assert not brep.isValid() and "link the SubdSurface" in brep.getStatusString()

@@ -140,8 +140,12 @@ double end_cap_deviation(const SubdivisionMesh& mesh, const LimitPatches& patche
   const Evaluator reference(mesh, reference_isolation,
                             Far::PatchTableFactory::Options::ENDCAP_GREGORY_BASIS);
   double worst = 0.0;
+  const int faces = static_cast<int>(mesh.faces.size());
   for (const LimitPatch& p : patches.patches) {
     if (p.regular) continue;
+    if (p.face < 0 || p.face >= faces || !(p.size > 0.0) || !(p.u0 >= 0.0) || !(p.v0 >= 0.0) ||
+        p.u0 + p.size > 1.0 || p.v0 + p.size > 1.0)
+      throw InvalidInput("the patches are not this mesh's: make them of it");
     for (int i = 0; i < samples; ++i)
       for (int j = 0; j < samples; ++j) {
         const double s = i / (samples - 1.0), t = j / (samples - 1.0);

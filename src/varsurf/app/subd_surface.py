@@ -127,3 +127,76 @@ def set_pins(obj, pins):
 
 def is_subd_surface(obj) -> bool:
     return getattr(getattr(obj, "Proxy", None), "Type", None) == TYPE
+
+
+TYPE_BREP = "VarSurf::SubdBRep"
+
+_BREP_PROPERTIES = [
+    ("Base", "App::PropertyLink", "SubdBRep", "The SubdSurface whose limit surface this is", False),
+    ("Isolation", "App::PropertyIntegerConstraint", "SubdBRep", "Adaptive refinement levels around extraordinary vertices: the approximate end-cap faces there shrink by half with each", False),
+    ("Tolerance", "App::PropertyLength", "SubdBRep", "Sewing tolerance (mm; 0: a ten-millionth of the surface's size)", False),
+    ("Closed", "App::PropertyBool", "Result", "True if the faces close into a solid", True),
+    ("PatchCount", "App::PropertyInteger", "Result", "Faces: one bicubic patch each", True),
+    ("EndCapCount", "App::PropertyInteger", "Result", "Of those, the end caps at extraordinary vertices (approximations of the limit surface)", True),
+    ("EndCapDeviation", "App::PropertyFloat", "Result", "The end caps' largest distance from the limit surface (mm), against OpenSubdiv's evaluation 10 levels deep", True),
+    ("RegularSeamAngle", "App::PropertyFloat", "Result", "The largest angle between tangent planes across seams of regular patches (degrees; exact faces, so rounding only)", True),
+    ("EndCapSeamAngle", "App::PropertyFloat", "Result", "The largest angle between tangent planes across seams that touch an end cap (degrees)", True),
+    ("Status", "App::PropertyString", "Result", "OK, or what went wrong", True),
+]
+
+
+class SubdBRepFeature(FeatureProxy):
+    """Proxy of a VarSurf SubdBRep (Part::FeaturePython): a SubdSurface's limit surface as B-rep
+    faces, bicubic B-spline patches sewn into a shell or solid."""
+
+    Type = TYPE_BREP
+    TYPE = TYPE_BREP
+    VIEW_PROVIDER = "ViewProviderSubdBRep"
+    PROPERTIES = _BREP_PROPERTIES
+    DEFAULTS = {"Isolation": (4, 1, 8, 1)}
+
+    def consumed(self, obj):
+        base = getattr(obj, "Base", None)
+        return [base] if base is not None else []
+
+    def execute(self, obj):
+        try:
+            result = brep_of(obj)
+        except Exception as error:
+            raise mark_failed(obj, error) from error
+        obj.Shape = result.shape
+        obj.Closed = result.closed
+        obj.PatchCount, obj.EndCapCount = result.patches, result.end_caps
+        obj.EndCapDeviation = result.end_cap_deviation
+        obj.RegularSeamAngle, obj.EndCapSeamAngle = result.regular_angle, result.end_cap_angle
+        kind = "solid" if result.closed else "open shell"
+        obj.Status = (f"OK: {kind} of {result.patches} bicubic faces ({result.end_caps} end caps within "
+                      f"{result.end_cap_deviation:.2g} mm of the limit surface); seams: regular within "
+                      f"{result.regular_angle:.2g}°, at end caps within {result.end_cap_angle:.2g}°")
+
+
+def brep_of(obj):
+    """The SubdBRep's multiresolution.BRepResult, its shape a Part shape."""
+    from varsurf.solve.shapes import shape_from_brep
+
+    base = obj.Base
+    if base is None or not is_subd_surface(base):
+        raise errors.SheetError("no SubdSurface as Base: link the SubdSurface whose limit surface to make")
+    outcome = getattr(base.Proxy, "outcome", None)
+    if outcome is None:
+        outcome = compute(base)
+    tolerance = float(value(obj, "Tolerance"))
+    result = multiresolution.brep(outcome, int(obj.Isolation), tolerance)
+    result.shape = shape_from_brep(result.brep)
+    return result
+
+
+def make_subd_brep(subd, isolation: int = 4, name: str = "SubdBRep"):
+    """Add a SubdBRep of ``subd`` (a SubdSurface): its limit surface as sewn bicubic faces, a solid
+    when it closes (computed at the next recompute)."""
+    obj = subd.Document.addObject("Part::FeaturePython", name)
+    SubdBRepFeature(obj)
+    obj.Base = subd
+    obj.Isolation = int(isolation)
+    attach_view_provider(obj, "ViewProviderSubdBRep")
+    return obj

@@ -235,6 +235,18 @@ class ViewProviderSubdSurface(_ViewProvider):
         return [o for o in (getattr(obj, "Source", None), getattr(obj, "Target", None)) if o is not None]
 
 
+class ViewProviderSubdBRep(_ViewProvider):
+    """Tree icon of a SubdBRep (a SubdSurface's limit surface as B-rep faces), with its
+    SubdSurface as child."""
+
+    TYPE = "VarSurf::ViewProviderSubdBRep"
+    ICON = "VarSurf_SubdSurface.svg"
+
+    def claimChildren(self):
+        base = getattr(getattr(self, "Object", None), "Base", None)
+        return [base] if base is not None else []
+
+
 class ViewProviderSpaceCurve(_ViewProvider):
     """Tree icon of a variational SpaceCurve, drawn thick so it reads as a handle-driven curve,
     with a draggable pin on each handle (gui.handles.CurveHandles)."""

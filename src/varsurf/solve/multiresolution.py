@@ -149,3 +149,38 @@ def build(points: Sequence[Point], faces: Sequence[Sequence[int]], levels: int,
         result.residual, result.rounds = report.max_residual, report.rounds
         result.region_sizes, result.region_levels = list(report.region_sizes), list(report.region_levels)
     return result
+
+
+@dataclass
+class BRepResult:
+    brep: str  # the sewn shell or solid
+    closed: bool
+    patches: int
+    end_caps: int
+    end_cap_deviation: float
+    regular_angle: float
+    end_cap_angle: float
+    shape: object = None  # the Part shape, set by the App side
+
+
+def brep(result: MultiresResult, isolation: int = 4, tolerance: float = 0.0) -> BRepResult:
+    """The limit surface of a built surface as B-rep faces: a bicubic patch per face (exact where
+    regular; OpenSubdiv's B-spline end caps at extraordinary vertices, their deviation measured),
+    sewn at `tolerance` (0: a ten-millionth of the surface's size)."""
+    nat = native()
+    if not 1 <= int(isolation) <= 8:
+        raise SheetError(f"Isolation must be 1 to 8, not {isolation}")
+    finest = nat.SubdivisionMesh(np.asarray(result.levels[-1], float), [list(f) for f in result.faces[-1]])
+    size = float(np.linalg.norm(result.points.max(axis=0) - result.points.min(axis=0)))
+    tolerance = float(tolerance) or max(1e-7 * size, 1e-9)
+    try:
+        patches = nat.limit_patches(finest, int(isolation))
+        deviation = nat.end_cap_deviation(finest, patches)
+        shell = nat.patch_shell([p.surface for p in patches.patches], [not p.regular for p in patches.patches],
+                                tolerance)
+    except nat.InvalidInput as error:
+        raise SheetError(str(error)) from error
+    if not shell.shell.valid:
+        raise SheetError(f"the sewn faces are not a valid shape ({shell.shell.message}): raise Tolerance")
+    return BRepResult(shell.shell.brep, shell.shell.closed, len(patches.patches), patches.end_caps, deviation,
+                      shell.regular_angle, shell.end_cap_angle)
