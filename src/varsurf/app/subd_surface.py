@@ -14,6 +14,7 @@ from varsurf.app import subdivision
 from varsurf.app.feature import FeatureProxy, mark_failed, value
 from varsurf.app.view_link import attach as attach_view_provider
 from varsurf.solve import errors, multiresolution
+from varsurf.solve.shapes import shape_from_brep
 
 TYPE = "VarSurf::SubdSurface"
 
@@ -177,8 +178,6 @@ class SubdBRepFeature(FeatureProxy):
 
 def brep_of(obj):
     """The SubdBRep's multiresolution.BRepResult, its shape a Part shape."""
-    from varsurf.solve.shapes import shape_from_brep
-
     base = obj.Base
     if base is None or not is_subd_surface(base):
         raise errors.SheetError("no SubdSurface as Base: link the SubdSurface whose limit surface to make")
