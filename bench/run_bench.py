@@ -573,6 +573,9 @@ def main():
     hole_bench.main()
     dynamics()
     multigrid((12, 32, 64) if quick else (12, 32, 64, 128, 256, 512))
+    import multires_bench
+
+    multires_bench.main()
 
 
 def platform_line():

@@ -249,3 +249,35 @@ def test_a_subd_brep_without_a_subd_surface_says_so(doc):
     brep.Base = box
     doc.recompute()
     assert not brep.isValid() and "link the SubdSurface" in brep.getStatusString()
+
+
+def test_the_commands_record_their_lines_and_undo(doc):
+    """VarSurf_SubdSurface on a selected cage and target, then VarSurf_SubdBRep on the result:
+    each records its lines, runs in one undoable transaction, and equals the API's; bad
+    selections say what to select."""
+    from scenes import Sel
+    from varsurf.app import actions, macro
+
+    box, sphere = box_and_sphere(doc)
+    lines = []
+
+    def run(line):
+        lines.append(line)
+        macro.exec_line(line)
+
+    subd = actions.run_subd_surface_command([Sel(box), Sel(sphere)], do_command=run)
+    assert subd is not None and subd.isValid(), subd and subd.getStatusString()
+    assert any("make_subd_surface" in line and "target=" in line for line in lines), lines
+    by_api = varsurf.make_subd_surface(box, levels=3, target=sphere, name="ByApi")
+    doc.recompute()
+    assert max((V(*p) - V(*q)).Length for p, q in zip(subd.Proxy.outcome.points, by_api.Proxy.outcome.points)) == 0
+    brep = actions.run_subd_brep_command([Sel(subd)], do_command=run)
+    assert brep is not None and brep.isValid() and brep.Closed, brep and brep.getStatusString()
+    n, name = len(doc.Objects), brep.Name
+    doc.undo()
+    assert len(doc.Objects) == n - 1 and doc.getObject(name) is None
+    errors = []
+    assert actions.run_subd_surface_command([], on_error=errors.append) is None
+    assert actions.run_subd_surface_command([Sel(box), Sel(sphere), Sel(box)], on_error=errors.append) is None
+    assert actions.run_subd_brep_command([Sel(box)], on_error=errors.append) is None
+    assert len(errors) == 3 and all("Select" in e for e in errors), errors

@@ -19,6 +19,8 @@ TRANSACTION_PDE_SURFACE = "Add VarSurf PDE surface"
 TRANSACTION_HINGE = "Add VarSurf hinge"
 TRANSACTION_FILL_HOLE = "Fill hole with VarSurf sheet"
 TRANSACTION_TUBE = "Add VarSurf tube"
+TRANSACTION_SUBD = "Add VarSurf subdivision surface"
+TRANSACTION_SUBD_BREP = "Add VarSurf subdivision B-rep"
 
 
 def _report(error, on_error):
@@ -93,6 +95,28 @@ def run_pde_surface_command(selection_ex, do_command=None, on_error=None):
         return None
     return run_in_transaction(args["u0"][0].Document, TRANSACTION_PDE_SURFACE, macro.pde_surface_command_lines(args),
                               do_command)
+
+
+def run_subd_surface_command(selection_ex, do_command=None, on_error=None):
+    """What VarSurf_SubdSurface does: a SubdSurface of the selected cage, capturing the second
+    selected object's detail. Returns it, or None."""
+    try:
+        cage, target = selection.subd_surface_selection_to_args(selection_ex)
+    except ValueError as error:
+        _report(error, on_error)
+        return None
+    return run_in_transaction(cage.Document, TRANSACTION_SUBD, macro.subd_surface_command_lines(cage, target),
+                              do_command)
+
+
+def run_subd_brep_command(selection_ex, do_command=None, on_error=None):
+    """What VarSurf_SubdBRep does: the selected SubdSurface's limit surface as B-rep faces."""
+    try:
+        subd = selection.subd_brep_selection_to_args(selection_ex)
+    except ValueError as error:
+        _report(error, on_error)
+        return None
+    return run_in_transaction(subd.Document, TRANSACTION_SUBD_BREP, macro.subd_brep_command_lines(subd), do_command)
 
 
 def run_fill_hole_command(selection_ex, do_command=None, on_error=None):

@@ -54,6 +54,25 @@ def fill_hole_command_lines(part, elements, curves) -> List[str]:
     ]
 
 
+def subd_surface_command_lines(cage, target) -> List[str]:
+    """Macro lines that add a SubdSurface of a cage (and a target to capture) and recompute."""
+    target_text = f", target={ref(target)}" if target is not None else ""
+    return [
+        "import varsurf",
+        f"_subd = varsurf.make_subd_surface({ref(cage)}, levels=3{target_text})",
+        f"App.getDocument({cage.Document.Name!r}).recompute()",
+    ]
+
+
+def subd_brep_command_lines(subd) -> List[str]:
+    """Macro lines that add a SubdBRep of a SubdSurface and recompute."""
+    return [
+        "import varsurf",
+        f"_brep = varsurf.make_subd_brep({ref(subd)})",
+        f"App.getDocument({subd.Document.Name!r}).recompute()",
+    ]
+
+
 def constraint_command_lines(kind: str, sheet, args) -> List[str]:
     """Macro lines that add a constraint with editable defaults and recompute."""
     parts = [ref(sheet), repr(kind)]

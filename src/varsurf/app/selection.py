@@ -123,6 +123,39 @@ def fill_hole_selection_to_args(selection_ex):
     return part, elements, curves
 
 
+SUBD_HINT = ("Select the cage (a Mesh, a shape whose faces make the control mesh, or a VarSurf sheet) and, "
+             "optionally, a Mesh or shape whose detail to capture.")
+SUBD_BREP_HINT = "Select one SubdSurface."
+
+
+def _has_mesh_or_faces(obj) -> bool:
+    mesh = getattr(obj, "Mesh", None)
+    if mesh is not None and hasattr(mesh, "CountFacets"):
+        return mesh.CountFacets > 0
+    shape = getattr(obj, "Shape", None)
+    return shape is not None and not shape.isNull() and bool(shape.Faces)
+
+
+def subd_surface_selection_to_args(selection_ex):
+    """(cage, target or None) of a selection: whole objects with a mesh or faces. ValueError saying
+    what to select otherwise."""
+    objects = [sel.Object for sel in selection_ex or []]
+    if not objects or len(objects) > 2:
+        raise ValueError(f"{'nothing' if not objects else 'too much'} is selected. {SUBD_HINT}")
+    for obj in objects:
+        if not _has_mesh_or_faces(obj):
+            raise ValueError(f"{obj.Label} has no mesh and no faces. {SUBD_HINT}")
+    return objects[0], (objects[1] if len(objects) == 2 else None)
+
+
+def subd_brep_selection_to_args(selection_ex):
+    """The SubdSurface of a selection. ValueError saying what to select otherwise."""
+    objects = [sel.Object for sel in selection_ex or []]
+    if len(objects) != 1 or getattr(getattr(objects[0], "Proxy", None), "Type", "") != "VarSurf::SubdSurface":
+        raise ValueError(f"no single SubdSurface is selected. {SUBD_BREP_HINT}")
+    return objects[0]
+
+
 #: What to select for each kind, besides the Sheet.
 SELECTION_HINTS = {
     "Point": "Select a Sheet and the vertex it must pass through.",

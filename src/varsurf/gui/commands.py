@@ -124,6 +124,21 @@ SELECTION_COMMANDS = [
          "select the two boundary curves, then optionally a derivative curve beside each (Hermite:\n"
          "the tangent across the boundary points to it), or four edges closing a loop (Coons)."),
      selection.pde_surface_selection_to_args, actions.run_pde_surface_command),
+    ("VarSurf_SubdSurface", "VarSurf_SubdSurface.svg",
+     QT_TRANSLATE_NOOP("VarSurf_SubdSurface", "Subdivision surface from a cage"),
+     QT_TRANSLATE_NOOP(
+         "VarSurf_SubdSurface",
+         "A multiresolution Catmull-Clark surface (Boier-Martin et al.) of a cage: a Mesh, a shape whose\n"
+         "faces make the control mesh, or a VarSurf sheet's poles. Select the cage and, optionally, a Mesh\n"
+         "or shape whose detail is captured onto its levels; pins then reshape it and keep the detail."),
+     selection.subd_surface_selection_to_args, actions.run_subd_surface_command),
+    ("VarSurf_SubdBRep", "VarSurf_SubdSurface.svg",
+     QT_TRANSLATE_NOOP("VarSurf_SubdBRep", "Subdivision surface to B-rep"),
+     QT_TRANSLATE_NOOP(
+         "VarSurf_SubdBRep",
+         "The limit surface of a SubdSurface as bicubic B-spline faces sewn into a shell or solid (exact\n"
+         "where regular, within a measured deviation at extraordinary vertices). Select one SubdSurface."),
+     selection.subd_brep_selection_to_args, actions.run_subd_brep_command),
     ("VarSurf_SpaceCurve", "VarSurf_SpaceCurve.svg",
      QT_TRANSLATE_NOOP("VarSurf_SpaceCurve", "Variational space curve"),
      QT_TRANSLATE_NOOP(
