@@ -2,9 +2,11 @@
 #include "varsurf/core/detail_edit.hpp"
 
 #include <Eigen/QR>
+#include <Eigen/SparseCholesky>
 #include <Eigen/SparseLU>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <set>
 #include <string>
@@ -125,30 +127,40 @@ DetailEditResult DetailEditor::edit(const Multiresolution& surface,
   const Eigen::MatrixX3d& finest = points.back();
   const double size = (finest.colwise().maxCoeff() - finest.colwise().minCoeff()).norm();
   const double tolerance = options.tolerance * std::max(size, 1e-300);
-  std::set<int> influence_levels;
-  for (const DetailPin& pin : pins) influence_levels.insert(pin.influence);
+  // A pin acts from its influence level down to its own level: solved at the coarsest, then the
+  // residual at each finer level on the pin's mask there (its masks there are more local, so pins
+  // too many for a coarse level are met at the fine ones, as in the paper's multigrid).
+  int first = levels(), last = 0;
+  for (const DetailPin& pin : pins) {
+    first = std::min(first, pin.influence);
+    last = std::max(last, pin.level);
+  }
 
-  for (const int level : influence_levels) {
+  for (int level = first; level <= last; ++level) {
     const SubdivisionMesh& topo = meshes_[static_cast<size_t>(level)];
-    // Every pin solved at this level or a coarser one, as a row on this level's points (the
-    // Catmull-Clark masks composed from the pin's level down); the finer ones come later.
+    // Every pin acting at this level (influence at or above it, its vertex at or below), as a row
+    // on this level's points: the Catmull-Clark masks composed from the pin's level down.
     std::vector<const DetailPin*> active;
     std::vector<Row> rows;
     std::set<int> seed;
+    double start_residual = 0.0;
     for (const DetailPin& pin : pins) {
-      if (pin.influence > level) continue;
+      if (pin.influence > level || pin.level < level) continue;
+      start_residual = std::max(
+          start_residual,
+          (pin.target.transpose() - points[static_cast<size_t>(pin.level)].row(pin.vertex)).norm());
       Row row(vertices(pin.level));
       row.insert(pin.vertex) = 1.0;
       for (int k = pin.level - 1; k >= level; --k) {
         const Sparse& refine = steps_[static_cast<size_t>(k)].refine;
         row = Row(refine.transpose() * row);
       }
-      if (pin.influence == level)
-        for (Row::InnerIterator it(row); it; ++it)
-          if (it.value() != 0.0) seed.insert(static_cast<int>(it.index()));
+      for (Row::InnerIterator it(row); it; ++it)
+        if (it.value() != 0.0) seed.insert(static_cast<int>(it.index()));
       active.push_back(&pin);
       rows.push_back(std::move(row));
     }
+    if (active.empty() || start_residual <= tolerance) continue;
     const int rings = options.solve == DetailSolve::approximate ? 0 : options.rings;
     const std::set<int> region = grown(topo, seed, rings);
     std::vector<int> free(region.begin(), region.end());
@@ -177,6 +189,9 @@ DetailEditResult DetailEditor::edit(const Multiresolution& surface,
     // The level's energy on the deformation (sec. 4.1), from the level's shape before the edit.
     Sparse h;
     Eigen::SparseLU<Sparse> kkt;
+    Eigen::SimplicialLDLT<Sparse> penalty;
+    double penalty_weight = 0.0;
+    bool least_squares = false;
     Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> masks;
     std::vector<int> relaxed;  // SOR: the region's vertices outside every mask
     const Eigen::MatrixXd dense_a = Eigen::MatrixXd(a);
@@ -210,10 +225,24 @@ DetailEditResult DetailEditor::edit(const Multiresolution& surface,
       Sparse k(f + m, f + m);
       k.setFromTriplets(k_entries.begin(), k_entries.end());
       kkt.compute(k);
-      if (kkt.info() != Eigen::Success)
-        throw InvalidInput("the pins solved at level " + std::to_string(level) +
-                           " conflict (they ask one mask for two things): remove one or solve "
-                           "them at different levels");
+      if (kkt.info() != Eigen::Success) {
+        // More pins than this level can meet (their masks dependent): their least-squares fit,
+        // the energy keeping it smooth; the finer levels then meet them.
+        Sparse h_ff(f, f);
+        std::vector<Eigen::Triplet<double>> h_entries;
+        for (const auto& t : k_entries)
+          if (t.row() < f && t.col() < f) h_entries.push_back(t);
+        h_ff.setFromTriplets(h_entries.begin(), h_entries.end());
+        const Sparse ata = Sparse(a.transpose() * a);
+        double ata_diagonal = 0.0;
+        for (Eigen::Index i = 0; i < f; ++i) ata_diagonal = std::max(ata_diagonal, ata.coeff(i, i));
+        penalty_weight = 1e6 * std::max(diagonal, 1e-300) / std::max(ata_diagonal, 1e-300);
+        penalty.compute(Sparse(h_ff + penalty_weight * ata));
+        if (penalty.info() != Eigen::Success)
+          throw InvalidInput("the pins solved at level " + std::to_string(level) +
+                             " cannot be met: remove some or solve them at a finer level");
+        least_squares = true;
+      }
     } else {
       masks.compute(dense_a * dense_a.transpose());
       if (options.solve == DetailSolve::sor) {
@@ -232,6 +261,7 @@ DetailEditResult DetailEditor::edit(const Multiresolution& surface,
       const Eigen::MatrixX3d before = step.refine * points[static_cast<size_t>(level - 1)];
       frames = frames_of(step.limit_u * before, step.limit_v * before);
     }
+    double previous = std::numeric_limits<double>::infinity();
     for (int round = 0; round < options.max_rounds && m > 0; ++round) {
       Eigen::MatrixX3d c(m, 3);
       double worst = 0.0;
@@ -240,10 +270,14 @@ DetailEditResult DetailEditor::edit(const Multiresolution& surface,
         c.row(r) = pin.target.transpose() - points[static_cast<size_t>(pin.level)].row(pin.vertex);
         worst = std::max(worst, c.row(r).norm());
       }
-      if (worst <= tolerance) break;
+      // Met, or no longer improving (pins this level can meet only in least squares).
+      if (worst <= tolerance || worst > 0.999 * previous) break;
+      previous = worst;
       ++out.report.rounds;
       Eigen::MatrixX3d x = Eigen::MatrixX3d::Zero(f, 3);
-      if (options.solve == DetailSolve::direct) {
+      if (options.solve == DetailSolve::direct && least_squares) {
+        x = penalty.solve(Eigen::MatrixX3d(penalty_weight * (a.transpose() * c)));
+      } else if (options.solve == DetailSolve::direct) {
         Eigen::MatrixX3d rhs = Eigen::MatrixX3d::Zero(f + m, 3);
         rhs.bottomRows(m) = c;
         x = kkt.solve(rhs).topRows(f);
