@@ -27,7 +27,6 @@ into OUT_DIR and prints what each surface measured.
 
 import math
 import sys
-from pathlib import Path
 
 import freecad_env  # noqa: E402,F401  (FreeCAD and VarSurf on the path)
 
@@ -35,6 +34,7 @@ import FreeCAD  # noqa: E402
 import Part  # noqa: E402
 
 import varsurf  # noqa: E402
+from figures import run_figures  # noqa: E402
 
 V = FreeCAD.Vector
 
@@ -333,35 +333,17 @@ FIGURES = {"fig7": fig7, "fig8": fig8, "fig9": fig9, "fig11": fig11, "fig12": fi
            "blend": blend, "vase": vase}
 
 
+def _build_report(stem, doc):
+    surfaces = FIGURES[stem](doc)
+    lines = [f"{stem} {s.Label}: {s.Status if s.isValid() else s.getStatusString()}; "
+             f"deviations {', '.join(f'{d:.2g}' for d in s.MaxDeviations)} mm; {s.SolveTime * 1000:.0f} ms; "
+             f"{s.SolveModeUsed}" for s in surfaces]
+    return surfaces, surfaces, lines
+
+
 def main(out_dir="out/pde", *only):
     """Every figure, or those named after OUT_DIR (e.g. fig9 fig16)."""
-    from demo import render
-
-    unknown = [name for name in only if name not in FIGURES]
-    if unknown:
-        print(f"no figure {', '.join(unknown)}: name some of {', '.join(FIGURES)}")
-        return 2
-    out = Path(out_dir).resolve()
-    out.mkdir(parents=True, exist_ok=True)
-    failed = 0
-    for stem, build in FIGURES.items():
-        if only and stem not in only:
-            continue
-        doc = FreeCAD.newDocument(stem)
-        surfaces = build(doc)
-        for s in surfaces:
-            ok = s.isValid()
-            failed += not ok
-            print(f"{stem} {s.Label}: {s.Status if ok else s.getStatusString()}; "
-                  f"deviations {', '.join(f'{d:.2g}' for d in s.MaxDeviations)} mm; {s.SolveTime * 1000:.0f} ms; "
-                  f"{s.SolveModeUsed}")
-        fcstd, step = out / f"{stem}.FCStd", out / f"{stem}.step"
-        doc.saveAs(str(fcstd))
-        varsurf.export_step(surfaces, str(step))
-        why = render(fcstd, out / f"{stem}.png")
-        print(f"{stem}: {fcstd.name}, {step.name}" + (f", no picture ({why})" if why else f", {stem}.png"))
-        FreeCAD.closeDocument(doc.Name)
-    return 1 if failed else 0
+    return run_figures(FIGURES, out_dir, only, _build_report)
 
 
 if __name__ == "__main__":

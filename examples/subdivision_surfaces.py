@@ -20,7 +20,6 @@ Xvfb, when present) into OUT_DIR and prints what it measured.
 
 import math
 import sys
-from pathlib import Path
 
 import freecad_env  # noqa: E402,F401  (FreeCAD and VarSurf on the path)
 
@@ -29,6 +28,7 @@ import Mesh  # noqa: E402
 import Part  # noqa: E402
 
 import varsurf  # noqa: E402
+from figures import run_figures  # noqa: E402
 
 V = FreeCAD.Vector
 
@@ -186,36 +186,15 @@ def fig9(doc):
 FIGURES = {"fig1": fig1, "fig7": fig7, "fig8": fig8, "fig9": fig9}
 
 
+def _build_report(stem, doc):
+    surfaces, breps = FIGURES[stem](doc)
+    lines = [f"{stem} {s.Label}: {s.Status if s.isValid() else s.getStatusString()}" for s in surfaces + breps]
+    return surfaces + breps, breps, lines
+
+
 def main(out_dir="out/subd", *only):
     """Every figure, or those named after OUT_DIR (e.g. fig1 fig9)."""
-    from demo import render
-
-    unknown = [name for name in only if name not in FIGURES]
-    if unknown:
-        print(f"no figure {', '.join(unknown)}: name some of {', '.join(FIGURES)}")
-        return 2
-    out = Path(out_dir).resolve()
-    out.mkdir(parents=True, exist_ok=True)
-    failed = 0
-    for stem, build in FIGURES.items():
-        if only and stem not in only:
-            continue
-        doc = FreeCAD.newDocument(stem)
-        surfaces, breps = build(doc)
-        for s in surfaces + breps:
-            ok = s.isValid()
-            failed += not ok
-            print(f"{stem} {s.Label}: {s.Status if ok else s.getStatusString()}")
-        fcstd = out / f"{stem}.FCStd"
-        doc.saveAs(str(fcstd))
-        written = [fcstd.name]
-        if breps:
-            varsurf.export_step(breps, str(out / f"{stem}.step"))
-            written.append(f"{stem}.step")
-        why = render(fcstd, out / f"{stem}.png")
-        print(f"{stem}: {', '.join(written)}" + (f", no picture ({why})" if why else f", {stem}.png"))
-        FreeCAD.closeDocument(doc.Name)
-    return 1 if failed else 0
+    return run_figures(FIGURES, out_dir, only, _build_report)
 
 
 if __name__ == "__main__":

@@ -9,44 +9,14 @@
 #include <cmath>
 #include <string>
 
+#include "bicubic_grid.hpp"
 #include "varsurf/core/errors.hpp"
 #include "varsurf/core/limit_patches.hpp"
 
 using namespace varsurf;
+using namespace varsurf::test;
 
 namespace {
-
-constexpr int kGrid = 8;
-
-double height(int i, int j) {
-  return 3.0 * std::sin(0.9 * i + 0.3 * j) + 0.5 * i * j - 0.1 * j * j;
-}
-
-SubdivisionMesh grid() {
-  SubdivisionMesh m;
-  m.points.resize(kGrid * kGrid, 3);
-  for (int i = 0; i < kGrid; ++i)
-    for (int j = 0; j < kGrid; ++j) m.points.row(i * kGrid + j) << i, j, height(i, j);
-  for (int i = 0; i + 1 < kGrid; ++i)
-    for (int j = 0; j + 1 < kGrid; ++j)
-      m.faces.push_back(
-          {i * kGrid + j, (i + 1) * kGrid + j, (i + 1) * kGrid + j + 1, i * kGrid + j + 1});
-  return m;
-}
-
-double bspline(double x) {
-  x = std::abs(x);
-  if (x >= 2.0) return 0.0;
-  if (x >= 1.0) return std::pow(2.0 - x, 3) / 6.0;
-  return (4.0 - 6.0 * x * x + 3.0 * x * x * x) / 6.0;
-}
-
-double bicubic(double s, double t) {
-  double z = 0.0;
-  for (int i = 0; i < kGrid; ++i)
-    for (int j = 0; j < kGrid; ++j) z += bspline(s - i) * bspline(t - j) * height(i, j);
-  return z;
-}
 
 SubdivisionMesh cube() {
   SubdivisionMesh m;
