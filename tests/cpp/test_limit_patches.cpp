@@ -10,8 +10,10 @@
 #include <string>
 
 #include "bicubic_grid.hpp"
+#include "varsurf/core/detail_energy.hpp"
 #include "varsurf/core/errors.hpp"
 #include "varsurf/core/limit_patches.hpp"
+#include "varsurf/core/multiresolution.hpp"
 
 using namespace varsurf;
 using namespace varsurf::test;
@@ -93,4 +95,51 @@ TEST(LimitPatches, MeshesOtherThanQuadsAreRefused) {
     EXPECT_NE(std::string(e.what()).find("refine it once"), std::string::npos) << e.what();
   }
   EXPECT_THROW(limit_patches(grid(), 0), InvalidInput);
+}
+
+TEST(LimitPatches, DividedDifferencesMeasureTheShapeWhereLimitDerivativesMeasureTheScheme) {
+  // Why the detail energy takes divided differences on the mesh (sec. 3.3) rather than the limit
+  // surface's derivatives: a cube's cage captured onto a sphere of radius 7 at 4 levels puts
+  // every vertex on the sphere. The divided differences' bend density (Q_uu^2 + 2 Q_uv^2 + Q_vv^2)
+  // is the sphere's 2 / R^2 at regular and extraordinary vertices alike; the limit surface's own
+  // curvature is the sphere's at a regular point but grows to over 3 times it approaching a
+  // valence-3 corner (Catmull-Clark's limit is only C1 there): an energy of limit derivatives
+  // would weigh every edit near an extraordinary vertex by the scheme, not by the shape.
+  const double r = 7.0, sphere = 2.0 / (r * r);
+  SubdivisionMesh cage;
+  cage.points.resize(8, 3);
+  for (int k = 0; k < 8; ++k)
+    cage.points.row(k) << (k & 1 ? 3.0 : -3.0), (k & 2 ? 3.0 : -3.0), (k & 4 ? 3.0 : -3.0);
+  cage.faces = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  const Multiresolution m = capture(
+      cage, 4, [&](const Eigen::Vector3d& p) { return Eigen::Vector3d(r * p.normalized()); });
+  const SubdivisionMesh fine = reconstruct(m).back();
+  const Eigen::MatrixXd q = divided_differences(fine) * fine.points;
+  std::vector<int> valence(static_cast<size_t>(fine.points.rows()), 0);
+  for (const auto& f : fine.faces)
+    for (int v : f) ++valence[static_cast<size_t>(v)];
+  double regular = 0.0, extraordinary = 0.0;
+  for (Eigen::Index v = 0; v < fine.points.rows(); ++v) {
+    const double bend = q.row(5 * v + 2).squaredNorm() + 2 * q.row(5 * v + 3).squaredNorm() +
+                        q.row(5 * v + 4).squaredNorm();
+    double& worst = valence[static_cast<size_t>(v)] == 4 ? regular : extraordinary;
+    worst = std::max(worst, std::abs(bend / sphere - 1.0));
+  }
+  EXPECT_LT(regular, 1e-3);
+  EXPECT_LT(extraordinary, 1e-3);
+  // Vertex 0 is a cube corner (valence 3): the face with it as its first corner.
+  int face = -1;
+  for (size_t f = 0; f < fine.faces.size(); ++f)
+    if (fine.faces[f][0] == 0) face = static_cast<int>(f);
+  ASSERT_GE(face, 0);
+  EXPECT_NEAR(limit_curvature(fine, 100, 0.5, 0.5, 10) / sphere, 1.0, 0.01);
+  for (int k = 4; k <= 9; ++k) {
+    const double t = std::pow(2.0, -k);
+    EXPECT_GT(limit_curvature(fine, face, t, t, 10) / sphere, 2.5) << k;
+  }
+  std::printf(
+      "divided differences within %.1e (regular) and %.1e (extraordinary) of 2/R^2; the "
+      "limit's curvature %.2f x it at 2^-9 from a valence-3 corner\n",
+      regular, extraordinary,
+      limit_curvature(fine, face, std::pow(2.0, -9), std::pow(2.0, -9), 10) / sphere);
 }

@@ -57,16 +57,20 @@ struct Evaluator {
   }
 
   // The point at (u, v) of a face, in the face's own coordinates.
-  Eigen::Vector3d at(int face, double u, double v) const {
+  Eigen::Vector3d at(int face, double u, double v) const { return derivatives(face, u, v).col(0); }
+
+  // Columns: the point, d/du, d/dv, d2/du2, d2/dudv, d2/dv2 at (u, v) of a face.
+  Eigen::Matrix<double, 3, 6> derivatives(int face, double u, double v) const {
     const Far::PatchTable::PatchHandle* handle = map->FindPatch(face, u, v);
     if (!handle) throw SolveFailure("OpenSubdiv has no patch at a face's point");
-    double w[20];
-    table->EvaluateBasis(*handle, u, v, w);
+    double w[6][20];
+    table->EvaluateBasis(*handle, u, v, w[0], w[1], w[2], w[3], w[4], w[5]);
     const Far::ConstIndexArray cvs = table->GetPatchVertices(*handle);
-    Eigen::Vector3d p = Eigen::Vector3d::Zero();
-    for (int k = 0; k < cvs.size(); ++k)
-      for (int c = 0; c < 3; ++c) p(c) += w[k] * points[static_cast<size_t>(cvs[k])].p[c];
-    return p;
+    Eigen::Matrix<double, 3, 6> d = Eigen::Matrix<double, 3, 6>::Zero();
+    for (int j = 0; j < 6; ++j)
+      for (int k = 0; k < cvs.size(); ++k)
+        for (int c = 0; c < 3; ++c) d(c, j) += w[j][k] * points[static_cast<size_t>(cvs[k])].p[c];
+    return d;
   }
 };
 
@@ -155,6 +159,24 @@ double end_cap_deviation(const SubdivisionMesh& mesh, const LimitPatches& patche
       }
   }
   return worst;
+}
+
+double limit_curvature(const SubdivisionMesh& mesh, int face, double u, double v, int isolation) {
+  validate_mesh(mesh, 0);
+  require_quads(mesh);
+  if (isolation < 1 || isolation > 10) throw InvalidInput("the isolation level must be 1..10");
+  if (face < 0 || face >= static_cast<int>(mesh.faces.size()) || !(u >= 0.0 && u <= 1.0) ||
+      !(v >= 0.0 && v <= 1.0))
+    throw InvalidInput("no such face or (u, v) outside [0, 1]^2");
+  const Evaluator e(mesh, isolation, Far::PatchTableFactory::Options::ENDCAP_GREGORY_BASIS);
+  const Eigen::Matrix<double, 3, 6> d = e.derivatives(face, u, v);
+  const Eigen::Vector3d su = d.col(1), sv = d.col(2), n = su.cross(sv).normalized();
+  Eigen::Matrix2d first, second;
+  first << su.dot(su), su.dot(sv), su.dot(sv), sv.dot(sv);
+  second << d.col(3).dot(n), d.col(4).dot(n), d.col(4).dot(n), d.col(5).dot(n);
+  // The shape operator's eigenvalues are the principal curvatures: trace(S^2) their squares' sum.
+  const Eigen::Matrix2d shape = first.inverse() * second;
+  return (shape * shape).trace();
 }
 
 }  // namespace varsurf

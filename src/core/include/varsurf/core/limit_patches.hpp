@@ -35,4 +35,10 @@ LimitPatches limit_patches(const SubdivisionMesh& mesh, int isolation);
 double end_cap_deviation(const SubdivisionMesh& mesh, const LimitPatches& patches,
                          int reference_isolation, int samples);
 
+// The limit surface's curvature at (u, v) of a face: the sum of its squared principal curvatures
+// (the bend energy's density), from OpenSubdiv's first and second derivatives with
+// `isolation` levels of adaptive refinement (regular patches, exact, down to 1 / 2^isolation of
+// a face from an extraordinary vertex; Gregory end caps inside that).
+double limit_curvature(const SubdivisionMesh& mesh, int face, double u, double v, int isolation);
+
 }  // namespace varsurf
