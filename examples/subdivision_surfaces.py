@@ -122,13 +122,17 @@ def vase_mesh(doc, n_theta=200, n_z=100, height=60.0):
     return obj
 
 
-def fig7(doc):
-    around, high, height = 8, 5, 60.0
+def vase_cage_points(around=8, high=5, height=60.0):
+    """(points, quads) of an open tube of quads around the vase (40 faces)."""
     points = [(24 * math.cos(2 * math.pi * i / around), 24 * math.sin(2 * math.pi * i / around), height * j / high)
               for i in range(around) for j in range(high + 1)]
     quads = [[i * (high + 1) + j, ((i + 1) % around) * (high + 1) + j, ((i + 1) % around) * (high + 1) + j + 1,
               i * (high + 1) + j + 1] for i in range(around) for j in range(high)]
-    cage = quad_cage(doc, "VaseCage", points, quads)
+    return points, quads
+
+
+def fig7(doc):
+    cage = quad_cage(doc, "VaseCage", *vase_cage_points())
     scan = vase_mesh(doc)
     subd = varsurf.make_subd_surface(cage, levels=4, target=scan, name="Vase")
     doc.recompute()

@@ -135,6 +135,8 @@ void bind_detail_edit(py::module_& m) {
       .def("topology", &DetailEditor::topology, "level"_a)
       .def("points", &DetailEditor::points, "surface"_a, py::call_guard<py::gil_scoped_release>(),
            "Every level's points, the base first.")
+      .def("limit", &DetailEditor::limit, "surface"_a, py::call_guard<py::gil_scoped_release>(),
+           "The limit surface at the finest level's vertices.")
       .def("edit", &DetailEditor::edit, "surface"_a, "pins"_a, "options"_a,
            py::call_guard<py::gil_scoped_release>(), "The surface edited by the pins.");
 }

@@ -109,7 +109,7 @@ APP_API = (
     "make_space_curve", "make_hinge", "move_handle", "selection_to_sheet_args", "selection_problem",
     "create_sheet_from_selection", "sheet_command_lines", "is_sheet", "run_sheet_command",
     "run_space_curve_command", "run_hinge_command", "make_pde_surface", "run_pde_surface_command",
-    "is_pde_surface", "make_subd_surface", "make_subd_brep", "is_subd_surface", "set_pins",
+    "is_pde_surface", "make_subd_surface", "make_subd_brep", "is_subd_surface", "set_pins", "move_pin",
     "run_subd_surface_command", "run_subd_brep_command",
 )
 

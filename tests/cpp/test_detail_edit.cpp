@@ -115,6 +115,10 @@ TEST(DetailEdit, EverySolveMeetsThePins) {
     // The fast points are reconstruct's.
     const std::vector<SubdivisionMesh> slow = reconstruct(r.surface);
     EXPECT_LT((slow.back().points - after).cwiseAbs().maxCoeff(), 1e-9);
+    // The cached limit stencil is OpenSubdiv's limit of the finest level.
+    EXPECT_LT(
+        (subdivide(slow.back(), 0).limit_points - editor.limit(r.surface)).cwiseAbs().maxCoeff(),
+        1e-9);
   }
 }
 

@@ -281,3 +281,37 @@ def test_the_commands_record_their_lines_and_undo(doc):
     assert actions.run_subd_surface_command([Sel(box), Sel(sphere), Sel(box)], on_error=errors.append) is None
     assert actions.run_subd_brep_command([Sel(box)], on_error=errors.append) is None
     assert len(errors) == 3 and all("Select" in e for e in errors), errors
+
+
+def test_a_pin_drag_shows_the_approximate_answer_and_writes_one_step(doc):
+    """Each move of a dragged pin gives the limit surface the feature computes with Solve =
+    Approximate for that target (from the captured levels the recompute kept); the release is one
+    undoable step, recorded as a move_pin line, and the recompute refines it (Direct)."""
+    from varsurf.app import macro, subd_drag
+
+    subd, _, top, target = pin_scene(doc, 1)
+    session = subd_drag.PinDrag(subd, 0)
+    moved = target + V(2, -1, 3)
+    shown = session.move(moved)
+    twin = varsurf.make_subd_surface(doc.getObject("Cage"), levels=3, target=doc.getObject("Target"),
+                                     pins=[(3, top, moved, 1)], solve="Approximate", name="Twin")
+    doc.recompute()
+    # The drag meets its pin to 1e-6 of the model's size, the recompute to 1e-9.
+    size = subd.Mesh.BoundBox.DiagonalLength
+    assert max((V(*p) - V(*q)).Length for p, q in zip(shown, twin.Proxy.outcome.points)) < 2e-6 * size
+    lines = []
+
+    def run(line):
+        lines.append(line)
+        macro.exec_line(line)
+
+    session.finish(moved, do_command=run)
+    assert any("varsurf.move_pin(" in line for line in lines), lines
+    assert subd.isValid() and (V(subd.PinTargets[0]) - moved).Length < 1e-12
+    assert (V(*subd.Proxy.outcome.levels[-1][top]) - moved).Length < 1e-6
+    assert doc.UndoNames[0] == subd_drag.TRANSACTION
+    doc.undo()
+    doc.recompute()
+    assert (V(subd.PinTargets[0]) - target).Length < 1e-12
+    with pytest.raises(ValueError, match="no pin 3"):
+        subd_drag.PinDrag(subd, 3)

@@ -93,6 +93,10 @@ std::vector<Eigen::MatrixX3d> DetailEditor::points(const Multiresolution& surfac
   return out;
 }
 
+Eigen::MatrixX3d DetailEditor::limit(const Multiresolution& surface) const {
+  return steps_.back().limit * points(surface).back();
+}
+
 DetailEditResult DetailEditor::edit(const Multiresolution& surface,
                                     const std::vector<DetailPin>& pins,
                                     const DetailEditOptions& options) const {

@@ -220,6 +220,7 @@ SubdivisionStep subdivision_step(const SubdivisionMesh& mesh) {
       dv(unit.size());
   for (int r = 0; r < rows; ++r) unit[static_cast<size_t>(r)].terms.push_back({r, 1.0});
   Far::PrimvarRefinerReal<double>(*refiner).Limit(unit, pos, du, dv);
+  out.limit = to_matrix(pos, rows);
   out.limit_u = to_matrix(du, rows);
   out.limit_v = to_matrix(dv, rows);
   return out;

@@ -126,6 +126,15 @@ def set_pins(obj, pins):
     obj.PinInfluence = [int(p[3]) for p in pins]
 
 
+def move_pin(obj, index: int, target):
+    """Move pin `index` of a SubdSurface to `target` (a drag's release)."""
+    targets = list(value(obj, "PinTargets"))
+    if not 0 <= int(index) < len(targets):
+        raise ValueError(f"{obj.Label} has {len(targets)} pins, no pin {index}: give one of 0..{len(targets) - 1}")
+    targets[int(index)] = FreeCAD.Vector(target)
+    obj.PinTargets = targets
+
+
 def is_subd_surface(obj) -> bool:
     return getattr(getattr(obj, "Proxy", None), "Type", None) == TYPE
 

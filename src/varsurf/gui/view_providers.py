@@ -13,6 +13,7 @@ from PySide.QtCore import QT_TRANSLATE_NOOP
 from varsurf.app.persistence import VersionedState
 from varsurf.gui import analysis_overlay, property_columns, refinement_overlay, resources
 from varsurf.gui.handles import ConstraintHandles, CurveHandles, is_dragging, refresh_sheet_handles
+from varsurf.gui.subd_handles import SubdHandles
 
 TYPE = "VarSurf::ViewProviderSheet"
 
@@ -225,10 +226,21 @@ class ViewProviderPdeSurface(_EditedInPanel, _ViewProvider):
 
 class ViewProviderSubdSurface(_ViewProvider):
     """Tree icon of a SubdSurface (a multiresolution Catmull-Clark surface), with its cage and
-    target as children (hidden when it is made)."""
+    target as children (hidden when it is made), and a draggable ball on each pin
+    (gui.subd_handles.SubdHandles)."""
 
     TYPE = "VarSurf::ViewProviderSubdSurface"
     ICON = "VarSurf_SubdSurface.svg"
+
+    def attach(self, vobj):
+        super().attach(vobj)
+        if getattr(self, "handles", None) is None:  # FreeCAD attaches again when Proxy is set
+            self.handles = SubdHandles(vobj)
+
+    def updateData(self, obj, prop):
+        handles = getattr(self, "handles", None)
+        if handles is not None and prop in ("PinTargets", "Mesh"):
+            handles.rebuild(obj)
 
     def claimChildren(self):
         obj = getattr(self, "Object", None)

@@ -65,6 +65,8 @@ class DetailEditor {
   // Every level's points, level 0 the base (the same as reconstruct's, without OpenSubdiv's
   // topology analysis on each call).
   std::vector<Eigen::MatrixX3d> points(const Multiresolution& surface) const;
+  // The limit surface at the finest level's vertices (a cached stencil: what a drag draws).
+  Eigen::MatrixX3d limit(const Multiresolution& surface) const;
   // The surface edited by the pins. InvalidInput for a surface of another topology, pins on
   // vertices or levels that do not exist (naming them), an influence coarser than 0 or finer
   // than the pin's level, targets not finite, two pins on one vertex, bad options.

@@ -43,10 +43,11 @@ SubdivisionLevels subdivide(const SubdivisionMesh& mesh, int levels);
 
 // One refinement as linear maps, from OpenSubdiv's stencils: the next level's points are
 // refine * points (rows: the refined vertices in subdivide's order), and the limit surface's
-// tangents at them limit_u * (next points), limit_v * (next points), as subdivide gives them.
+// points and tangents at them limit * (next points), limit_u * (next points),
+// limit_v * (next points), as subdivide gives them.
 // The same checks as subdivide.
 struct SubdivisionStep {
-  Eigen::SparseMatrix<double> refine, limit_u, limit_v;
+  Eigen::SparseMatrix<double> refine, limit, limit_u, limit_v;
 };
 SubdivisionStep subdivision_step(const SubdivisionMesh& mesh);
 
