@@ -26,19 +26,39 @@ def _mode_switch(vobj):
     return None
 
 
+def styled_root(vobj, ordering):
+    """A separator for a preview, in the object's colour, its faces' vertex ordering given."""
+    root = coin.SoSeparator()
+    material = coin.SoMaterial()
+    color = getattr(vobj, "ShapeColor", (0.8, 0.8, 0.8))
+    material.diffuseColor.setValue(color[0], color[1], color[2])
+    root.addChild(material)
+    hints = coin.SoShapeHints()
+    hints.vertexOrdering = ordering
+    root.addChild(hints)
+    return root
+
+
+def hide_display(vobj):
+    """Switch the object's own display off while a preview shows: (switch, what it showed)."""
+    switch = _mode_switch(vobj)
+    saved = switch.whichChild.getValue() if switch is not None else None
+    if switch is not None:
+        switch.whichChild = coin.SO_SWITCH_NONE
+    return switch, saved
+
+
+def restore_display(switch, saved):
+    if switch is not None:
+        switch.whichChild = saved
+
+
 class DragPreview:
     def __init__(self, vobj, space):
         self.vobj = vobj
         self.cells_u = max(1, min(MAX_CELLS, 2 * (space.nu() - space.degree_u)))
         self.cells_v = max(1, min(MAX_CELLS, 2 * (space.nv() - space.degree_v)))
-        self.root = coin.SoSeparator()
-        material = coin.SoMaterial()
-        color = getattr(vobj, "ShapeColor", (0.8, 0.8, 0.8))
-        material.diffuseColor.setValue(color[0], color[1], color[2])
-        self.root.addChild(material)
-        hints = coin.SoShapeHints()
-        hints.vertexOrdering = coin.SoShapeHints.UNKNOWN_ORDERING
-        self.root.addChild(hints)
+        self.root = styled_root(vobj, coin.SoShapeHints.UNKNOWN_ORDERING)
         self.coords = coin.SoCoordinate3()
         self.normals = coin.SoNormal()
         binding = coin.SoNormalBinding()
@@ -55,10 +75,7 @@ class DragPreview:
         faces.coordIndex.setValues(0, len(index), index)
         faces.normalIndex.setValues(0, len(index), index)
         self.root.addChild(faces)
-        self.switch = _mode_switch(vobj)
-        self.saved = self.switch.whichChild.getValue() if self.switch is not None else None
-        if self.switch is not None:
-            self.switch.whichChild = coin.SO_SWITCH_NONE
+        self.switch, self.saved = hide_display(vobj)
         vobj.RootNode.addChild(self.root)
         self.points = None
 
@@ -73,5 +90,4 @@ class DragPreview:
 
     def close(self):
         self.vobj.RootNode.removeChild(self.root)
-        if self.switch is not None:
-            self.switch.whichChild = self.saved
+        restore_display(self.switch, self.saved)

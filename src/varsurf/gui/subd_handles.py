@@ -13,7 +13,7 @@ from pivy import coin
 
 from varsurf.app import subd_drag
 from varsurf.app.drag import DragError
-from varsurf.gui.drag_preview import _mode_switch
+from varsurf.gui.drag_preview import hide_display, restore_display, styled_root
 from varsurf.gui.handles import HANDLE_SIZE, add_pin, pin_position
 from varsurf.gui.scene_roots import own_root
 
@@ -25,14 +25,7 @@ class MeshPreview:
 
     def __init__(self, vobj, triangles):
         self.vobj = vobj
-        self.root = coin.SoSeparator()
-        material = coin.SoMaterial()
-        color = getattr(vobj, "ShapeColor", (0.8, 0.8, 0.8))
-        material.diffuseColor.setValue(color[0], color[1], color[2])
-        self.root.addChild(material)
-        hints = coin.SoShapeHints()
-        hints.vertexOrdering = coin.SoShapeHints.COUNTERCLOCKWISE
-        self.root.addChild(hints)
+        self.root = styled_root(vobj, coin.SoShapeHints.COUNTERCLOCKWISE)
         self.coords = coin.SoCoordinate3()
         self.root.addChild(self.coords)
         triangles = numpy.asarray(triangles, dtype=numpy.int64).reshape(-1, 3)
@@ -40,10 +33,7 @@ class MeshPreview:
         index = numpy.hstack([triangles, numpy.full((len(triangles), 1), -1)]).ravel().tolist()
         faces.coordIndex.setValues(0, len(index), index)
         self.root.addChild(faces)
-        self.switch = _mode_switch(vobj)
-        self.saved = self.switch.whichChild.getValue() if self.switch is not None else None
-        if self.switch is not None:
-            self.switch.whichChild = coin.SO_SWITCH_NONE
+        self.switch, self.saved = hide_display(vobj)
         vobj.RootNode.addChild(self.root)
 
     def show(self, points):
@@ -55,8 +45,7 @@ class MeshPreview:
 
     def close(self):
         self.vobj.RootNode.removeChild(self.root)
-        if self.switch is not None:
-            self.switch.whichChild = self.saved
+        restore_display(self.switch, self.saved)
 
 
 class SubdHandles:
