@@ -98,6 +98,17 @@ void bind_detail_edit(py::module_& m) {
       .def_readwrite("vertex", &DetailPin::vertex)
       .def_readwrite("target", &DetailPin::target)
       .def_readwrite("influence", &DetailPin::influence);
+  py::class_<DetailNormal>(m, "DetailNormal",
+                           "A normal prescribed at a vertex of a level, propagated to its "
+                           "influence level.")
+      .def(py::init([](int level, int vertex, Eigen::Vector3d normal, int influence) {
+             return DetailNormal{level, vertex, normal, influence};
+           }),
+           "level"_a, "vertex"_a, "normal"_a, "influence"_a)
+      .def_readwrite("level", &DetailNormal::level)
+      .def_readwrite("vertex", &DetailNormal::vertex)
+      .def_readwrite("normal", &DetailNormal::normal)
+      .def_readwrite("influence", &DetailNormal::influence);
   py::enum_<DetailSolve>(m, "DetailSolve")
       .value("approximate", DetailSolve::approximate)
       .value("direct", DetailSolve::direct)
@@ -118,6 +129,7 @@ void bind_detail_edit(py::module_& m) {
       .def_readwrite("tolerance", &DetailEditOptions::tolerance);
   py::class_<DetailEditReport>(m, "DetailEditReport")
       .def_readonly("max_residual", &DetailEditReport::max_residual)
+      .def_readonly("max_normal_angle", &DetailEditReport::max_normal_angle)
       .def_readonly("rounds", &DetailEditReport::rounds)
       .def_readonly("sweeps", &DetailEditReport::sweeps)
       .def_readonly("region_sizes", &DetailEditReport::region_sizes)
@@ -137,8 +149,12 @@ void bind_detail_edit(py::module_& m) {
            "Every level's points, the base first.")
       .def("limit", &DetailEditor::limit, "surface"_a, py::call_guard<py::gil_scoped_release>(),
            "The limit surface at the finest level's vertices.")
-      .def("edit", &DetailEditor::edit, "surface"_a, "pins"_a, "options"_a,
-           py::call_guard<py::gil_scoped_release>(), "The surface edited by the pins.");
+      .def("edit",
+           py::overload_cast<const Multiresolution&, const std::vector<DetailPin>&,
+                             const std::vector<DetailNormal>&, const DetailEditOptions&>(
+               &DetailEditor::edit, py::const_),
+           "surface"_a, "pins"_a, "normals"_a, "options"_a,
+           py::call_guard<py::gil_scoped_release>(), "The surface edited by the pins and normals.");
 }
 
 void bind_limit_patches(py::module_& m) {

@@ -14,7 +14,8 @@ public API (importable headless, without any GUI module):
     move_handle(space_curve, index, position)
     make_hinge(solid, sheet_a, sheet_b, (obj, "EdgeN"), angle=180)      -> Hinge object
     make_pde_surface(u0, u1, derivative0=None, ..., a=1.0)              -> PdeSurface object
-    make_subd_surface(cage, levels=3, target=None, pins=())             -> SubdSurface object
+    make_subd_surface(cage, levels=3, target=None, pins=(), normals=())  -> SubdSurface object
+    set_pins(subd, pins), set_normals(subd, normals), move_pin(subd, i, point)
     make_subd_brep(subd_surface, isolation=4)                           -> SubdBRep object (B-rep)
     install_rest_shape(sheet), melt(sheet)                              -> sheet
     export_step(objects, path)                                           -> path
@@ -109,7 +110,8 @@ APP_API = (
     "make_space_curve", "make_hinge", "move_handle", "selection_to_sheet_args", "selection_problem",
     "create_sheet_from_selection", "sheet_command_lines", "is_sheet", "run_sheet_command",
     "run_space_curve_command", "run_hinge_command", "make_pde_surface", "run_pde_surface_command",
-    "is_pde_surface", "make_subd_surface", "make_subd_brep", "is_subd_surface", "set_pins", "move_pin",
+    "is_pde_surface", "make_subd_surface", "make_subd_brep", "is_subd_surface", "set_pins", "set_normals",
+    "move_pin",
     "run_subd_surface_command", "run_subd_brep_command",
 )
 

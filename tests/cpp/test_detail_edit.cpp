@@ -296,3 +296,165 @@ TEST(DetailEdit, PinsPropagateThroughTheCatmullClarkMasksOfTable1) {
   cube.faces = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
   check_vertex(cube, 0, 3, {1, 2, 4}, {3, 5, 6});
 }
+
+namespace {
+
+// The angle between the normal of `level`'s mesh at `vertex`, from fresh divided differences,
+// and the line of n; and the same for OpenSubdiv's limit normal there (finest level only).
+double mesh_normal_angle(const DetailEditor& editor, const Multiresolution& m, int level,
+                         int vertex, const Eigen::Vector3d& n) {
+  SubdivisionMesh shape = editor.topology(level);
+  shape.points = editor.points(m)[static_cast<size_t>(level)];
+  const Eigen::MatrixXd q =
+      Eigen::MatrixXd(divided_differences(shape, {vertex})).middleRows(5 * vertex, 2) *
+      shape.points;
+  const Eigen::Vector3d qu = q.row(0).transpose(), qv = q.row(1).transpose();
+  const Eigen::Vector3d normal = qu.cross(qv);
+  return std::atan2(normal.cross(n).norm(), std::abs(normal.dot(n)));
+}
+
+double limit_normal_angle(const Multiresolution& m, int vertex, const Eigen::Vector3d& n) {
+  const SubdivisionLevels limit = subdivide(reconstruct(m).back(), 0);
+  const Eigen::Vector3d tu = limit.limit_tangent_u.row(vertex).transpose();
+  const Eigen::Vector3d tv = limit.limit_tangent_v.row(vertex).transpose();
+  const Eigen::Vector3d normal = tu.cross(tv);
+  return std::atan2(normal.cross(n).norm(), std::abs(normal.dot(n)));
+}
+
+Eigen::Vector3d no_relief(const Eigen::Vector3d& p) {
+  return p;
+}
+
+}  // namespace
+
+TEST(DetailEdit, NormalsAreMetByEverySolve) {
+  // The middle of a flat plane raised by a fifth of its size with its normal held tilted 30
+  // degrees about x, and a second normal tilted about y at a vertex of level 2: the tangents of
+  // each constrained vertex end perpendicular to its normal, measured by fresh divided
+  // differences of the edited mesh, and the pin is met.
+  const int levels = 3;
+  const Multiresolution m = capture(plane(), levels, no_relief);
+  const DetailEditor editor(m.base, levels);
+  const Eigen::MatrixX3d before = editor.points(m).back();
+  const int v = nearest(editor, m, 50.0, 50.0);
+  const Eigen::Vector3d tilt_x(0.0, std::sin(M_PI / 6), std::cos(M_PI / 6));
+  const Eigen::Vector3d tilt_y(std::sin(0.2), 0.0, std::cos(0.2));
+  const Eigen::MatrixX3d level2 = editor.points(m)[2];
+  Eigen::Index w = 0;
+  (level2.leftCols(2).rowwise() - Eigen::RowVector2d(25.0, 70.0))
+      .rowwise()
+      .squaredNorm()
+      .minCoeff(&w);
+  const std::vector<DetailPin> pins{
+      {levels, v, before.row(v).transpose() + Eigen::Vector3d(0, 0, 20.0), 0}};
+  const std::vector<DetailNormal> normals{{levels, v, tilt_x, 0},
+                                          {2, static_cast<int>(w), 3.0 * tilt_y, 1}};
+  for (const DetailSolve solve :
+       {DetailSolve::approximate, DetailSolve::direct, DetailSolve::sor}) {
+    DetailEditOptions options;
+    options.solve = solve;
+    const DetailEditResult r = editor.edit(m, pins, normals, options);
+    EXPECT_LT(mesh_normal_angle(editor, r.surface, levels, v, tilt_x), 1e-6);
+    EXPECT_LT(mesh_normal_angle(editor, r.surface, 2, static_cast<int>(w), tilt_y), 1e-6);
+    EXPECT_LT(r.report.max_normal_angle, 1e-6);
+    EXPECT_LE(r.report.max_residual, 1e-9 * kSize * 2);
+    // The limit surface's own normal there follows to a fraction of the tilt (the limit mask
+    // averages the ring the constraint holds).
+    if (solve == DetailSolve::direct)
+      EXPECT_LT(limit_normal_angle(r.surface, v, tilt_x), 0.05 * M_PI / 6);
+  }
+  // Without the normals the raised middle stays level (symmetry): the constraint did the tilt.
+  const DetailEditResult free = editor.edit(m, pins, {}, {});
+  EXPECT_NEAR(mesh_normal_angle(editor, free.surface, levels, v, tilt_x), M_PI / 6, 1e-6);
+}
+
+TEST(DetailEdit, ANormalAlreadyMetLeavesThePinsSolutionAlone) {
+  // Pins sliding vertices within a flat plane leave it flat, so a normal along z elsewhere holds
+  // already: the coupled system (one unknown per coordinate) gives the three separate systems'
+  // answer, for every solve (on the whole level: the normal's mask would widen a grown region).
+  const int levels = 2;
+  const Multiresolution m = capture(plane(), levels, no_relief);
+  const DetailEditor editor(m.base, levels);
+  const Eigen::MatrixX3d before = editor.points(m).back();
+  const int v = nearest(editor, m, 40.0, 50.0), w = nearest(editor, m, 60.0, 55.0);
+  const std::vector<DetailPin> pins{
+      {levels, v, before.row(v).transpose() + Eigen::Vector3d(4, -3, 0), 0},
+      {1, 30, editor.points(m)[1].row(30).transpose() + Eigen::Vector3d(-2, 1, 0), 0}};
+  const std::vector<DetailNormal> normals{{levels, w, Eigen::Vector3d::UnitZ(), 0}};
+  for (const DetailSolve solve :
+       {DetailSolve::approximate, DetailSolve::direct, DetailSolve::sor}) {
+    DetailEditOptions options;
+    options.solve = solve;
+    options.rings = 16;
+    const Eigen::MatrixX3d separate = editor.points(editor.edit(m, pins, options).surface).back();
+    const DetailEditResult coupled = editor.edit(m, pins, normals, options);
+    EXPECT_LT((editor.points(coupled.surface).back() - separate).cwiseAbs().maxCoeff(),
+              1e-7 * kSize);
+    EXPECT_LT(separate.col(2).cwiseAbs().maxCoeff(), 1e-9 * kSize);
+    EXPECT_GT((separate - before).cwiseAbs().maxCoeff(), 1.0);  // the pins did move it
+  }
+}
+
+TEST(DetailEdit, NormalsCommuteWithRigidMotionsAndScalings) {
+  const int levels = 3;
+  const Multiresolution m = capture(plane(), levels, relief);
+  const DetailEditor editor(m.base, levels);
+  const Eigen::MatrixX3d finest = editor.points(m).back();
+  const int v = nearest(editor, m, 40.0, 60.0), w = nearest(editor, m, 70.0, 30.0);
+  const std::vector<DetailPin> pins{
+      {levels, v, finest.row(v).transpose() + Eigen::Vector3d(2, 1, 15.0), 0}};
+  const std::vector<DetailNormal> normals{{levels, v, Eigen::Vector3d(0.3, -0.2, 1.0), 0},
+                                          {levels, w, Eigen::Vector3d(-0.4, 0.0, 1.0), 1}};
+  const Eigen::Matrix3d turn =
+      Eigen::AngleAxisd(-1.1, Eigen::Vector3d(0.2, 1, -0.7).normalized()).toRotationMatrix();
+  const Eigen::Vector3d shift(-50, 800, 12);
+  for (const double scale : {1.0, 0.01, 100.0}) {
+    auto moved = [&](const Eigen::Vector3d& p) {
+      return Eigen::Vector3d(scale * (turn * p) + shift);
+    };
+    Multiresolution mm = m;
+    for (Eigen::Index k = 0; k < mm.base.points.rows(); ++k)
+      mm.base.points.row(k) = moved(m.base.points.row(k).transpose()).transpose();
+    for (auto& d : mm.details) d *= scale;
+    std::vector<DetailPin> moved_pins = pins;
+    for (DetailPin& p : moved_pins) p.target = moved(p.target);
+    std::vector<DetailNormal> moved_normals = normals;
+    for (DetailNormal& n : moved_normals) n.normal = turn * n.normal;
+    for (const DetailSolve solve : {DetailSolve::approximate, DetailSolve::direct}) {
+      DetailEditOptions options;
+      options.solve = solve;
+      const DetailEditResult ra = editor.edit(m, pins, normals, options);
+      const DetailEditResult rb = editor.edit(mm, moved_pins, moved_normals, options);
+      const Eigen::MatrixX3d a = editor.points(ra.surface).back();
+      const Eigen::MatrixX3d b = editor.points(rb.surface).back();
+      double worst = 0.0;
+      for (Eigen::Index k = 0; k < a.rows(); ++k)
+        worst = std::max(worst, (moved(a.row(k).transpose()) - b.row(k).transpose()).norm());
+      EXPECT_LT(worst, 1e-8 * scale * kSize) << scale;
+      EXPECT_LT(rb.report.max_normal_angle, 1e-6) << scale;
+    }
+  }
+}
+
+TEST(DetailEdit, BadNormalsAreRefusedByName) {
+  const Multiresolution m = capture(plane(), 2, relief);
+  const DetailEditor editor(m.base, 2);
+  auto message = [&](const std::vector<DetailNormal>& normals) {
+    try {
+      editor.edit(m, {}, normals, {});
+    } catch (const InvalidInput& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  const Eigen::Vector3d z = Eigen::Vector3d::UnitZ();
+  EXPECT_NE(message({{3, 0, z, 0}}).find("the normal on vertex 0 of level 3"), std::string::npos);
+  EXPECT_NE(message({{1, 99999, z, 0}}).find("has vertices 0.."), std::string::npos);
+  EXPECT_NE(message({{1, 5, z, 2}}).find("influence level must lie in 0..1"), std::string::npos);
+  EXPECT_NE(message({{2, 5, z, 1}, {2, 5, -z, 0}}).find("given twice"), std::string::npos);
+  EXPECT_NE(message({{2, 5, Eigen::Vector3d::Zero(), 1}}).find("zero or not finite"),
+            std::string::npos);
+  EXPECT_NE(message({{2, 5, Eigen::Vector3d(0, INFINITY, 1), 1}}).find("zero or not finite"),
+            std::string::npos);
+  EXPECT_TRUE(message({{2, 5, z, 1}}).empty());
+}

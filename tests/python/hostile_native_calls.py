@@ -585,6 +585,20 @@ def hostile_pins():
     return out
 
 
+def hostile_normals():
+    out = [[]]
+    for level, vertex, influence in ((3, 0, 0), (2, -1, 0), (2, 10 ** 6, 0), (2, 5, 3), (2, 5, -1), (-1, 0, 0),
+                                     (2 ** 31 - 1, 0, 0)):
+        out.append([nat.DetailNormal(level, vertex, np.array([0.0, 0.0, 1.0]), influence)])
+    for x in hostile_floats():
+        out.append([nat.DetailNormal(2, 5, np.array([x, 0.0, 1.0]), 1)])
+    out.append([nat.DetailNormal(2, 5, np.zeros(3), 1)])
+    out.append([nat.DetailNormal(2, 5, np.array([0.0, 0.0, 1.0]), 1)] * 2)
+    # A normal at every vertex of a level: more tangents than the level can meet.
+    out.append([nat.DetailNormal(1, k, np.array([np.sin(k), 0.0, 1.0]), 0) for k in range(60)])
+    return out
+
+
 def hostile_edit_options():
     out = []
     for name in ("stretch", "bend", "omega", "tolerance"):
@@ -623,6 +637,7 @@ CLASS_VALUES = {
     "Multiresolution": (multiresolution, hostile_multiresolutions),
     "List[List[int[3]]]": (lambda: [[0, 1, 2]], lambda: [[], [[0, 1, 99]], [[-1, 0, 1]], [[2 ** 31 - 1, 0, 1]]]),
     "List[DetailPin]": (lambda: [nat.DetailPin(2, 5, np.array([1.0, 2.0, 3.0]), 1)], hostile_pins),
+    "List[DetailNormal]": (lambda: [nat.DetailNormal(2, 5, np.array([0.0, 0.3, 1.0]), 1)], hostile_normals),
     "DetailEditOptions": (nat.DetailEditOptions, hostile_edit_options),
     "DetailEditor": (lambda: nat.DetailEditor(subdivision_mesh(), 2), lambda: []),
     "LimitPatches": (lambda: nat.limit_patches(subdivision_mesh(), 2),

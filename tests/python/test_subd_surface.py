@@ -150,6 +150,45 @@ def test_saves_reopens_and_undoes(doc, tmp_path):
         assert max((V(*p) - V(*q)).Length for p, q in zip(pinned, copy.Proxy.outcome.points)) < 1e-9
 
 
+def limit_normal(brep, point):
+    """The B-rep's face normal at its point nearest to `point` (OCC's evaluation, independent of
+    the core's divided differences)."""
+    best = min(brep.Shape.Faces, key=lambda f: f.distToShape(Part.Vertex(point))[0])
+    u, v = best.Surface.parameter(point)
+    return best.Surface.normal(u, v)
+
+
+@pytest.mark.parametrize("motion", [FreeCAD.Placement(),
+                                    FreeCAD.Placement(V(40, -25, 7), FreeCAD.Rotation(V(1, 2, -1), 35))])
+def test_a_prescribed_normal_tilts_the_surface_there(doc, motion):
+    """The top of a sphere-captured box raised with its normal held 25 degrees off the vertical
+    (Boier-Martin et al.'s normal constraint): the surface's normal there, measured on the
+    SubdBRep's faces by OCC, follows to a fraction of the tilt, while without the normal it stays
+    vertical; the same scene moved rigidly gives the moved answer."""
+    subd, _, top, target = pin_scene(doc, 1)
+    tilt = FreeCAD.Rotation(V(1, 0, 0), 25).multVec(V(0, 0, 1))
+    for name in ("Cage", "Target"):
+        obj = doc.getObject(name)
+        obj.Placement = motion.multiply(obj.Placement)
+    moved_target = motion.multVec(target)
+    varsurf.set_pins(subd, [(3, top, moved_target, 1)])
+    brep = varsurf.make_subd_brep(subd, isolation=3)
+    doc.recompute()
+    up = motion.Rotation.multVec(V(0, 0, 1))
+    level = math.degrees(limit_normal(brep, moved_target).getAngle(up))
+    assert level < 0.5, level
+    varsurf.set_normals(subd, [(3, top, motion.Rotation.multVec(tilt), 1)])
+    doc.recompute()
+    assert subd.isValid(), subd.getStatusString()
+    assert subd.NormalAngle < 1e-4 and subd.PinResidual < 1e-6, (subd.NormalAngle, subd.PinResidual)
+    assert "normals within" in subd.Status
+    normal = limit_normal(brep, V(*subd.Proxy.outcome.points[top]))
+    angle = math.degrees(min(normal.getAngle(motion.Rotation.multVec(tilt)),
+                             normal.getAngle(-motion.Rotation.multVec(tilt))))
+    assert angle < 0.1 * 25, angle  # the limit averages the ring the constraint holds
+    assert brep.isValid() and brep.Shape.isValid()
+
+
 def subd_facets(points):
     return 2 * (len(points) - 2)  # a closed quad mesh of genus 0: F = V - 2 quads, two triangles each
 
@@ -184,6 +223,10 @@ def flipped_mesh():
     (lambda d, s: varsurf.set_pins(s, [(3, 1, V(), 0)]), "level 3 does not exist"),
     (lambda d, s: varsurf.set_pins(s, [(2, 3, V(), 3)]), "influence level must lie in 0..2"),
     (lambda d, s: setattr(s, "PinLevels", [3, 3]), "give each pin one of each"),
+    (lambda d, s: varsurf.set_normals(s, [(2, 5, V(0, 0, 0), 1)]), "is zero or not finite: give a direction"),
+    (lambda d, s: varsurf.set_normals(s, [(2, 9999, V(0, 0, 1), 1)]), "the normal on vertex 9999 of level 2"),
+    (lambda d, s: varsurf.set_normals(s, [(1, 5, V(0, 0, 1), 1), (1, 5, V(1, 0, 1), 0)]), "given twice"),
+    (lambda d, s: setattr(s, "NormalLevels", [2]), "give each normal one of each"),
     (lambda d, s: setattr(d.getObject("Bad"), "Mesh", fine_mesh()) or setattr(s, "Source", d.getObject("Bad"))
      or setattr(s, "Levels", 8), "lower Levels to"),
     (lambda d, s: setattr(s, "Source", None), "no Source"),

@@ -1,16 +1,17 @@
 // SPDX-License-Identifier: LGPL-2.1-or-later
 #include "varsurf/core/detail_edit.hpp"
 
-#include <Eigen/QR>
-#include <Eigen/SparseCholesky>
-#include <Eigen/SparseLU>
+#include <Eigen/Geometry>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <map>
+#include <memory>
 #include <set>
 #include <string>
 
+#include "region_solver.hpp"
 #include "varsurf/core/errors.hpp"
 
 namespace varsurf {
@@ -20,21 +21,32 @@ namespace {
 using Sparse = Eigen::SparseMatrix<double>;
 using Row = Eigen::SparseVector<double>;
 
-std::string name(const DetailPin& pin) {
-  return "the pin on vertex " + std::to_string(pin.vertex) + " of level " +
-         std::to_string(pin.level);
+template <class Constraint>
+std::string name(const Constraint& c, const char* what) {
+  return std::string("the ") + what + " on vertex " + std::to_string(c.vertex) + " of level " +
+         std::to_string(c.level);
 }
 
-// The vertices sharing a face with any of `seed`, `rings` times over.
-std::set<int> grown(const SubdivisionMesh& mesh, std::set<int> seed, int rings) {
-  for (int r = 0; r < rings; ++r) {
-    std::set<int> next = seed;
-    for (const std::vector<int>& face : mesh.faces)
-      if (std::any_of(face.begin(), face.end(), [&](int v) { return seed.count(v) > 0; }))
-        next.insert(face.begin(), face.end());
-    seed = std::move(next);
-  }
-  return seed;
+// A constraint acting at one level: its row on that level's points (the masks composed from the
+// constraint's own level down), for a pin's three coordinates or a normal's tangent `tangent`.
+struct Active {
+  Row row;
+  const DetailPin* pin = nullptr;
+  const DetailNormal* normal = nullptr;
+  const Row* tangent = nullptr;  // a normal's divided-difference row at its own level
+};
+
+// The angle between a vertex's normal from its tangents (rows u, v on `points`) and the line of n.
+double normal_angle(const Row& u, const Row& v, const Eigen::MatrixX3d& points,
+                    const Eigen::Vector3d& n) {
+  const Eigen::Vector3d qu = (u.transpose() * points).transpose();
+  const Eigen::Vector3d qv = (v.transpose() * points).transpose();
+  const Eigen::Vector3d normal = qu.cross(qv);
+  return std::atan2(normal.cross(n).norm(), std::abs(normal.dot(n)));
+}
+
+Row row_of(const Sparse& d, Eigen::Index r) {
+  return Row(d.row(r).transpose());
 }
 
 }  // namespace
@@ -49,6 +61,27 @@ DetailEditor::DetailEditor(const SubdivisionMesh& base, int levels) {
     steps_.push_back(subdivision_step(meshes_.back()));
     meshes_.push_back(subdivide(meshes_.back(), 1).levels[1]);
   }
+  for (const SubdivisionMesh& mesh : meshes_) incident_.push_back(vertex_faces(mesh));
+}
+
+std::vector<int> DetailEditor::grown(int level, const std::vector<int>& seed, int rings) const {
+  const SubdivisionMesh& mesh = meshes_[static_cast<size_t>(level)];
+  const std::vector<std::vector<int>>& incident = incident_[static_cast<size_t>(level)];
+  std::vector<char> in(static_cast<size_t>(mesh.points.rows()), 0);
+  std::vector<int> out, front = seed;
+  for (const int v : seed)
+    if (!in[static_cast<size_t>(v)]) in[static_cast<size_t>(v)] = 1, out.push_back(v);
+  for (int r = 0; r < rings; ++r) {
+    std::vector<int> next;
+    for (const int v : front)
+      for (const int f : incident[static_cast<size_t>(v)])
+        for (const int w : mesh.faces[static_cast<size_t>(f)])
+          if (!in[static_cast<size_t>(w)])
+            in[static_cast<size_t>(w)] = 1, next.push_back(w), out.push_back(w);
+    front = std::move(next);
+  }
+  std::sort(out.begin(), out.end());
+  return out;
 }
 
 int DetailEditor::vertices(int level) const {
@@ -99,6 +132,7 @@ Eigen::MatrixX3d DetailEditor::limit(const Multiresolution& surface) const {
 
 DetailEditResult DetailEditor::edit(const Multiresolution& surface,
                                     const std::vector<DetailPin>& pins,
+                                    const std::vector<DetailNormal>& normals,
                                     const DetailEditOptions& options) const {
   check(surface);
   if (options.rings < 0 || options.rings > 16) throw InvalidInput("rings must be in 0..16");
@@ -108,22 +142,34 @@ DetailEditResult DetailEditor::edit(const Multiresolution& surface,
     throw InvalidInput("the rounds and sweeps must be at least 1");
   if (!(options.tolerance > 0.0) || !std::isfinite(options.tolerance))
     throw InvalidInput("the tolerance must be a finite number > 0");
-  std::set<std::pair<int, int>> seen;
-  for (const DetailPin& pin : pins) {
-    if (pin.level < 0 || pin.level > levels())
-      throw InvalidInput(name(pin) + ": level " + std::to_string(pin.level) +
+  const auto check_place = [&](const auto& c, const char* what) {
+    if (c.level < 0 || c.level > levels())
+      throw InvalidInput(name(c, what) + ": level " + std::to_string(c.level) +
                          " does not exist (the surface has levels 0.." + std::to_string(levels()) +
                          "): set one of those");
-    if (pin.vertex < 0 || pin.vertex >= vertices(pin.level))
-      throw InvalidInput(name(pin) + ": level " + std::to_string(pin.level) + " has vertices 0.." +
-                         std::to_string(vertices(pin.level) - 1) + "; pick one of those");
-    if (pin.influence < 0 || pin.influence > pin.level)
-      throw InvalidInput(name(pin) + ": its influence level must lie in 0.." +
-                         std::to_string(pin.level) + "; set it so");
+    if (c.vertex < 0 || c.vertex >= vertices(c.level))
+      throw InvalidInput(name(c, what) + ": level " + std::to_string(c.level) +
+                         " has vertices 0.." + std::to_string(vertices(c.level) - 1) +
+                         "; pick one of those");
+    if (c.influence < 0 || c.influence > c.level)
+      throw InvalidInput(name(c, what) + ": its influence level must lie in 0.." +
+                         std::to_string(c.level) + "; set it so");
+  };
+  std::set<std::pair<int, int>> seen;
+  for (const DetailPin& pin : pins) {
+    check_place(pin, "pin");
     if (!pin.target.allFinite())
-      throw InvalidInput(name(pin) + " has a target that is not finite: give a point");
+      throw InvalidInput(name(pin, "pin") + " has a target that is not finite: give a point");
     if (!seen.insert({pin.level, pin.vertex}).second)
-      throw InvalidInput(name(pin) + " is given twice: remove one");
+      throw InvalidInput(name(pin, "pin") + " is given twice: remove one");
+  }
+  seen.clear();
+  for (const DetailNormal& normal : normals) {
+    check_place(normal, "normal");
+    if (!normal.normal.allFinite() || !(normal.normal.norm() > 0.0))
+      throw InvalidInput(name(normal, "normal") + " is zero or not finite: give a direction");
+    if (!seen.insert({normal.level, normal.vertex}).second)
+      throw InvalidInput(name(normal, "normal") + " is given twice: remove one");
   }
 
   DetailEditResult out{surface, {}};
@@ -131,132 +177,154 @@ DetailEditResult DetailEditor::edit(const Multiresolution& surface,
   const Eigen::MatrixX3d& finest = points.back();
   const double size = (finest.colwise().maxCoeff() - finest.colwise().minCoeff()).norm();
   const double tolerance = options.tolerance * std::max(size, 1e-300);
-  // A pin acts from its influence level down to its own level: solved at the coarsest, then the
-  // residual at each finer level on the pin's mask there (its masks there are more local, so pins
-  // too many for a coarse level are met at the fine ones, as in the paper's multigrid).
-  int first = levels(), last = 0;
-  for (const DetailPin& pin : pins) {
-    first = std::min(first, pin.influence);
-    last = std::max(last, pin.level);
+
+  // Each normal's tangents at its own level (the constraint's linear form, sec. 4.2), from the
+  // divided differences of the current shape: taken again each round, as the ring's local
+  // parameterization turns with the edit.
+  std::vector<std::array<Row, 2>> tangents(normals.size());
+  std::vector<Eigen::Vector3d> directions;
+  const auto linearize = [&](size_t k) {
+    const DetailNormal& normal = normals[k];
+    SubdivisionMesh shape = meshes_[static_cast<size_t>(normal.level)];
+    shape.points = points[static_cast<size_t>(normal.level)];
+    const Sparse d = divided_differences_checked(
+        shape, incident_[static_cast<size_t>(normal.level)], {normal.vertex});
+    tangents[k] = {row_of(d, 5 * normal.vertex), row_of(d, 5 * normal.vertex + 1)};
+  };
+  for (size_t k = 0; k < normals.size(); ++k) {
+    linearize(k);
+    const Eigen::MatrixX3d& p = points[static_cast<size_t>(normals[k].level)];
+    const Eigen::Vector3d qu = (tangents[k][0].transpose() * p).transpose();
+    const Eigen::Vector3d qv = (tangents[k][1].transpose() * p).transpose();
+    if (!(qu.cross(qv).norm() > 1e-12 * qu.norm() * qv.norm()))
+      throw InvalidInput(name(normals[k], "normal") +
+                         ": the surface has no tangent plane there; pick another vertex");
+    directions.push_back(normals[k].normal.normalized());
   }
 
+  // A constraint acts from its influence level down to its own level: solved at the coarsest, then
+  // the residual at each finer level on the constraint's mask there (more local there, so
+  // constraints too many for a coarse level are met at the fine ones, as in the paper's
+  // multigrid).
+  int first = levels(), last = 0;
+  for (const DetailPin& pin : pins)
+    first = std::min(first, pin.influence), last = std::max(last, pin.level);
+  for (const DetailNormal& n : normals)
+    first = std::min(first, n.influence), last = std::max(last, n.level);
+
+  // How far the active constraints are from being met, in units of their tolerances: a pin's
+  // distance over the tolerance, a normal's tangent's angle with the plane over options.tolerance.
+  const auto unmet = [&](const std::vector<Active>& active) {
+    double worst = 0.0;
+    for (const Active& a : active) {
+      if (a.pin) {
+        const Eigen::RowVector3d gap = a.pin->target.transpose() -
+                                       points[static_cast<size_t>(a.pin->level)].row(a.pin->vertex);
+        worst = std::max(worst, gap.norm() / tolerance);
+      } else {
+        const size_t k = static_cast<size_t>(a.normal - normals.data());
+        const Eigen::Vector3d q =
+            (a.tangent->transpose() * points[static_cast<size_t>(a.normal->level)]).transpose();
+        worst = std::max(worst, std::abs(q.dot(directions[k])) /
+                                    (std::max(q.norm(), 1e-300) * options.tolerance));
+      }
+    }
+    return worst;
+  };
+  const auto propagate = [&](Row row, int from, int to) {
+    for (int k = from - 1; k >= to; --k)
+      row = Row(steps_[static_cast<size_t>(k)].refine.transpose() * row);
+    return row;
+  };
+
   for (int level = first; level <= last; ++level) {
-    const SubdivisionMesh& topo = meshes_[static_cast<size_t>(level)];
-    // Every pin acting at this level (influence at or above it, its vertex at or below), as a row
-    // on this level's points: the Catmull-Clark masks composed from the pin's level down.
-    std::vector<const DetailPin*> active;
-    std::vector<Row> rows;
-    std::set<int> seed;
-    double start_residual = 0.0;
+    std::vector<Active> active;
+    std::vector<int> seed;
     for (const DetailPin& pin : pins) {
       if (pin.influence > level || pin.level < level) continue;
-      start_residual = std::max(
-          start_residual,
-          (pin.target.transpose() - points[static_cast<size_t>(pin.level)].row(pin.vertex)).norm());
       Row row(vertices(pin.level));
       row.insert(pin.vertex) = 1.0;
-      for (int k = pin.level - 1; k >= level; --k) {
-        const Sparse& refine = steps_[static_cast<size_t>(k)].refine;
-        row = Row(refine.transpose() * row);
-      }
-      for (Row::InnerIterator it(row); it; ++it)
-        if (it.value() != 0.0) seed.insert(static_cast<int>(it.index()));
-      active.push_back(&pin);
-      rows.push_back(std::move(row));
+      active.push_back({propagate(row, pin.level, level), &pin, nullptr, nullptr});
     }
-    if (active.empty() || start_residual <= tolerance) continue;
+    for (size_t k = 0; k < normals.size(); ++k) {
+      const DetailNormal& normal = normals[k];
+      if (normal.influence > level || normal.level < level) continue;
+      for (const Row& tangent : tangents[k])
+        active.push_back({propagate(tangent, normal.level, level), nullptr, &normal, &tangent});
+    }
+    if (active.empty() || unmet(active) <= 1.0) continue;
+    for (const Active& a : active)
+      for (Row::InnerIterator it(a.row); it; ++it)
+        if (it.value() != 0.0) seed.push_back(static_cast<int>(it.index()));
     const int rings = options.solve == DetailSolve::approximate ? 0 : options.rings;
-    const std::set<int> region = grown(topo, seed, rings);
-    std::vector<int> free(region.begin(), region.end());
-    std::map<int, int> column;
-    for (size_t k = 0; k < free.size(); ++k) column[free[k]] = static_cast<int>(k);
+    const std::vector<int> free = grown(level, seed, rings);
+    std::vector<int> column(static_cast<size_t>(vertices(level)), -1);
+    for (size_t k = 0; k < free.size(); ++k)
+      column[static_cast<size_t>(free[k])] = static_cast<int>(k);
     const Eigen::Index f = static_cast<Eigen::Index>(free.size());
-    // The rows on the region; a coarser pin whose mask lies outside it is kept by standing still.
-    std::vector<Eigen::Triplet<double>> a_entries;
-    std::vector<size_t> kept;
-    for (size_t r = 0; r < rows.size(); ++r) {
-      bool touches = false;
-      for (Row::InnerIterator it(rows[r]); it; ++it) {
-        const auto c = column.find(static_cast<int>(it.index()));
-        if (c == column.end() || it.value() == 0.0) continue;
-        a_entries.emplace_back(static_cast<int>(kept.size()), c->second, it.value());
-        touches = true;
+    // The rows on the region; a coarser constraint whose mask lies outside it is kept by standing
+    // still. Pins alone: three independent systems on the vertices; with normals one coupled
+    // system on the coordinates (unknown 3i + d), each pin three rows, each tangent one.
+    std::vector<Active*> kept;
+    for (Active& a : active)
+      for (Row::InnerIterator it(a.row); it; ++it)
+        if (it.value() != 0.0 && column[static_cast<size_t>(it.index())] >= 0) {
+          kept.push_back(&a);
+          break;
+        }
+    const bool coupled =
+        std::any_of(kept.begin(), kept.end(), [](const Active* a) { return a->normal != nullptr; });
+    const int width = coupled ? 3 : 1;
+    Eigen::Index m = 0;
+    for (const Active* a : kept) m += a->pin && coupled ? 3 : 1;
+    const auto assemble = [&]() {
+      std::vector<Eigen::Triplet<double>> a_entries;
+      int r = 0;
+      for (const Active* a : kept) {
+        const int equations = a->pin && coupled ? 3 : 1;
+        for (int e = 0; e < equations; ++e, ++r)
+          for (Row::InnerIterator it(a->row); it; ++it) {
+            const int c = column[static_cast<size_t>(it.index())];
+            if (c < 0 || it.value() == 0.0) continue;
+            if (!coupled) {
+              a_entries.emplace_back(r, c, it.value());
+            } else if (a->pin) {
+              a_entries.emplace_back(r, 3 * c + e, it.value());
+            } else {
+              const Eigen::Vector3d& n =
+                  directions[static_cast<size_t>(a->normal - normals.data())];
+              for (int d = 0; d < 3; ++d)
+                if (n(d) != 0.0) a_entries.emplace_back(r, 3 * c + d, it.value() * n(d));
+            }
+          }
       }
-      if (touches) kept.push_back(r);
-    }
-    const Eigen::Index m = static_cast<Eigen::Index>(kept.size());
-    Sparse a(m, f);
-    a.setFromTriplets(a_entries.begin(), a_entries.end());
+      Sparse a(m, width * f);
+      a.setFromTriplets(a_entries.begin(), a_entries.end());
+      return a;
+    };
     out.report.region_levels.push_back(level);
     out.report.region_sizes.push_back(static_cast<int>(f));
 
-    // The level's energy on the deformation (sec. 4.1), from the level's shape before the edit.
-    Sparse h;
-    Eigen::SparseLU<Sparse> kkt;
-    Eigen::SimplicialLDLT<Sparse> penalty;
-    double penalty_weight = 0.0;
-    bool least_squares = false;
-    Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> masks;
-    std::vector<int> relaxed;  // SOR: the region's vertices outside every mask
-    const Eigen::MatrixXd dense_a = Eigen::MatrixXd(a);
-    if (options.solve == DetailSolve::direct || options.solve == DetailSolve::sor) {
-      SubdivisionMesh shape = topo;
+    // The level's energy on the deformation (sec. 4.1), from the level's shape before the edit,
+    // restricted to the region (the vertices outside stand still), per coordinate when coupled.
+    Sparse h(width * f, width * f);
+    if (options.solve != DetailSolve::approximate) {
+      SubdivisionMesh shape = meshes_[static_cast<size_t>(level)];
       shape.points = points[static_cast<size_t>(level)];
       // The energy of the vertices whose ring reaches the region: the rest is constant.
-      const std::set<int> reach = grown(topo, region, 1);
-      h = detail_energy(shape, options.weights, std::vector<int>(reach.begin(), reach.end()));
-    }
-    if (options.solve == DetailSolve::direct) {
-      std::vector<Eigen::Triplet<double>> k_entries;
-      double diagonal = 0.0;
-      for (Eigen::Index i = 0; i < f; ++i) diagonal = std::max(diagonal, h.coeff(free[i], free[i]));
-      for (Eigen::Index i = 0; i < f; ++i) {
-        for (Sparse::InnerIterator it(h, free[i]); it; ++it) {
-          const auto c = column.find(static_cast<int>(it.row()));
-          if (c != column.end()) k_entries.emplace_back(c->second, static_cast<int>(i), it.value());
+      const Sparse full = detail_energy_checked(shape, incident_[static_cast<size_t>(level)],
+                                                options.weights, grown(level, free, 1));
+      std::vector<Eigen::Triplet<double>> h_entries;
+      for (Eigen::Index i = 0; i < f; ++i)
+        for (Sparse::InnerIterator it(full, free[static_cast<size_t>(i)]); it; ++it) {
+          const int r = column[static_cast<size_t>(it.row())];
+          if (r < 0) continue;
+          for (int d = 0; d < width; ++d)
+            h_entries.emplace_back(width * r + d, width * static_cast<int>(i) + d, it.value());
         }
-        // A whisker on the diagonal: a region that the pins leave free to translate (the energy
-        // of a translation is zero) then takes the smallest move.
-        k_entries.emplace_back(static_cast<int>(i), static_cast<int>(i), 1e-12 * diagonal);
-      }
-      for (int outer = 0; outer < a.outerSize(); ++outer)
-        for (Sparse::InnerIterator it(a, outer); it; ++it) {
-          k_entries.emplace_back(static_cast<int>(f + it.row()), static_cast<int>(it.col()),
-                                 it.value());
-          k_entries.emplace_back(static_cast<int>(it.col()), static_cast<int>(f + it.row()),
-                                 it.value());
-        }
-      Sparse k(f + m, f + m);
-      k.setFromTriplets(k_entries.begin(), k_entries.end());
-      kkt.compute(k);
-      if (kkt.info() != Eigen::Success) {
-        // More pins than this level can meet (their masks dependent): their least-squares fit,
-        // the energy keeping it smooth; the finer levels then meet them.
-        Sparse h_ff(f, f);
-        std::vector<Eigen::Triplet<double>> h_entries;
-        for (const auto& t : k_entries)
-          if (t.row() < f && t.col() < f) h_entries.push_back(t);
-        h_ff.setFromTriplets(h_entries.begin(), h_entries.end());
-        const Sparse ata = Sparse(a.transpose() * a);
-        double ata_diagonal = 0.0;
-        for (Eigen::Index i = 0; i < f; ++i) ata_diagonal = std::max(ata_diagonal, ata.coeff(i, i));
-        penalty_weight = 1e6 * std::max(diagonal, 1e-300) / std::max(ata_diagonal, 1e-300);
-        penalty.compute(Sparse(h_ff + penalty_weight * ata));
-        if (penalty.info() != Eigen::Success)
-          throw InvalidInput("the pins solved at level " + std::to_string(level) +
-                             " cannot be met: remove some or solve them at a finer level");
-        least_squares = true;
-      }
-    } else {
-      masks.compute(dense_a * dense_a.transpose());
-      if (options.solve == DetailSolve::sor) {
-        std::set<int> in_masks;
-        for (Eigen::Index c = 0; c < f; ++c)
-          if (dense_a.col(c).cwiseAbs().maxCoeff() > 0.0) in_masks.insert(static_cast<int>(c));
-        for (Eigen::Index c = 0; c < f; ++c)
-          if (!in_masks.count(static_cast<int>(c))) relaxed.push_back(static_cast<int>(c));
-      }
+      h.setFromTriplets(h_entries.begin(), h_entries.end());
     }
+    std::unique_ptr<RegionSolver> solver;
 
     // The frames of this level's details (unchanged by edits at this level or finer).
     Eigen::MatrixX3d frames;
@@ -267,63 +335,48 @@ DetailEditResult DetailEditor::edit(const Multiresolution& surface,
     }
     double previous = std::numeric_limits<double>::infinity();
     for (int round = 0; round < options.max_rounds && m > 0; ++round) {
-      Eigen::MatrixX3d c(m, 3);
-      double worst = 0.0;
-      for (Eigen::Index r = 0; r < m; ++r) {
-        const DetailPin& pin = *active[kept[static_cast<size_t>(r)]];
-        c.row(r) = pin.target.transpose() - points[static_cast<size_t>(pin.level)].row(pin.vertex);
-        worst = std::max(worst, c.row(r).norm());
+      if (coupled || !solver) {
+        for (size_t k = 0; k < normals.size(); ++k)
+          if (normals[k].influence <= level && normals[k].level >= level) linearize(k);
+        for (Active* a : kept)
+          if (a->normal) a->row = propagate(*a->tangent, a->normal->level, level);
+        solver = std::make_unique<RegionSolver>(h, assemble(), options, level);
       }
-      // Met, or no longer improving (pins this level can meet only in least squares).
-      if (worst <= tolerance || worst > 0.999 * previous) break;
+      // Met, or no longer improving (constraints this level can meet only in least squares).
+      const double worst = unmet(active);
+      if (worst <= 1.0 || worst > 0.999 * previous) break;
       previous = worst;
       ++out.report.rounds;
-      Eigen::MatrixX3d x = Eigen::MatrixX3d::Zero(f, 3);
-      if (options.solve == DetailSolve::direct && least_squares) {
-        x = penalty.solve(Eigen::MatrixX3d(penalty_weight * (a.transpose() * c)));
-      } else if (options.solve == DetailSolve::direct) {
-        Eigen::MatrixX3d rhs = Eigen::MatrixX3d::Zero(f + m, 3);
-        rhs.bottomRows(m) = c;
-        x = kkt.solve(rhs).topRows(f);
-      } else {
-        x = dense_a.transpose() * masks.solve(c);
-        if (options.solve == DetailSolve::sor) {
-          // Gauss-Seidel with over-relaxation on the rest of the region (the paper's sec. 4.3);
-          // the vertices outside the region stand still.
-          const double stop = 1e-3 * tolerance;
-          for (int sweep = 0; sweep < options.max_sweeps; ++sweep) {
-            ++out.report.sweeps;
-            double change = 0.0;
-            for (const int i : relaxed) {
-              const int v = free[static_cast<size_t>(i)];
-              Eigen::RowVector3d sum = Eigen::RowVector3d::Zero();
-              double diagonal = 0.0;
-              for (Sparse::InnerIterator it(h, v); it; ++it) {
-                if (it.row() == v) {
-                  diagonal = it.value();
-                  continue;
-                }
-                const auto col = column.find(static_cast<int>(it.row()));
-                if (col != column.end()) sum += it.value() * x.row(col->second);
-              }
-              if (diagonal <= 0.0) continue;
-              const Eigen::RowVector3d next =
-                  (1.0 - options.omega) * x.row(i) - (options.omega / diagonal) * sum;
-              change = std::max(change, (next - x.row(i)).norm());
-              x.row(i) = next;
-            }
-            if (change <= stop) break;
-          }
+      Eigen::MatrixXd c(m, coupled ? 1 : 3);
+      Eigen::Index r = 0;
+      for (const Active* a : kept) {
+        if (a->pin) {
+          const Eigen::RowVector3d gap =
+              a->pin->target.transpose() -
+              points[static_cast<size_t>(a->pin->level)].row(a->pin->vertex);
+          if (coupled)
+            for (int d = 0; d < 3; ++d) c(r++, 0) = gap(d);
+          else
+            c.row(r++) = gap;
+        } else {
+          const Eigen::Vector3d q =
+              (a->tangent->transpose() * points[static_cast<size_t>(a->normal->level)]).transpose();
+          c(r++, 0) = -q.dot(directions[static_cast<size_t>(a->normal - normals.data())]);
         }
       }
+      const Eigen::MatrixXd solved = solver->solve(c, 1e-3 * tolerance, out.report.sweeps);
       // The move becomes this level's change: the base's points, or this level's details.
       for (Eigen::Index i = 0; i < f; ++i) {
         const int v = free[static_cast<size_t>(i)];
+        const Eigen::RowVector3d x =
+            coupled
+                ? Eigen::RowVector3d(solved(3 * i, 0), solved(3 * i + 1, 0), solved(3 * i + 2, 0))
+                : Eigen::RowVector3d(solved.row(i));
         if (level == 0)
-          out.surface.base.points.row(v) += x.row(i);
+          out.surface.base.points.row(v) += x;
         else
           out.surface.details[static_cast<size_t>(level - 1)].row(v) +=
-              x.row(i) * frames.middleRows(3 * v, 3).transpose();
+              x * frames.middleRows(3 * v, 3).transpose();
       }
       points = this->points(out.surface);
     }
@@ -332,6 +385,17 @@ DetailEditResult DetailEditor::edit(const Multiresolution& surface,
     out.report.max_residual = std::max(
         out.report.max_residual,
         (pin.target.transpose() - points[static_cast<size_t>(pin.level)].row(pin.vertex)).norm());
+  for (size_t k = 0; k < normals.size(); ++k) {
+    const DetailNormal& normal = normals[k];
+    SubdivisionMesh shape = meshes_[static_cast<size_t>(normal.level)];
+    shape.points = points[static_cast<size_t>(normal.level)];
+    const Sparse d = divided_differences_checked(
+        shape, incident_[static_cast<size_t>(normal.level)], {normal.vertex});
+    out.report.max_normal_angle =
+        std::max(out.report.max_normal_angle,
+                 normal_angle(row_of(d, 5 * normal.vertex), row_of(d, 5 * normal.vertex + 1),
+                              shape.points, directions[k]));
+  }
   return out;
 }
 

@@ -80,14 +80,26 @@ double mean_edge_length(const SubdivisionMesh& mesh) {
 
 }  // namespace
 
-Eigen::SparseMatrix<double> divided_differences(const SubdivisionMesh& mesh,
-                                                const std::vector<int>& vertices) {
+VertexFaces vertex_faces(const SubdivisionMesh& mesh) {
   subdivide(mesh, 0);  // the mesh's checks
-  const Eigen::Index n = mesh.points.rows();
-  std::vector<std::vector<int>> incident(static_cast<size_t>(n));
+  VertexFaces incident(static_cast<size_t>(mesh.points.rows()));
   for (size_t f = 0; f < mesh.faces.size(); ++f)
     for (const int v : mesh.faces[f])
       incident[static_cast<size_t>(v)].push_back(static_cast<int>(f));
+  return incident;
+}
+
+Eigen::SparseMatrix<double> divided_differences(const SubdivisionMesh& mesh,
+                                                const std::vector<int>& vertices) {
+  return divided_differences_checked(mesh, vertex_faces(mesh), vertices);
+}
+
+Eigen::SparseMatrix<double> divided_differences_checked(const SubdivisionMesh& mesh,
+                                                        const VertexFaces& incident,
+                                                        const std::vector<int>& vertices) {
+  const Eigen::Index n = mesh.points.rows();
+  if (incident.size() != static_cast<size_t>(n))
+    throw InvalidInput("the incidence is not the mesh's: build it by vertex_faces");
   std::vector<int> all;
   if (vertices.empty())
     for (int v = 0; v < n; ++v) all.push_back(v);
@@ -138,10 +150,17 @@ Eigen::SparseMatrix<double> divided_differences(const SubdivisionMesh& mesh,
 Eigen::SparseMatrix<double> detail_energy(const SubdivisionMesh& mesh,
                                           const DetailEnergyWeights& weights,
                                           const std::vector<int>& vertices) {
+  return detail_energy_checked(mesh, vertex_faces(mesh), weights, vertices);
+}
+
+Eigen::SparseMatrix<double> detail_energy_checked(const SubdivisionMesh& mesh,
+                                                  const VertexFaces& incident,
+                                                  const DetailEnergyWeights& weights,
+                                                  const std::vector<int>& vertices) {
   if (!(weights.stretch >= 0.0) || !(weights.bend >= 0.0) ||
       !std::isfinite(weights.stretch + weights.bend) || weights.stretch + weights.bend <= 0.0)
     throw InvalidInput("the stretch and bend weights must be finite, >= 0 and not both 0");
-  const Eigen::SparseMatrix<double> d = divided_differences(mesh, vertices);
+  const Eigen::SparseMatrix<double> d = divided_differences_checked(mesh, incident, vertices);
   const double l = mean_edge_length(mesh);
   Eigen::VectorXd w(d.rows());
   for (Eigen::Index v = 0; 5 * v < d.rows(); ++v)

@@ -12,7 +12,7 @@ import FreeCAD
 from varsurf.app.drag import DragError
 from varsurf.app.feature import last_outcome
 from varsurf.app.macro import ref
-from varsurf.app.subd_surface import compute, is_subd_surface, pins_of
+from varsurf.app.subd_surface import compute, is_subd_surface, normals_of, pins_of
 from varsurf.app.transaction import run_in_transaction
 from varsurf.solve import multiresolution
 from varsurf.solve.errors import SheetError
@@ -31,6 +31,7 @@ class PinDrag:
             raise DragError(f"{subd.Label} has {len(subd.PinTargets)} pins, no pin {index}")
         try:
             self.pins = pins_of(subd)
+            self.normals = normals_of(subd)
             self.outcome = last_outcome(subd, compute)
         except SheetError as error:
             raise DragError(f"{subd.Label}: {error}") from error
@@ -41,7 +42,7 @@ class PinDrag:
         pins = list(self.pins)
         p = pins[self.index]
         pins[self.index] = multiresolution.Pin(p.level, p.vertex, (target.x, target.y, target.z), p.influence)
-        return multiresolution.edited_limit(self.outcome, pins)
+        return multiresolution.edited_limit(self.outcome, pins, normals=self.normals)
 
     def finish(self, target, do_command=None):
         """Write the target (one undoable step, recorded through do_command) and recompute."""

@@ -8,6 +8,8 @@ varsurf.solve.multiresolution."""
 
 from __future__ import annotations
 
+import math
+
 import FreeCAD
 
 from varsurf.app import subdivision
@@ -28,11 +30,16 @@ _PROPERTIES = [
     ("PinLevels", "App::PropertyIntegerList", "Pins", "Per pin: the level of its vertex (0: the cage)", False),
     ("PinInfluence", "App::PropertyIntegerList", "Pins", "Per pin: the level it is propagated to, its region of influence: 0 moves the whole shape, finer levels a smaller patch", False),
     ("PinTargets", "App::PropertyVectorList", "Pins", "Per pin: where its vertex goes", False),
+    ("NormalVertices", "App::PropertyIntegerList", "Normals", "Per normal: the vertex whose normal is prescribed, numbered at its level", False),
+    ("NormalLevels", "App::PropertyIntegerList", "Normals", "Per normal: the level of its vertex (0: the cage)", False),
+    ("NormalInfluence", "App::PropertyIntegerList", "Normals", "Per normal: the level it is propagated to, its region of influence", False),
+    ("NormalDirections", "App::PropertyVectorList", "Normals", "Per normal: the direction the surface's normal takes there (either sign)", False),
     ("Solve", "App::PropertyEnumeration", "Pins", "Direct: the energy's minimum on each region; SOR: the paper's relaxation; Approximate: Catmull-Clark smoothing of the pins' moves (what a drag shows)", False),
     ("Rings", "App::PropertyIntegerConstraint", "Pins", "How far each region reaches beyond the pins' masks, in rings of faces at its level", False),
     ("FitMax", "App::PropertyFloat", "Result", "The limit surface's largest distance from the Target (mm)", True),
     ("FitRms", "App::PropertyFloat", "Result", "The limit surface's RMS distance from the Target (mm)", True),
     ("PinResidual", "App::PropertyFloat", "Result", "The worst pin's distance from its target (mm)", True),
+    ("NormalAngle", "App::PropertyFloat", "Result", "The worst prescribed normal's angle from the surface's normal there (degrees, from the edited mesh's divided differences)", True),
     ("FaceCount", "App::PropertyInteger", "Result", "Faces of the finest level", True),
     ("Status", "App::PropertyString", "Result", "OK, or what went wrong", True),
 ]
@@ -65,12 +72,15 @@ class SubdSurfaceFeature(FeatureProxy):
         obj.FitMax = result.fit_max if result.fit_max is not None else 0.0
         obj.FitRms = result.fit_rms if result.fit_rms is not None else 0.0
         obj.PinResidual = result.residual
+        obj.NormalAngle = math.degrees(result.normal_angle)
         obj.FaceCount = len(result.faces[-1])
         obj.Status = f"OK: {obj.FaceCount} faces at level {obj.Levels}"
         if result.fit_max is not None:
             obj.Status += f", {obj.Target.Label} captured within {result.fit_max:.3g} mm (RMS {result.fit_rms:.3g})"
-        if result.region_sizes:
+        if result.region_sizes and obj.PinTargets:
             obj.Status += f", pins met within {result.residual:.2g} mm"
+        if result.region_sizes and obj.NormalDirections:
+            obj.Status += f", normals within {obj.NormalAngle:.2g}°"
 
 
 def pins_of(obj):
@@ -83,6 +93,17 @@ def pins_of(obj):
             for v, lv, inf, t in zip(*lists)]
 
 
+def normals_of(obj):
+    """The prescribed normals of a SubdSurface's Normals lists, all of one length."""
+    lists = [list(obj.NormalVertices), list(obj.NormalLevels), list(obj.NormalInfluence),
+             list(value(obj, "NormalDirections"))]
+    if len({len(v) for v in lists}) != 1:
+        raise errors.SheetError(f"NormalVertices, NormalLevels, NormalInfluence and NormalDirections have "
+                                f"{', '.join(str(len(v)) for v in lists)} entries: give each normal one of each")
+    return [multiresolution.Normal(int(lv), int(v), (d.x, d.y, d.z), int(inf))
+            for v, lv, inf, d in zip(*lists)]
+
+
 def compute(obj):
     """The SubdSurface's MultiresResult (see varsurf.solve.multiresolution.build)."""
     if obj.Source is None:
@@ -93,17 +114,18 @@ def compute(obj):
         target = subdivision.target_triangles(obj.Target, float(value(obj, "TargetTolerance")))
     try:
         return multiresolution.build(points, faces, int(obj.Levels), target=target, pins=pins_of(obj),
-                                     solve=str(obj.Solve), rings=int(obj.Rings))
+                                     solve=str(obj.Solve), rings=int(obj.Rings), normals=normals_of(obj))
     except errors.SheetError as error:
         raise errors.SheetError(f"{error} ({obj.Source.Label} as the cage"
                                 + (f", {obj.Target.Label} as the target)" if obj.Target is not None else ")")) from error
 
 
 def make_subd_surface(source, levels: int = 3, target=None, pins=(), solve: str = "Direct", rings: int = 1,
-                      doc=None, name: str = "SubdSurface"):
+                      doc=None, name: str = "SubdSurface", normals=()):
     """Add a SubdSurface (computed at the next recompute): ``source`` the cage (a Mesh, a shape's
     faces, or a VarSurf sheet), ``target`` an optional Mesh or shape whose detail is captured,
-    ``pins`` (level, vertex, (x, y, z), influence) tuples."""
+    ``pins`` (level, vertex, (x, y, z), influence) tuples, ``normals`` (level, vertex,
+    (x, y, z) direction, influence) tuples."""
     doc = doc or source.Document
     obj = doc.addObject("Mesh::FeaturePython", name)
     SubdSurfaceFeature(obj)
@@ -111,6 +133,7 @@ def make_subd_surface(source, levels: int = 3, target=None, pins=(), solve: str 
     obj.Target = target
     obj.Levels = int(levels)
     set_pins(obj, pins)
+    set_normals(obj, normals)
     obj.Solve = solve
     obj.Rings = int(rings)
     attach_view_provider(obj, "ViewProviderSubdSurface")
@@ -124,6 +147,15 @@ def set_pins(obj, pins):
     obj.PinVertices = [int(p[1]) for p in pins]
     obj.PinTargets = [FreeCAD.Vector(*map(float, p[2])) for p in pins]
     obj.PinInfluence = [int(p[3]) for p in pins]
+
+
+def set_normals(obj, normals):
+    """Replace a SubdSurface's prescribed normals by (level, vertex, (x, y, z), influence) tuples."""
+    normals = [tuple(n) for n in normals]
+    obj.NormalLevels = [int(n[0]) for n in normals]
+    obj.NormalVertices = [int(n[1]) for n in normals]
+    obj.NormalDirections = [FreeCAD.Vector(*map(float, n[2])) for n in normals]
+    obj.NormalInfluence = [int(n[3]) for n in normals]
 
 
 def move_pin(obj, index: int, target):

@@ -37,6 +37,16 @@ class Pin:
 
 
 @dataclass
+class Normal:
+    """A normal prescribed at a vertex (Boier-Martin et al. 4.2): its tangents made perpendicular
+    to `direction` (either sign)."""
+    level: int
+    vertex: int
+    direction: Point
+    influence: int
+
+
+@dataclass
 class MultiresResult:
     points: np.ndarray  # the limit surface at the finest level's vertices
     triangles: List[Tuple[int, int, int]]  # the finest level's quads split
@@ -45,6 +55,7 @@ class MultiresResult:
     fit_max: Optional[float] = None  # the limit's distance from a captured target
     fit_rms: Optional[float] = None
     residual: float = 0.0  # the worst pin's distance from its target
+    normal_angle: float = 0.0  # the worst normal's angle from its prescribed line (radians)
     rounds: int = 0
     region_sizes: List[int] = field(default_factory=list)
     region_levels: List[int] = field(default_factory=list)
@@ -104,10 +115,11 @@ def _solve(name: str):
 
 def build(points: Sequence[Point], faces: Sequence[Sequence[int]], levels: int,
           target: Optional[Tuple[Sequence[Point], Sequence[Tuple[int, int, int]]]] = None,
-          pins: Sequence[Pin] = (), solve: str = "Direct", rings: int = 1) -> MultiresResult:
+          pins: Sequence[Pin] = (), solve: str = "Direct", rings: int = 1,
+          normals: Sequence[Normal] = ()) -> MultiresResult:
     """The surface of the cage (points, faces) refined `levels` times, with the detail of
-    `target` (points, triangles) captured when given, edited by `pins`. SheetError says what is
-    wrong with bad input (the mesh, the target, a pin)."""
+    `target` (points, triangles) captured when given, edited by `pins` and `normals`. SheetError
+    says what is wrong with bad input (the mesh, the target, a pin, a normal)."""
     nat = native()
     levels = int(levels)
     if not 1 <= levels <= 8:
@@ -127,12 +139,11 @@ def build(points: Sequence[Point], faces: Sequence[Sequence[int]], levels: int,
             details = [np.zeros((editor.vertices(k), 3)) for k in range(1, levels + 1)]
             multires = nat.Multiresolution(base, details)
         report, captured = None, multires
-        if pins:
+        if pins or normals:
             options = nat.DetailEditOptions()
             options.solve = _solve(solve)
             options.rings = int(rings)
-            edited = editor.edit(multires, [nat.DetailPin(p.level, p.vertex, np.asarray(p.target, float),
-                                                          p.influence) for p in pins], options)
+            edited = editor.edit(multires, _native_pins(pins), _native_normals(normals), options)
             multires, report = edited.surface, edited.report
         level_points = [np.asarray(p) for p in editor.points(multires)]
         finest = editor.topology(levels)
@@ -148,6 +159,7 @@ def build(points: Sequence[Point], faces: Sequence[Sequence[int]], levels: int,
         result.fit_max, result.fit_rms = fit.max_distance, fit.rms_distance
     if report is not None:
         result.residual, result.rounds = report.max_residual, report.rounds
+        result.normal_angle = report.max_normal_angle
         result.region_sizes, result.region_levels = list(report.region_sizes), list(report.region_levels)
     return result
 
@@ -192,16 +204,27 @@ def brep(result: MultiresResult, isolation: int = 4, tolerance: float = 0.0) -> 
 DRAG_TOLERANCE = 1e-6
 
 
-def edited_limit(result: MultiresResult, pins: Sequence[Pin], solve: str = "Approximate") -> np.ndarray:
-    """The limit points of a built surface's captured levels edited by `pins` (a drag's move: the
-    approximate solve by default, to DRAG_TOLERANCE), without building anything again."""
+def _native_pins(pins: Sequence[Pin]):
+    nat = native()
+    return [nat.DetailPin(p.level, p.vertex, np.asarray(p.target, float), p.influence) for p in pins]
+
+
+def _native_normals(normals: Sequence[Normal]):
+    nat = native()
+    return [nat.DetailNormal(n.level, n.vertex, np.asarray(n.direction, float), n.influence) for n in normals]
+
+
+def edited_limit(result: MultiresResult, pins: Sequence[Pin], solve: str = "Approximate",
+                 normals: Sequence[Normal] = ()) -> np.ndarray:
+    """The limit points of a built surface's captured levels edited by `pins` and `normals` (a
+    drag's move: the approximate solve by default, to DRAG_TOLERANCE), without building anything
+    again."""
     nat = native()
     options = nat.DetailEditOptions()
     options.solve = _solve(solve)
     options.tolerance = DRAG_TOLERANCE
     try:
-        edited = result.editor.edit(result.captured, [nat.DetailPin(p.level, p.vertex, np.asarray(p.target, float),
-                                                                    p.influence) for p in pins], options)
+        edited = result.editor.edit(result.captured, _native_pins(pins), _native_normals(normals), options)
         return np.asarray(result.editor.limit(edited.surface))
     except nat.InvalidInput as error:
         raise SheetError(str(error)) from error

@@ -23,6 +23,17 @@ struct DetailPin {
   int influence = 0;  // the level it is propagated to, 0 .. level: its region of influence
 };
 
+// A normal prescribed at a vertex (sec. 4.2): the vertex's tangents Q_u, Q_v, from the divided
+// differences of the shape before the edit, made perpendicular to `normal` (its sign is free:
+// the constraint is linear). Couples the three coordinates, so a level with normals is solved as
+// one system (sec. 5).
+struct DetailNormal {
+  int level = 0;
+  int vertex = 0;
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
+  int influence = 0;
+};
+
 enum class DetailSolve {
   approximate,  // the pins' masks moved by least norm, the rest by subdivision (during drags)
   direct,       // the energy's minimum on the region, by a sparse direct solve of its KKT system
@@ -41,6 +52,9 @@ struct DetailEditOptions {
 
 struct DetailEditReport {
   double max_residual = 0.0;  // the worst pin's distance from its target after the edit
+  // The worst angle (radians) between a constrained vertex's normal after the edit, from fresh
+  // divided differences, and its prescribed line.
+  double max_normal_angle = 0.0;
   int rounds = 0;
   int sweeps = 0;                  // SOR's, over all rounds
   std::vector<int> region_sizes;   // the vertices free at each influence level solved
@@ -69,14 +83,23 @@ class DetailEditor {
   Eigen::MatrixX3d limit(const Multiresolution& surface) const;
   // The surface edited by the pins. InvalidInput for a surface of another topology, pins on
   // vertices or levels that do not exist (naming them), an influence coarser than 0 or finer
-  // than the pin's level, targets not finite, two pins on one vertex, bad options.
+  // than the pin's level, targets not finite, two pins on one vertex, bad options; for normals
+  // the same, a zero normal, and a vertex without a tangent plane.
   DetailEditResult edit(const Multiresolution& surface, const std::vector<DetailPin>& pins,
+                        const std::vector<DetailNormal>& normals,
                         const DetailEditOptions& options) const;
+  DetailEditResult edit(const Multiresolution& surface, const std::vector<DetailPin>& pins,
+                        const DetailEditOptions& options) const {
+    return edit(surface, pins, {}, options);
+  }
 
  private:
   void check(const Multiresolution& surface) const;
+  // The vertices sharing a face with any of `seed` at `level`, `rings` times over.
+  std::vector<int> grown(int level, const std::vector<int>& seed, int rings) const;
   std::vector<SubdivisionMesh> meshes_;  // topology and creases per level 0 .. L
   std::vector<SubdivisionStep> steps_;   // level k to k + 1
+  std::vector<VertexFaces> incident_;    // per level, each vertex's faces
 };
 
 }  // namespace varsurf

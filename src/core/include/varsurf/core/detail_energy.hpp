@@ -36,4 +36,17 @@ Eigen::SparseMatrix<double> detail_energy(const SubdivisionMesh& mesh,
                                           const DetailEnergyWeights& weights,
                                           const std::vector<int>& vertices = {});
 
+// Each vertex's faces, after OpenSubdiv's checks of the mesh (InvalidInput as subdivide). The
+// _checked functions below skip those checks, which took most of an edit's time with normal
+// constraints (their tangents are taken again each round): for a mesh whose topology is checked.
+using VertexFaces = std::vector<std::vector<int>>;
+VertexFaces vertex_faces(const SubdivisionMesh& mesh);
+Eigen::SparseMatrix<double> divided_differences_checked(const SubdivisionMesh& mesh,
+                                                        const VertexFaces& incident,
+                                                        const std::vector<int>& vertices = {});
+Eigen::SparseMatrix<double> detail_energy_checked(const SubdivisionMesh& mesh,
+                                                  const VertexFaces& incident,
+                                                  const DetailEnergyWeights& weights,
+                                                  const std::vector<int>& vertices = {});
+
 }  // namespace varsurf
