@@ -147,6 +147,9 @@ void bind_detail_edit(py::module_& m) {
       .def("topology", &DetailEditor::topology, "level"_a)
       .def("points", &DetailEditor::points, "surface"_a, py::call_guard<py::gil_scoped_release>(),
            "Every level's points, the base first.")
+      .def("normal", &DetailEditor::normal, "surface"_a, "level"_a, "vertex"_a,
+           py::call_guard<py::gil_scoped_release>(),
+           "The unit normal at a vertex of a level from its divided differences.")
       .def("limit", &DetailEditor::limit, "surface"_a, py::call_guard<py::gil_scoped_release>(),
            "The limit surface at the finest level's vertices.")
       .def("edit",

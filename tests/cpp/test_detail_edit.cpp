@@ -358,6 +358,8 @@ TEST(DetailEdit, NormalsAreMetByEverySolve) {
     EXPECT_LT(mesh_normal_angle(editor, r.surface, 2, static_cast<int>(w), tilt_y), 1e-6);
     EXPECT_LT(r.report.max_normal_angle, 1e-6);
     EXPECT_LE(r.report.max_residual, 1e-9 * kSize * 2);
+    // The editor's normal there is the one held (up to its sign).
+    EXPECT_GT(std::abs(editor.normal(r.surface, levels, v).dot(tilt_x)), 1.0 - 1e-12);
     // The limit surface's own normal there follows to a fraction of the tilt (the limit mask
     // averages the ring the constraint holds).
     if (solve == DetailSolve::direct)
@@ -457,4 +459,10 @@ TEST(DetailEdit, BadNormalsAreRefusedByName) {
   EXPECT_NE(message({{2, 5, Eigen::Vector3d(0, INFINITY, 1), 1}}).find("zero or not finite"),
             std::string::npos);
   EXPECT_TRUE(message({{2, 5, z, 1}}).empty());
+  EXPECT_THROW(editor.normal(m, 2, -1), InvalidInput);
+  EXPECT_THROW(editor.normal(m, 3, 0), InvalidInput);
+  // A flat plane's vertices all have the normal along z, corners included.
+  const Multiresolution flat = capture(plane(), 2, no_relief);
+  for (const int v : {0, 7, 40})
+    EXPECT_GT(std::abs(editor.normal(flat, 2, v).z()), 1.0 - 1e-12);
 }

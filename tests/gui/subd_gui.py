@@ -5,7 +5,11 @@
 
 A Part Box and a Part Sphere selected, the command "Subdivision surface from a cage" makes a
 SubdSurface capturing the sphere; selected, "Subdivision surface to B-rep" makes its SubdBRep;
-screenshots of the window; undo removes the B-rep. Then a document written without the GUI
+screenshots of the window; undo removes the B-rep. The SubdSurface's panel (double click): the
+level slider draws a level's mesh, a click on the surface (a real Qt mouse event) pins the
+nearest vertex, the influence slider shrinks the region of influence drawn, the normal held;
+OK is one undoable step; opened again, a pin removed and Cancel puts it back. Then a document
+written without the GUI
 ($VARSURF_SUBD_DOC) opened: its objects get their view providers. Writes
 $VARSURF_GUI_OUT/subd.json and quits.
 """
@@ -18,13 +22,13 @@ import traceback
 
 import FreeCAD as App
 import FreeCADGui as Gui
-from PySide import QtCore
+from PySide import QtCore, QtGui
 
 import varsurf  # the Mod link puts VarSurf on the path
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(varsurf.__file__)))),
                                 "tests", "gui"))
-from gui_helpers import report_view_text, window_shot  # noqa: E402
+from gui_helpers import clipped_widgets, press_task_button, report_view_text, task_widgets, window_shot  # noqa: E402
 
 REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(varsurf.__file__))))
 OUT = os.environ.get("VARSURF_GUI_OUT") or os.path.join(os.getcwd(), "out", "gui-subd")
@@ -66,6 +70,7 @@ def run(result):
     doc.undo()
     Gui.updateGui()
     result["after_undo"] = sorted(o.Name for o in doc.Objects)
+    panel(result, subd)
     drag_vase(result)
     built = os.environ.get("VARSURF_SUBD_DOC")
     if built:
@@ -78,6 +83,88 @@ def run(result):
         Gui.SendMsgToActiveView("ViewFit")
         result["shot_restored"] = window_shot(os.path.join(OUT, "subd_restored.png"))
     result["report"] = report_view_text()
+
+
+def click_on(point):
+    """A left click on the 3D view at a model point, as the pointer gives it (the GL widget's Qt
+    events)."""
+    view = Gui.ActiveDocument.ActiveView
+    gl = next(w for w in Gui.getMainWindow().findChildren(QtGui.QWidget)
+              if w.metaObject().className() == "QOpenGLWidget" and w.isVisible())
+    width, height = view.getSize()
+    x, y = view.getPointOnScreen(point)
+    at = QtCore.QPoint(round(x * gl.width() / width), round((height - 1 - y) * gl.height() / height))
+    for kind, buttons in ((QtCore.QEvent.MouseButtonPress, QtCore.Qt.LeftButton),
+                          (QtCore.QEvent.MouseButtonRelease, QtCore.Qt.NoButton)):
+        QtGui.QApplication.sendEvent(gl, QtGui.QMouseEvent(kind, at, QtCore.Qt.LeftButton, buttons,
+                                                           QtCore.Qt.NoModifier))
+        Gui.updateGui()
+
+
+def overlay_counts(subd):
+    """Coordinates in the panel's overlay: the level mesh's and the region's."""
+    from pivy import coin
+
+    root = subd.ViewObject.RootNode
+    found = [root.getChild(i) for i in range(root.getNumChildren())
+             if root.getChild(i).getName().getString() == "VarSurfSubdOverlay"]
+    if not found:
+        return None
+    counts = []
+    for part in (found[0].getChild(0), found[0].getChild(1)):
+        coords = [part.getChild(i) for i in range(part.getNumChildren())
+                  if part.getChild(i).isOfType(coin.SoCoordinate3.getClassTypeId())]
+        counts.append(coords[0].point.getNum() if coords else 0)
+    return counts
+
+
+def panel(result, subd):
+    doc = subd.Document
+    Gui.ActiveDocument.ActiveView.viewFront()  # the sphere's front (-y) toward the viewer
+    Gui.SendMsgToActiveView("ViewFit")
+    subd.ViewObject.doubleClicked()
+    Gui.updateGui()
+    w = task_widgets("VarSurfSubdSurface")
+    w["showLevelSlider"].setValue(2)
+    Gui.updateGui()
+    result["panel_level"] = [w["showLevelLabel"].text(), overlay_counts(subd)]
+    w["pickButton"].setChecked(True)
+    click_on(App.Vector(0, -13.0, 2.0))
+    level2 = subd.Proxy.outcome.levels[2]
+    result["picked"] = [list(subd.PinLevels), list(subd.PinVertices), list(subd.PinInfluence),
+                        min((App.Vector(*p) - App.Vector(0, -13, 2)).Length for p in level2),
+                        (App.Vector(*level2[subd.PinVertices[0]]) - App.Vector(0, -13, 2)).Length
+                        if len(subd.PinVertices) else None, w["pickButton"].isChecked()]
+    regions = [(w["regionValue"].text(), overlay_counts(subd))]
+    w["influenceSlider"].setValue(2)
+    w["influenceSlider"].sliderReleased.emit()
+    Gui.updateGui()
+    regions.append((w["regionValue"].text(), overlay_counts(subd)))
+    result["regions"] = regions
+    w["normalButton"].click()
+    Gui.updateGui()
+    result["held"] = [len(subd.NormalDirections), w["pinTable"].item(0, 2).text() if w["pinTable"].rowCount() else ""]
+    result["panel_shot"] = window_shot(os.path.join(OUT, "subd_panel.png"))
+    press_task_button(QtGui.QDialogButtonBox.Ok)
+    result["panel_ok"] = [doc.UndoNames[:1], list(subd.PinVertices), overlay_counts(subd), subd.isValid()]
+    subd.ViewObject.doubleClicked()
+    Gui.updateGui()
+    w = task_widgets("VarSurfSubdSurface")
+    w["pinTable"].selectRow(0)
+    w["removeButton"].click()
+    Gui.updateGui()
+    removed = [list(subd.PinVertices), list(subd.NormalVertices)]
+    press_task_button(QtGui.QDialogButtonBox.Cancel)
+    result["panel_cancel"] = [removed, list(subd.PinVertices), len(subd.NormalDirections), subd.isValid()]
+    doc.undo()
+    Gui.updateGui()
+    result["panel_undo"] = [list(subd.PinVertices), subd.isValid()]
+    # Last, in a panel closed by Cancel (which reads no widget): after clipped_widgets the form's
+    # widgets may be gone (see gui_helpers).
+    subd.ViewObject.doubleClicked()
+    Gui.updateGui()
+    result["panel_clipped"] = clipped_widgets("VarSurfSubdSurface")
+    press_task_button(QtGui.QDialogButtonBox.Cancel)
 
 
 def drag_vase(result):

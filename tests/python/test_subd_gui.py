@@ -73,5 +73,33 @@ def test_a_pin_drags_the_scanned_vase_at_interactive_rates(subd):
     assert Path(subd["drag_shot"]).is_file()
 
 
+def test_the_panel_picks_pins_and_draws_their_region_of_influence(subd):
+    """The SubdSurface panel: the level slider draws level 2's mesh (6 * 16 faces: 98 vertices);
+    a click on the surface pins the nearest vertex of that level, where it is; the influence
+    slider from 0 to 2 shrinks the region drawn; the normal held; OK is one undoable step; Cancel
+    after a removal puts the pin back."""
+    assert "error" not in subd, subd.get("error")
+    shown, (level_points, _) = subd["panel_level"]
+    assert shown == "Shown level 2" and level_points == 98, subd["panel_level"]
+    assert subd["panel_clipped"] == [], subd["panel_clipped"]  # all of it within the task view
+    levels, vertices, influence, nearest, picked, still_checked = subd["picked"]
+    assert levels == [2] and len(vertices) == 1 and influence == [0], subd["picked"]
+    # The click landed on the limit surface; the pinned vertex is the level's nearest to it.
+    assert picked is not None and abs(picked - nearest) < 1.5 and not still_checked, subd["picked"]
+    (text0, (_, region0)), (text2, (_, region2)) = subd["regions"]
+    assert "Region of influence" in text0 and "Region of influence" in text2, subd["regions"]
+    # Influence 0 moves the whole closed surface (1,538 limit points at level 4... here level 3:
+    # 6 * 64 faces, 386 points); influence 2 a patch.
+    assert region0 == 386 and 0 < region2 < region0 / 4, subd["regions"]
+    assert subd["held"] == [1, "held"], subd["held"]
+    undo, vertices, overlay, valid = subd["panel_ok"]
+    assert undo == ["Edit VarSurf subdivision surface"] and len(vertices) == 1 and valid, subd["panel_ok"]
+    assert overlay is None  # the panel's drawing goes with it
+    removed, vertices, normals, valid = subd["panel_cancel"]
+    assert removed == [[], []] and len(vertices) == 1 and normals == 1 and valid, subd["panel_cancel"]
+    assert subd["panel_undo"] == [[], True], subd["panel_undo"]
+    assert Path(subd["panel_shot"]).is_file()
+
+
 def test_the_report_view_has_no_traceback(subd):
     assert "Traceback" not in subd["report"], subd["report"]

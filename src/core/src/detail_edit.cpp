@@ -130,6 +130,24 @@ Eigen::MatrixX3d DetailEditor::limit(const Multiresolution& surface) const {
   return steps_.back().limit * points(surface).back();
 }
 
+Eigen::Vector3d DetailEditor::normal(const Multiresolution& surface, int level, int vertex) const {
+  if (vertex < 0 || vertex >= vertices(level))
+    throw InvalidInput("level " + std::to_string(level) + " has vertices 0.." +
+                       std::to_string(vertices(level) - 1) + ", not " + std::to_string(vertex) +
+                       ": pick one of those");
+  SubdivisionMesh shape = meshes_[static_cast<size_t>(level)];
+  shape.points = points(surface)[static_cast<size_t>(level)];
+  const Sparse d =
+      divided_differences_checked(shape, incident_[static_cast<size_t>(level)], {vertex});
+  const Eigen::Vector3d qu = (row_of(d, 5 * vertex).transpose() * shape.points).transpose();
+  const Eigen::Vector3d qv = (row_of(d, 5 * vertex + 1).transpose() * shape.points).transpose();
+  const Eigen::Vector3d n = qu.cross(qv);
+  if (!(n.norm() > 1e-12 * qu.norm() * qv.norm()))
+    throw InvalidInput("vertex " + std::to_string(vertex) + " of level " + std::to_string(level) +
+                       " has no tangent plane: pick another vertex");
+  return n.normalized();
+}
+
 DetailEditResult DetailEditor::edit(const Multiresolution& surface,
                                     const std::vector<DetailPin>& pins,
                                     const std::vector<DetailNormal>& normals,

@@ -74,7 +74,7 @@ class RegionPainter(QtCore.QObject):
         self.root.addChild(self.painted)
         self.root.addChild(self.drawing)
         self.view.getSceneGraph().addChild(self.root)
-        self.widget = _gl_widget(self.view)
+        self.widget = gl_widget(self.view)
         if self.widget is not None:
             self.widget.installEventFilter(self)
 
@@ -84,9 +84,7 @@ class RegionPainter(QtCore.QObject):
 
     def coin_position(self, point):
         """A widget position (Qt's pixels from the top left) in Coin's (from the bottom left)."""
-        width, height = self.view.getSize()
-        return (point.x() * width / max(self.widget.width(), 1),
-                height - 1 - point.y() * height / max(self.widget.height(), 1))
+        return coin_position(self.view, self.widget, point)
 
     def uv_at(self, position):
         """Normalized (u, v) of the object's face under a view position (Coin's pixels, from the
@@ -178,7 +176,14 @@ class RegionPainter(QtCore.QObject):
             graph.removeChild(self.root)
 
 
-def _gl_widget(view):
+def coin_position(view, widget, point):
+    """A position on `view`'s GL widget (Qt's pixels from the top left) in Coin's pixels (from the
+    bottom left), as getObjectInfo takes them."""
+    width, height = view.getSize()
+    return (point.x() * width / max(widget.width(), 1), height - 1 - point.y() * height / max(widget.height(), 1))
+
+
+def gl_widget(view):
     """The GL widget that shows `view` (the QuarterWidget's viewport)."""
     try:
         return view.graphicsView().viewport()

@@ -224,13 +224,15 @@ class ViewProviderPdeSurface(_EditedInPanel, _ViewProvider):
         return list(getattr(obj, "Constraints", None) or []) if obj is not None else []
 
 
-class ViewProviderSubdSurface(_ViewProvider):
+class ViewProviderSubdSurface(_EditedInPanel, _ViewProvider):
     """Tree icon of a SubdSurface (a multiresolution Catmull-Clark surface), with its cage and
-    target as children (hidden when it is made), and a draggable ball on each pin
-    (gui.subd_handles.SubdHandles)."""
+    target as children (hidden when it is made), a draggable ball on each pin
+    (gui.subd_handles.SubdHandles); double click opens its panel (levels, pins, regions)."""
 
     TYPE = "VarSurf::ViewProviderSubdSurface"
     ICON = "VarSurf_SubdSurface.svg"
+    PANEL = ("varsurf.gui.task_subd_surface", "TaskPanelSubdSurface")
+    EDIT_TEXT = QT_TRANSLATE_NOOP("VarSurf", "Edit subdivision surface")
 
     def attach(self, vobj):
         super().attach(vobj)

@@ -60,6 +60,7 @@ class MultiresResult:
     region_sizes: List[int] = field(default_factory=list)
     region_levels: List[int] = field(default_factory=list)
     captured: object = None  # the native Multiresolution before the pins (what a drag edits)
+    edited: object = None  # the native Multiresolution after them
     editor: object = None  # the native DetailEditor of its topology
 
 
@@ -154,7 +155,8 @@ def build(points: Sequence[Point], faces: Sequence[Sequence[int]], levels: int,
     for face in finest.faces:
         triangles += [(face[0], face[k], face[k + 1]) for k in range(1, len(face) - 1)]
     result = MultiresResult(np.asarray(limit), triangles, level_points,
-                            [editor.topology(k).faces for k in range(levels + 1)], captured=captured, editor=editor)
+                            [editor.topology(k).faces for k in range(levels + 1)], captured=captured, editor=editor,
+                            edited=multires)
     if fit is not None:
         result.fit_max, result.fit_rms = fit.max_distance, fit.rms_distance
     if report is not None:
@@ -228,3 +230,45 @@ def edited_limit(result: MultiresResult, pins: Sequence[Pin], solve: str = "Appr
         return np.asarray(result.editor.limit(edited.surface))
     except nat.InvalidInput as error:
         raise SheetError(str(error)) from error
+
+
+def nearest_vertex(result: MultiresResult, level: int, point: Point) -> int:
+    """The vertex of `level` of a built surface nearest to `point` (a pick in the view)."""
+    level = int(level)
+    if not 0 <= level < len(result.levels):
+        raise SheetError(f"level {level} does not exist (the surface has levels 0..{len(result.levels) - 1}): "
+                         "pick one of those")
+    points = np.asarray(result.levels[level], float)
+    return int(np.argmin(((points - np.asarray(point, float)) ** 2).sum(axis=1)))
+
+
+def vertex_normal(result: MultiresResult, level: int, vertex: int) -> Point:
+    """The unit normal at a vertex of a built surface from its divided differences: what a
+    Normal there holds (so holding it changes nothing until the surface is moved)."""
+    nat = native()
+    try:
+        # The edited surface is the one shown: the captured levels with the pins and normals.
+        surface = result.edited if result.edited is not None else result.captured
+        return tuple(float(c) for c in result.editor.normal(surface, int(level), int(vertex)))
+    except nat.InvalidInput as error:
+        raise SheetError(str(error)) from error
+
+
+#: A probe moves the pin by this fraction of the model's size to find its region of influence.
+PROBE = 1e-3
+
+
+def influence_region(result: MultiresResult, pins: Sequence[Pin], index: int,
+                     normals: Sequence[Normal] = ()) -> np.ndarray:
+    """The finest level's vertices that pin `index` moves (its region of influence, Boier-Martin
+    et al. 4.2): the approximate edit with the pin probed along the surface's normal, against the
+    edit without the probe. Exact: outside the region the limit points come out bitwise equal."""
+    pins = list(pins)
+    p = pins[int(index)]
+    size = float(np.linalg.norm(np.ptp(result.points, axis=0))) or 1.0
+    base = edited_limit(result, pins, normals=normals)
+    direction = np.asarray(vertex_normal(result, p.level, p.vertex))
+    pins[int(index)] = Pin(p.level, p.vertex, tuple(np.asarray(p.target, float) + PROBE * size * direction),
+                           p.influence)
+    probed = edited_limit(result, pins, normals=normals)
+    return np.flatnonzero(np.linalg.norm(probed - base, axis=1) > 1e-12 * size)

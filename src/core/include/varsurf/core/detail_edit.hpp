@@ -81,6 +81,10 @@ class DetailEditor {
   std::vector<Eigen::MatrixX3d> points(const Multiresolution& surface) const;
   // The limit surface at the finest level's vertices (a cached stencil: what a drag draws).
   Eigen::MatrixX3d limit(const Multiresolution& surface) const;
+  // The unit normal at a vertex of a level from its divided differences (Q_u x Q_v): what a
+  // DetailNormal there holds. InvalidInput for a vertex that does not exist or has no tangent
+  // plane.
+  Eigen::Vector3d normal(const Multiresolution& surface, int level, int vertex) const;
   // The surface edited by the pins. InvalidInput for a surface of another topology, pins on
   // vertices or levels that do not exist (naming them), an influence coarser than 0 or finer
   // than the pin's level, targets not finite, two pins on one vertex, bad options; for normals
