@@ -3,6 +3,7 @@
 #include <pybind11/stl.h>
 
 #include "binding.hpp"
+#include "varsurf/core/curve_chain.hpp"
 #include "varsurf/core/detail_edit.hpp"
 #include "varsurf/core/limit_patches.hpp"
 #include "varsurf/core/multiresolution.hpp"
@@ -160,6 +161,17 @@ void bind_detail_edit(py::module_& m) {
            py::call_guard<py::gil_scoped_release>(), "The surface edited by the pins and normals.");
 }
 
+void bind_curve_chain(py::module_& m) {
+  py::class_<CurveChain>(m, "CurveChain", "The vertices of a mesh level that follow a curve.")
+      .def_readonly("vertices", &CurveChain::vertices)
+      .def_readonly("parameters", &CurveChain::parameters)
+      .def_readonly("max_distance", &CurveChain::max_distance)
+      .def_readonly("max_gap", &CurveChain::max_gap)
+      .def_readonly("closed", &CurveChain::closed);
+  m.def("curve_chain", &curve_chain, "mesh"_a, "curve"_a, py::call_guard<py::gil_scoped_release>(),
+        "The chain of the mesh's vertices along a curve (a polyline) lying on it.");
+}
+
 void bind_limit_patches(py::module_& m) {
   py::class_<LimitPatch>(m, "LimitPatch", "A bicubic Bezier patch of a limit surface.")
       .def_readonly("surface", &LimitPatch::surface)
@@ -187,6 +199,7 @@ void bind_subdivision(py::module_& m) {
   bind_limit_patches(m);
   bind_multiresolution(m);
   bind_detail_edit(m);
+  bind_curve_chain(m);
 }
 
 }  // namespace varsurf::binding

@@ -16,6 +16,7 @@ public API (importable headless, without any GUI module):
     make_pde_surface(u0, u1, derivative0=None, ..., a=1.0)              -> PdeSurface object
     make_subd_surface(cage, levels=3, target=None, pins=(), normals=())  -> SubdSurface object
     set_pins(subd, pins), set_normals(subd, normals), move_pin(subd, i, point)
+    set_curves(subd, [(obj, "EdgeN")], placement, level=None, influence=0)
     make_subd_brep(subd_surface, isolation=4)                           -> SubdBRep object (B-rep)
     install_rest_shape(sheet), melt(sheet)                              -> sheet
     export_step(objects, path)                                           -> path
@@ -111,7 +112,7 @@ APP_API = (
     "create_sheet_from_selection", "sheet_command_lines", "is_sheet", "run_sheet_command",
     "run_space_curve_command", "run_hinge_command", "make_pde_surface", "run_pde_surface_command",
     "is_pde_surface", "make_subd_surface", "make_subd_brep", "is_subd_surface", "set_pins", "set_normals",
-    "move_pin",
+    "set_curves", "move_pin",
     "run_subd_surface_command", "run_subd_brep_command",
 )
 

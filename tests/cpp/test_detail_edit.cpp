@@ -463,6 +463,5 @@ TEST(DetailEdit, BadNormalsAreRefusedByName) {
   EXPECT_THROW(editor.normal(m, 3, 0), InvalidInput);
   // A flat plane's vertices all have the normal along z, corners included.
   const Multiresolution flat = capture(plane(), 2, no_relief);
-  for (const int v : {0, 7, 40})
-    EXPECT_GT(std::abs(editor.normal(flat, 2, v).z()), 1.0 - 1e-12);
+  for (const int v : {0, 7, 40}) EXPECT_GT(std::abs(editor.normal(flat, 2, v).z()), 1.0 - 1e-12);
 }

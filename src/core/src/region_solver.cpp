@@ -25,9 +25,15 @@ RegionSolver::RegionSolver(const Sparse& h, const Sparse& a, const DetailEditOpt
   std::vector<Eigen::Triplet<double>> k_entries;
   double diagonal = 0.0;
   for (Eigen::Index i = 0; i < f; ++i) diagonal = std::max(diagonal, h.coeff(i, i));
+  // The energy scaled to a largest diagonal of 1 (the minimizer is the same): its bend terms go
+  // as the model's size to the -4, the constraints' rows do not, and the check of the
+  // factorization below must not depend on the model's size.
+  const double scale = diagonal > 0.0 ? 1.0 / diagonal : 1.0;
   for (int outer = 0; outer < h.outerSize(); ++outer)
     for (Sparse::InnerIterator it(h, outer); it; ++it)
-      k_entries.emplace_back(static_cast<int>(it.row()), static_cast<int>(it.col()), it.value());
+      k_entries.emplace_back(static_cast<int>(it.row()), static_cast<int>(it.col()),
+                             scale * it.value());
+  diagonal = 1.0;
   // A whisker on the diagonal: a region that the constraints leave free to translate (the energy
   // of a translation is zero) then takes the smallest move.
   for (Eigen::Index i = 0; i < f; ++i)
@@ -43,7 +49,16 @@ RegionSolver::RegionSolver(const Sparse& h, const Sparse& a, const DetailEditOpt
   Sparse k(f + m, f + m);
   k.setFromTriplets(k_entries.begin(), k_entries.end());
   kkt_.compute(k);
-  if (kkt_.info() == Eigen::Success) return;
+  if (kkt_.info() == Eigen::Success) {
+    // SparseLU factors some singular KKT systems (dependent masks, as the vertices along a curve
+    // give a coarse level) without a word, and its answer then swings the region by 1e5 times
+    // the model (measured): a solve of a right-hand side reaching every direction must come back.
+    const Eigen::VectorXd probe =
+        Eigen::VectorXd::LinSpaced(f + m, 1.0, 2.0)
+            .cwiseProduct(Eigen::VectorXd::LinSpaced(f + m, 0.0, 37.0).array().sin().matrix());
+    const Eigen::VectorXd back = kkt_.solve(probe);
+    if (back.allFinite() && (k * back - probe).norm() <= 1e-8 * probe.norm()) return;
+  }
   // More constraints than this level can meet (their masks dependent): their least-squares fit,
   // the energy keeping it smooth; the finer levels then meet them.
   Sparse h_ff(f, f);

@@ -27,8 +27,8 @@ from varsurf.app.make import (
 from varsurf.app.make_joints import make_hinge, make_space_curve, move_handle
 from varsurf.app.pde_surface import is_pde_surface, make_pde_surface
 from varsurf.app.references import is_sheet, single_element
-from varsurf.app.subd_surface import (is_subd_surface, make_subd_brep, make_subd_surface, move_pin, set_normals,
-                                      set_pins)
+from varsurf.app.subd_surface import (is_subd_surface, make_subd_brep, make_subd_surface, move_pin, set_curves,
+                                      set_normals, set_pins)
 from varsurf.app.selection import (
     constraint_selection_to_args,
     fill_hole_selection_to_args,
@@ -72,6 +72,7 @@ __all__ = [
     "is_subd_surface",
     "set_pins",
     "set_normals",
+    "set_curves",
     "move_pin",
     "make_space_curve",
     "move_handle",

@@ -14,6 +14,7 @@ import FreeCAD
 
 from varsurf.app import subdivision
 from varsurf.app.feature import FeatureProxy, mark_failed, value
+from varsurf.app.references import as_names, normalize_curves, shape_of
 from varsurf.app.view_link import attach as attach_view_provider
 from varsurf.solve import errors, multiresolution
 from varsurf.solve.shapes import shape_from_brep
@@ -34,12 +35,18 @@ _PROPERTIES = [
     ("NormalLevels", "App::PropertyIntegerList", "Normals", "Per normal: the level of its vertex (0: the cage)", False),
     ("NormalInfluence", "App::PropertyIntegerList", "Normals", "Per normal: the level it is propagated to, its region of influence", False),
     ("NormalDirections", "App::PropertyVectorList", "Normals", "Per normal: the direction the surface's normal takes there (either sign)", False),
+    ("Curves", "App::PropertyLinkSubList", "Curves", "Edges lying on the surface (sketch edges, a hole's boundary): the vertices of CurveLevel along each are moved rigidly by CurveMotion", False),
+    ("CurveMotion", "App::PropertyPlacement", "Curves", "The rigid motion of the Curves (about the document's origin)", False),
+    ("CurveLevel", "App::PropertyIntegerConstraint", "Curves", "The level whose vertices follow the curves: finer follows them more closely", False),
+    ("CurveInfluence", "App::PropertyIntegerConstraint", "Curves", "The level the curves' pins are propagated to, their region of influence", False),
     ("Solve", "App::PropertyEnumeration", "Pins", "Direct: the energy's minimum on each region; SOR: the paper's relaxation; Approximate: Catmull-Clark smoothing of the pins' moves (what a drag shows)", False),
     ("Rings", "App::PropertyIntegerConstraint", "Pins", "How far each region reaches beyond the pins' masks, in rings of faces at its level", False),
     ("FitMax", "App::PropertyFloat", "Result", "The limit surface's largest distance from the Target (mm)", True),
     ("FitRms", "App::PropertyFloat", "Result", "The limit surface's RMS distance from the Target (mm)", True),
     ("PinResidual", "App::PropertyFloat", "Result", "The worst pin's distance from its target (mm)", True),
     ("NormalAngle", "App::PropertyFloat", "Result", "The worst prescribed normal's angle from the surface's normal there (degrees, from the edited mesh's divided differences)", True),
+    ("CurvePins", "App::PropertyInteger", "Result", "Pins placed along the Curves", True),
+    ("CurveDistance", "App::PropertyFloat", "Result", "The farthest of the curves' vertices from its curve before the motion (mm): how closely CurveLevel follows them", True),
     ("FaceCount", "App::PropertyInteger", "Result", "Faces of the finest level", True),
     ("Status", "App::PropertyString", "Result", "OK, or what went wrong", True),
 ]
@@ -57,7 +64,8 @@ class SubdSurfaceFeature(FeatureProxy):
     TYPE = TYPE
     VIEW_PROVIDER = "ViewProviderSubdSurface"
     PROPERTIES = _PROPERTIES
-    DEFAULTS = {"Levels": (3, 1, 8, 1), "Rings": (1, 0, 8, 1), "Solve": _set_enumeration}
+    DEFAULTS = {"Levels": (3, 1, 8, 1), "Rings": (1, 0, 8, 1), "Solve": _set_enumeration,
+                "CurveLevel": (3, 0, 8, 1), "CurveInfluence": (0, 0, 8, 1)}
 
     def consumed(self, obj):
         return [o for o in (getattr(obj, "Source", None), getattr(obj, "Target", None)) if o is not None]
@@ -73,12 +81,15 @@ class SubdSurfaceFeature(FeatureProxy):
         obj.FitRms = result.fit_rms if result.fit_rms is not None else 0.0
         obj.PinResidual = result.residual
         obj.NormalAngle = math.degrees(result.normal_angle)
+        obj.CurvePins, obj.CurveDistance = result.curve_pins, result.curve_distance
         obj.FaceCount = len(result.faces[-1])
         obj.Status = f"OK: {obj.FaceCount} faces at level {obj.Levels}"
         if result.fit_max is not None:
             obj.Status += f", {obj.Target.Label} captured within {result.fit_max:.3g} mm (RMS {result.fit_rms:.3g})"
         if result.region_sizes and obj.PinTargets:
             obj.Status += f", pins met within {result.residual:.2g} mm"
+        if result.curve_pins:
+            obj.Status += f", {result.curve_pins} pins along the curves (within {result.curve_distance:.2g} mm of them)"
         if result.region_sizes and obj.NormalDirections:
             obj.Status += f", normals within {obj.NormalAngle:.2g}°"
 
@@ -104,6 +115,29 @@ def normals_of(obj):
             for v, lv, inf, d in zip(*lists)]
 
 
+def curves_of(obj):
+    """The SubdSurface's Curves as a multiresolution.CurveMotion (None without curves): each edge
+    sampled finely enough for the chain (the core densifies further)."""
+    refs = list(getattr(obj, "Curves", None) or [])
+    if not refs:
+        return None
+    polylines = []
+    for link, subs in refs:
+        shape = shape_of(link)
+        for name in as_names(subs) or tuple(f"Edge{i + 1}" for i in range(len(shape.Edges))):
+            if not name.startswith("Edge"):
+                raise errors.SheetError(f"{link.Label}:{name} is not an edge: link edges as Curves")
+            edge = shape.getElement(name)
+            points = edge.discretize(Deflection=max(1e-4 * edge.Length, 1e-9))
+            if len(points) < 32:
+                points = edge.discretize(Number=32)
+            polylines.append([(p.x, p.y, p.z) for p in points])
+    matrix = obj.CurveMotion.toMatrix()
+    rows = [[matrix.A11, matrix.A12, matrix.A13, matrix.A14], [matrix.A21, matrix.A22, matrix.A23, matrix.A24],
+            [matrix.A31, matrix.A32, matrix.A33, matrix.A34], [0.0, 0.0, 0.0, 1.0]]
+    return multiresolution.CurveMotion(polylines, int(obj.CurveLevel), int(obj.CurveInfluence), rows)
+
+
 def compute(obj):
     """The SubdSurface's MultiresResult (see varsurf.solve.multiresolution.build)."""
     if obj.Source is None:
@@ -114,7 +148,8 @@ def compute(obj):
         target = subdivision.target_triangles(obj.Target, float(value(obj, "TargetTolerance")))
     try:
         return multiresolution.build(points, faces, int(obj.Levels), target=target, pins=pins_of(obj),
-                                     solve=str(obj.Solve), rings=int(obj.Rings), normals=normals_of(obj))
+                                     solve=str(obj.Solve), rings=int(obj.Rings), normals=normals_of(obj),
+                                     curves=curves_of(obj))
     except errors.SheetError as error:
         raise errors.SheetError(f"{error} ({obj.Source.Label} as the cage"
                                 + (f", {obj.Target.Label} as the target)" if obj.Target is not None else ")")) from error
@@ -147,6 +182,16 @@ def set_pins(obj, pins):
     obj.PinVertices = [int(p[1]) for p in pins]
     obj.PinTargets = [FreeCAD.Vector(*map(float, p[2])) for p in pins]
     obj.PinInfluence = [int(p[3]) for p in pins]
+
+
+def set_curves(obj, curves, motion=None, level=None, influence=0):
+    """Move `curves` lying on a SubdSurface rigidly: (object, "EdgeN") or (object, ("EdgeN", ...))
+    references (a bare object: all its edges), `motion` a FreeCAD.Placement, `level` the level
+    whose vertices follow them (default: the finest), `influence` their region of influence."""
+    obj.Curves = [(o, list(names)) for o, names in normalize_curves(curves)]
+    obj.CurveMotion = motion if motion is not None else FreeCAD.Placement()
+    obj.CurveLevel = int(obj.Levels if level is None else level)
+    obj.CurveInfluence = int(influence)
 
 
 def set_normals(obj, normals):

@@ -47,6 +47,17 @@ class Normal:
 
 
 @dataclass
+class CurveMotion:
+    """Curves lying on the surface moved rigidly (Boier-Martin et al. 4.2, Figs. 7d and 9): the
+    vertices of `level` along each curve (a polyline) become pins propagated to `influence`, each
+    moved by `matrix` (a 4 x 4 rigid motion)."""
+    curves: Sequence[Sequence[Point]]
+    level: int
+    influence: int
+    matrix: Sequence[Sequence[float]]
+
+
+@dataclass
 class MultiresResult:
     points: np.ndarray  # the limit surface at the finest level's vertices
     triangles: List[Tuple[int, int, int]]  # the finest level's quads split
@@ -56,6 +67,8 @@ class MultiresResult:
     fit_rms: Optional[float] = None
     residual: float = 0.0  # the worst pin's distance from its target
     normal_angle: float = 0.0  # the worst normal's angle from its prescribed line (radians)
+    curve_pins: int = 0  # pins placed along curves
+    curve_distance: float = 0.0  # the farthest of those vertices from its curve, before the motion
     rounds: int = 0
     region_sizes: List[int] = field(default_factory=list)
     region_levels: List[int] = field(default_factory=list)
@@ -117,10 +130,11 @@ def _solve(name: str):
 def build(points: Sequence[Point], faces: Sequence[Sequence[int]], levels: int,
           target: Optional[Tuple[Sequence[Point], Sequence[Tuple[int, int, int]]]] = None,
           pins: Sequence[Pin] = (), solve: str = "Direct", rings: int = 1,
-          normals: Sequence[Normal] = ()) -> MultiresResult:
+          normals: Sequence[Normal] = (), curves: Optional[CurveMotion] = None) -> MultiresResult:
     """The surface of the cage (points, faces) refined `levels` times, with the detail of
-    `target` (points, triangles) captured when given, edited by `pins` and `normals`. SheetError
-    says what is wrong with bad input (the mesh, the target, a pin, a normal)."""
+    `target` (points, triangles) captured when given, edited by `pins`, `normals` and the pins
+    along `curves`. SheetError says what is wrong with bad input (the mesh, the target, a pin, a
+    normal, a curve)."""
     nat = native()
     levels = int(levels)
     if not 1 <= levels <= 8:
@@ -140,6 +154,10 @@ def build(points: Sequence[Point], faces: Sequence[Sequence[int]], levels: int,
             details = [np.zeros((editor.vertices(k), 3)) for k in range(1, levels + 1)]
             multires = nat.Multiresolution(base, details)
         report, captured = None, multires
+        chained, distance = [], 0.0
+        if curves is not None and curves.curves:
+            chained, distance = _curve_pins(editor, multires, curves, pins)
+        pins = list(pins) + chained
         if pins or normals:
             options = nat.DetailEditOptions()
             options.solve = _solve(solve)
@@ -163,6 +181,7 @@ def build(points: Sequence[Point], faces: Sequence[Sequence[int]], levels: int,
         result.residual, result.rounds = report.max_residual, report.rounds
         result.normal_angle = report.max_normal_angle
         result.region_sizes, result.region_levels = list(report.region_sizes), list(report.region_levels)
+    result.curve_pins, result.curve_distance = len(chained), distance
     return result
 
 
@@ -204,6 +223,39 @@ def brep(result: MultiresResult, isolation: int = 4, tolerance: float = 0.0) -> 
 #: A drag's preview meets its pins to this fraction of the model's size (the release, to 1e-9):
 #: one frame-turning round fewer, 5.3 -> 3.4 ms an edit on 10,240 faces (benchmark 10's vase).
 DRAG_TOLERANCE = 1e-6
+
+
+def _curve_pins(editor, surface, curves: CurveMotion, pins: Sequence[Pin]):
+    """The pins along `curves` (the vertices of their level that follow each, moved rigidly) and
+    the farthest of those vertices from its curve; a vertex pinned already keeps its own pin."""
+    nat = native()
+    level = int(curves.level)
+    if not 0 <= level <= editor.levels():
+        raise SheetError(f"the curves' level {level} does not exist (the surface has levels 0..{editor.levels()}): "
+                         "set one of those")
+    if not 0 <= int(curves.influence) <= level:
+        raise SheetError(f"the curves' influence level must lie in 0..{level}; set it so")
+    matrix = np.asarray(curves.matrix, float)
+    rotation = matrix[:3, :3] if matrix.shape == (4, 4) else np.full((3, 3), np.nan)
+    if not np.isfinite(matrix).all() or not np.allclose(rotation @ rotation.T, np.eye(3), atol=1e-9):
+        raise SheetError("the curves' motion is not a rigid motion: give a placement (a rotation and a move)")
+    points = np.asarray(editor.points(surface)[level])
+    mesh = nat.SubdivisionMesh(points, editor.topology(level).faces)
+    taken = {(p.level, p.vertex) for p in pins}
+    out, distance = [], 0.0
+    for number, curve in enumerate(curves.curves):
+        try:
+            chain = nat.curve_chain(mesh, np.asarray(curve, float).reshape(-1, 3))
+        except nat.InvalidInput as error:
+            raise SheetError(f"curve {number + 1}: {error}") from error
+        distance = max(distance, chain.max_distance)
+        for v in chain.vertices:
+            if (level, v) in taken:
+                continue
+            taken.add((level, v))
+            moved = rotation @ points[v] + matrix[:3, 3]
+            out.append(Pin(level, int(v), tuple(float(c) for c in moved), int(curves.influence)))
+    return out, distance
 
 
 def _native_pins(pins: Sequence[Pin]):

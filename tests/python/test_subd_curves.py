@@ -1,0 +1,131 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""Curves lying on a SubdSurface moved rigidly (Boier-Martin et al. 4.2, Fig. 7d): a Part Circle
+on a plane's surface lifted and tilted by CurveMotion carries the surface with it, the moved
+circle lying on the result (measured on the SubdBRep by OCC) within the chain's own distance
+from the curve; a reversed circle changes nothing; the scene moved rigidly gives the moved
+answer; sketch edges (an arc and a line) work the same; bad curves are named."""
+
+import math
+
+import FreeCAD
+import Part
+import pytest
+
+import varsurf
+
+V = FreeCAD.Vector
+LEVELS = 5
+SIZE = 100.0
+
+
+def plane_scene(doc, place=FreeCAD.Placement()):
+    plane = doc.addObject("Part::Plane", "Cage")
+    plane.Length = plane.Width = SIZE
+    plane.Placement = place.multiply(FreeCAD.Placement(V(-SIZE / 2, -SIZE / 2, 0), FreeCAD.Rotation()))
+    circle = doc.addObject("Part::Circle", "Ring")
+    circle.Radius = 25.0
+    circle.Placement = place
+    doc.recompute()
+    subd = varsurf.make_subd_surface(plane, levels=LEVELS)
+    return plane, circle, subd
+
+
+MOTION = FreeCAD.Placement(V(0, 0, 15), FreeCAD.Rotation(V(1, 0, 0), 10))
+
+
+def on_surface(brep, edge, motion):
+    """The farthest of 60 points of `edge` moved by `motion` from the B-rep."""
+    points = [motion.multVec(p) for p in edge.discretize(60)]
+    return max(brep.Shape.distToShape(Part.Vertex(p))[0] for p in points)
+
+
+def test_a_circle_lifted_and_tilted_carries_the_surface(doc):
+    _, circle, subd = plane_scene(doc)
+    varsurf.set_curves(subd, [(circle, "Edge1")], MOTION, influence=3)
+    brep = varsurf.make_subd_brep(subd, isolation=2)
+    doc.recompute()
+    assert subd.isValid(), subd.getStatusString()
+    spacing = SIZE / 2 ** LEVELS
+    assert subd.CurvePins > 2 * math.pi * 25.0 / (spacing * math.sqrt(2))  # a vertex a face or closer
+    assert 0.0 < subd.CurveDistance <= spacing / math.sqrt(2), subd.CurveDistance
+    assert "pins along the curves" in subd.Status
+    # The moved circle lies on the moved surface within the chain's distance from it (the pins are
+    # met exactly; between them the surface is the energy's).
+    gap = on_surface(brep, circle.Shape.Edges[0], MOTION)
+    assert gap <= subd.CurveDistance, (gap, subd.CurveDistance)
+    # Far from the circle the plane stays (influence 0 is global, but the corners are held by
+    # nothing: they follow smoothly; the middle rises with the ring).
+    middle = min(subd.Proxy.outcome.points, key=lambda p: math.hypot(p[0], p[1]))
+    assert abs(middle[2] - 15.0) < 3.0, middle
+
+
+def test_a_reversed_circle_changes_nothing(doc):
+    _, circle, subd = plane_scene(doc)
+    varsurf.set_curves(subd, [(circle, "Edge1")], MOTION)
+    doc.recompute()
+    forward = [V(*p) for p in subd.Proxy.outcome.points]
+    reversed_ring = doc.addObject("Part::Feature", "Reversed")
+    reversed_ring.Shape = circle.Shape.Edges[0].reversed()
+    varsurf.set_curves(subd, [(reversed_ring, "Edge1")], MOTION)
+    doc.recompute()
+    assert subd.isValid(), subd.getStatusString()
+    assert max((a - V(*b)).Length for a, b in zip(forward, subd.Proxy.outcome.points)) < 1e-9
+
+
+def test_the_scene_moved_rigidly_gives_the_moved_surface(doc):
+    _, circle, subd = plane_scene(doc)
+    varsurf.set_curves(subd, [(circle, "Edge1")], MOTION, influence=1)
+    doc.recompute()
+    reference = [V(*p) for p in subd.Proxy.outcome.points]
+    place = FreeCAD.Placement(V(30, -70, 12), FreeCAD.Rotation(V(2, -1, 1), 40))
+    other = FreeCAD.newDocument("MovedCurves")
+    try:
+        _, moved_circle, moved = plane_scene(other, place)
+        varsurf.set_curves(moved, [(moved_circle, "Edge1")], place.multiply(MOTION).multiply(place.inverse()),
+                           influence=1)
+        other.recompute()
+        assert moved.isValid(), moved.getStatusString()
+        assert moved.CurvePins == subd.CurvePins
+        worst = max((place.multVec(a) - V(*b)).Length for a, b in zip(reference, moved.Proxy.outcome.points))
+        assert worst < 1e-6 * SIZE, worst
+    finally:
+        FreeCAD.closeDocument(other.Name)
+
+
+def test_sketch_edges_move_the_surface_near_them(doc):
+    import Sketcher
+
+    _, _, subd = plane_scene(doc)
+    sketch = doc.addObject("Sketcher::SketchObject", "Path")
+    sketch.addGeometry(Part.ArcOfCircle(Part.Circle(V(0, 0, 0), V(0, 0, 1), 30.0), 0.2, 2.5), False)
+    sketch.addGeometry(Part.LineSegment(V(-20, -30, 0), V(25, -10, 0)), False)
+    sketch.addConstraint(Sketcher.Constraint("Radius", 0, 30.0))
+    doc.recompute()
+    lift = FreeCAD.Placement(V(0, 0, 8), FreeCAD.Rotation())
+    varsurf.set_curves(subd, [sketch], lift, influence=4)
+    brep = varsurf.make_subd_brep(subd, isolation=2)
+    doc.recompute()
+    assert subd.isValid(), subd.getStatusString()
+    for edge in sketch.Shape.Edges:
+        assert on_surface(brep, edge, lift) <= subd.CurveDistance
+    # Influence 4 (6.25 mm faces) is local: the plane's far corner stays at 0.
+    corner = min(subd.Proxy.outcome.points, key=lambda p: math.hypot(p[0] - 50, p[1] + 50))
+    assert abs(corner[2]) < 1e-9, corner
+
+
+@pytest.mark.parametrize("edit, words", [
+    (lambda d, s, c: varsurf.set_curves(s, [(c, "Edge1")], FreeCAD.Placement(V(0, 0, 300), FreeCAD.Rotation())) or
+     setattr(c, "Placement", FreeCAD.Placement(V(0, 0, 40), FreeCAD.Rotation())), "leaves the surface"),
+    (lambda d, s, c: varsurf.set_curves(s, [(c, "Edge1")], level=LEVELS) or setattr(s, "Levels", 2),
+     "the curves' level 5 does not exist"),
+    (lambda d, s, c: setattr(s, "Curves", [(c, ["Vertex1"])]), "is not an edge"),
+])
+def test_bad_curves_are_named_and_leave_the_document_intact(doc, edit, words):
+    plane, circle, subd = plane_scene(doc)
+    doc.recompute()
+    assert subd.isValid(), subd.getStatusString()
+    edit(doc, subd, circle)
+    doc.recompute()
+    assert not subd.isValid()
+    assert words in subd.getStatusString(), subd.getStatusString()
+    assert plane.isValid() and circle.isValid()
