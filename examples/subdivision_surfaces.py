@@ -187,7 +187,35 @@ def fig9(doc):
     return [subd], [brep]
 
 
-FIGURES = {"fig1": fig1, "fig7": fig7, "fig8": fig8, "fig9": fig9}
+def relief_height(x, y, amplitude=0.6, wave=6.0):
+    """The scanned relief's height (relief_mesh's function)."""
+    return amplitude * math.sin(2 * math.pi * x / wave) * math.sin(2 * math.pi * y / wave)
+
+
+def fig7d(doc):
+    """A curve drawn on the scanned relief (a closed B-spline through points of the scan) lifted
+    12 mm and turned 20 degrees about its own centre: the surface follows it with its bumps."""
+    size, levels = 100.0, 3  # 6,400 faces: its B-rep sews in seconds (25,600 took 23 s)
+    points, quads = grid_points(10, size)
+    cage = quad_cage(doc, "ReliefCage", points, quads)
+    scan = relief_mesh(doc, "ReliefScan", size)
+    subd = varsurf.make_subd_surface(cage, levels=levels, target=scan, name="CarriedRelief")
+    centre = V(50, 50, 0)
+    ring = [V(50 + 22 * math.cos(t), 50 + 16 * math.sin(t), 0.0)
+            for t in (2 * math.pi * k / 48 for k in range(48))]
+    curve = Part.BSplineCurve()
+    curve.interpolate([V(p.x, p.y, relief_height(p.x, p.y)) for p in ring], PeriodicFlag=True)
+    drawn = doc.addObject("Part::Feature", "DrawnCurve")
+    drawn.Shape = curve.toShape()
+    motion = FreeCAD.Placement(V(0, 0, 12), FreeCAD.Rotation(V(1, 0, 0), 20), centre)
+    varsurf.set_curves(subd, [(drawn, "Edge1")], motion, influence=0)
+    doc.recompute()
+    brep = varsurf.make_subd_brep(subd, isolation=2)
+    doc.recompute()
+    return [subd], [brep]
+
+
+FIGURES = {"fig1": fig1, "fig7": fig7, "fig7d": fig7d, "fig8": fig8, "fig9": fig9}
 
 
 def _build_report(stem, doc):

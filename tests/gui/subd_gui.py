@@ -15,6 +15,7 @@ $VARSURF_GUI_OUT/subd.json and quits.
 """
 
 import json
+import math
 import os
 import sys
 import time
@@ -71,6 +72,7 @@ def run(result):
     Gui.updateGui()
     result["after_undo"] = sorted(o.Name for o in doc.Objects)
     panel(result, subd)
+    turn_curves(result)
     drag_vase(result)
     built = os.environ.get("VARSURF_SUBD_DOC")
     if built:
@@ -165,6 +167,60 @@ def panel(result, subd):
     Gui.updateGui()
     result["panel_clipped"] = clipped_widgets("VarSurfSubdSurface")
     press_task_button(QtGui.QDialogButtonBox.Cancel)
+
+
+def turn_curves(result):
+    """A Part Circle on a plane's SubdSurface as its Curves: the arcball at its centre turned 20
+    degrees about x in steps (each the approximate answer drawn), released: CurveMotion written in
+    one undoable step. The circle becomes the Curves in the panel (selected, "Curves from
+    selection")."""
+    doc = App.newDocument("SubdCurves")
+    doc.UndoMode = 1
+    plane = doc.addObject("Part::Plane", "Cage")
+    plane.Length = plane.Width = 100.0
+    plane.Placement.Base = App.Vector(-50, -50, 0)
+    circle = doc.addObject("Part::Circle", "Ring")
+    circle.Radius = 25.0
+    doc.recompute()
+    subd = varsurf.make_subd_surface(plane, levels=4)
+    subd.CurveMotion = App.Placement(App.Vector(0, 0, 10), App.Rotation())
+    subd.CurveInfluence = 1
+    doc.recompute()
+    # The circle made its Curves in the panel: selected, then "Curves from selection", OK.
+    subd.ViewObject.doubleClicked()
+    Gui.updateGui()
+    Gui.Selection.clearSelection()
+    Gui.Selection.addSelection(circle, "Edge1")
+    w = task_widgets("VarSurfSubdSurface")
+    w["curvesButton"].click()
+    Gui.updateGui()
+    result["curves_label"] = w["curvesValue"].text()
+    press_task_button(QtGui.QDialogButtonBox.Ok)
+    result["curves_set"] = [[(o.Name, list(subs)) for o, subs in subd.Curves], doc.UndoNames[:1], subd.isValid()]
+    Gui.ActiveDocument.ActiveView.viewIsometric()
+    Gui.SendMsgToActiveView("ViewFit")
+    handles = subd.ViewObject.Proxy.handles
+    arcball = handles.arcball
+    result["arcball"] = [arcball is not None, subd.CurvePins,
+                         list(arcball.centre) if arcball is not None else None]
+    if arcball is None:
+        return
+    result["turn_began"] = handles.begin_turn()
+    from pivy import coin
+
+    steps, t0 = 20, time.perf_counter()
+    for k in range(1, steps + 1):
+        q = App.Rotation(App.Vector(1, 0, 0), 20.0 * k / steps).Q
+        arcball.dragger.rotation.setValue(coin.SbRotation(q[0], q[1], q[2], q[3]))  # as the pointer would
+        handles.turn_to(arcball.placement())
+        Gui.updateGui()
+    result["turn_moves_per_second"] = steps / (time.perf_counter() - t0)
+    result["turn_shot"] = window_shot(os.path.join(OUT, "subd_arcball.png"))
+    handles.end_turn(arcball.placement())
+    Gui.updateGui()
+    motion = subd.CurveMotion
+    result["turned"] = [subd.isValid(), doc.UndoNames[:1], math.degrees(motion.Rotation.Angle),
+                        list(motion.Base), handles.errors, handles.preview is None]
 
 
 def drag_vase(result):

@@ -30,6 +30,11 @@ def plane_scene(doc, place=FreeCAD.Placement()):
     return plane, circle, subd
 
 
+def same_placement(a, b, tolerance):
+    ma, mb = a.toMatrix(), b.toMatrix()
+    return all(abs(x - y) <= tolerance for x, y in zip(ma.A, mb.A))
+
+
 MOTION = FreeCAD.Placement(V(0, 0, 15), FreeCAD.Rotation(V(1, 0, 0), 10))
 
 
@@ -129,3 +134,29 @@ def test_bad_curves_are_named_and_leave_the_document_intact(doc, edit, words):
     assert not subd.isValid()
     assert words in subd.getStatusString(), subd.getStatusString()
     assert plane.isValid() and circle.isValid()
+
+
+def test_turning_the_curves_by_their_arcball_is_the_approximate_recompute_and_one_undo_step(doc):
+    """The curves' drag (subd_drag.CurveDrag, what the arcball runs): each move equals the
+    Approximate recompute with that motion; the release composes it with the motion the drag began
+    from and writes it in one undoable step."""
+    from varsurf.app import subd_drag
+
+    doc.UndoMode = 1
+    _, circle, subd = plane_scene(doc)
+    start = FreeCAD.Placement(V(0, 0, 5), FreeCAD.Rotation())
+    varsurf.set_curves(subd, [(circle, "Edge1")], start, influence=2)
+    subd.Solve = "Approximate"
+    doc.recompute()
+    drag = subd_drag.CurveDrag(subd)
+    turn = FreeCAD.Placement(V(0, 3, 0), FreeCAD.Rotation(V(1, 1, 0), 25), V(0, 0, 5))
+    moved = drag.move(turn)
+    drag.finish(turn)
+    assert doc.UndoNames[0] == subd_drag.CURVE_TRANSACTION
+    expected = turn.multiply(start)
+    assert same_placement(subd.CurveMotion, expected, 1e-9), (subd.CurveMotion, expected)
+    # The recompute (the feature's Approximate solve, to 1e-9) is the drag's move (to 1e-6).
+    assert max((V(*p) - V(*q)).Length for p, q in zip(moved, subd.Proxy.outcome.points)) < 1e-4
+    doc.undo()
+    doc.recompute()
+    assert same_placement(subd.CurveMotion, start, 1e-12)

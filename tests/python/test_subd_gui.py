@@ -101,5 +101,23 @@ def test_the_panel_picks_pins_and_draws_their_region_of_influence(subd):
     assert Path(subd["panel_shot"]).is_file()
 
 
+def test_the_curves_arcball_turns_them_in_one_undo_step(subd):
+    """Boier-Martin et al.'s Fig. 9 interaction: the Curves' arcball turned 20 degrees in 20 steps,
+    each drawn; the release writes CurveMotion (turned about the circle's centre, so its base
+    stays at the centre's lift) in one undoable step."""
+    assert "error" not in subd, subd.get("error")
+    curves, undo, valid = subd["curves_set"]
+    assert curves == [["Ring", ["Edge1"]]] and undo == ["Edit VarSurf subdivision surface"], subd["curves_set"]
+    assert valid and subd["curves_label"].startswith("Curves: 1, pins along them: "), subd["curves_label"]
+    present, pins, centre = subd["arcball"]
+    assert present and pins > 0 and abs(centre[2] - 10.0) < 1e-6, subd["arcball"]
+    assert subd["turn_began"] is True
+    assert subd["turn_moves_per_second"] >= 10, subd["turn_moves_per_second"]
+    valid, undo, angle, base, errors, closed = subd["turned"]
+    assert valid and undo == ["Turn VarSurf subdivision curves"] and abs(angle - 20.0) < 1e-3, subd["turned"]
+    assert max(abs(a - b) for a, b in zip(base, (0.0, 0.0, 10.0))) < 1e-6 and not errors and closed, subd["turned"]
+    assert Path(subd["turn_shot"]).is_file()
+
+
 def test_the_report_view_has_no_traceback(subd):
     assert "Traceback" not in subd["report"], subd["report"]

@@ -2,11 +2,14 @@
 """The subdivision-surface examples (examples/subdivision_surfaces.py, after Boier-Martin et al.)
 build what they show: Fig. 8's approximate answer is narrower than the refined one for the same
 pin; Fig. 9's turned inner boundary and held outer boundary are met, and its B-rep is a valid
-shell whose regular seams are tangent."""
+shell whose regular seams are tangent; Fig. 7d's curve drawn on a scanned relief, lifted and
+turned, lies on the result and the relief's bumps ride along."""
 
 import FreeCAD
 
-from subdivision_surfaces import fig8, fig9
+import Part
+
+from subdivision_surfaces import fig7d, fig8, fig9
 
 V = FreeCAD.Vector
 
@@ -31,3 +34,35 @@ def test_fig9_the_turned_hole_meets_its_boundaries_and_its_brep_is_tangent(doc):
     assert brep.isValid(), brep.getStatusString()
     assert not brep.Closed and brep.Shape.isValid()
     assert brep.RegularSeamAngle < 1e-6 and brep.EndCapSeamAngle < 1.0
+
+
+def test_fig7d_a_curve_drawn_on_a_relief_carries_it(doc):
+    (subd,), (brep,) = fig7d(doc)
+    assert subd.isValid() and brep.isValid(), (subd.getStatusString(), brep.getStatusString())
+    assert subd.CurvePins > 50 and subd.PinResidual < 1e-6
+    drawn = doc.getObject("DrawnCurve").Shape.Edges[0]
+    moved = [subd.CurveMotion.multVec(p) for p in drawn.discretize(40)]
+    # The moved curve lies on the B-rep within the chain's distance from the curve (each point
+    # measured against the faces whose boxes come within 5 mm of it).
+    faces = brep.Shape.Faces
+
+    def distance(p):
+        near = []
+        for f in faces:
+            box = f.BoundBox
+            box.enlarge(5.0)
+            if box.isInside(p):
+                near.append(f)
+        return Part.Compound(near).distToShape(Part.Vertex(p))[0]
+
+    gap = max(distance(p) for p in moved)
+    assert gap <= subd.CurveDistance, (gap, subd.CurveDistance)
+    # The bumps ride along: the finest level's detail vectors (in their local frames) keep their
+    # size and their pattern through the edit.
+    import numpy as np
+
+    outcome = subd.Proxy.outcome
+    before, after = (np.asarray(m.details[-1]) for m in (outcome.captured, outcome.edited))
+    ratio = np.linalg.norm(after) / np.linalg.norm(before)
+    correlation = np.corrcoef(before.ravel(), after.ravel())[0, 1]
+    assert abs(ratio - 1.0) < 0.1 and correlation > 0.9, (ratio, correlation)

@@ -12,12 +12,13 @@ import FreeCAD
 from varsurf.app.drag import DragError
 from varsurf.app.feature import last_outcome
 from varsurf.app.macro import ref
-from varsurf.app.subd_surface import compute, is_subd_surface, normals_of, pins_of
+from varsurf.app.subd_surface import compute, curves_of, is_subd_surface, normals_of, pins_of, placement_matrix
 from varsurf.app.transaction import run_in_transaction
 from varsurf.solve import multiresolution
 from varsurf.solve.errors import SheetError
 
 TRANSACTION = "Drag VarSurf subdivision pin"
+CURVE_TRANSACTION = "Turn VarSurf subdivision curves"
 
 
 class PinDrag:
@@ -51,3 +52,48 @@ class PinDrag:
                  f"varsurf.move_pin({ref(self.subd)}, {self.index}, App.Vector({t.x!r}, {t.y!r}, {t.z!r}))",
                  f"App.getDocument({self.subd.Document.Name!r}).recompute()"]
         run_in_transaction(self.subd.Document, TRANSACTION, lines, do_command)
+
+
+class CurveDrag:
+    """The Curves of a SubdSurface turned and moved as one (their arcball, Boier-Martin et al.'s
+    Fig. 9): move(placement) gives the limit points to draw with `placement` applied after the
+    CurveMotion the drag started from (the approximate solve on the captured levels);
+    finish(placement) writes the composed CurveMotion in one undoable step."""
+
+    def __init__(self, subd):
+        if not is_subd_surface(subd):
+            raise DragError(f"{subd.Label} is not a SubdSurface")
+        try:
+            self.curves = curves_of(subd)
+            self.pins, self.normals = pins_of(subd), normals_of(subd)
+            self.outcome = last_outcome(subd, compute)
+        except SheetError as error:
+            raise DragError(f"{subd.Label}: {error}") from error
+        if self.curves is None:
+            raise DragError(f"{subd.Label} has no Curves: link edges lying on it first")
+        try:  # the chains once: a move only turns their vertices
+            self.chained = multiresolution.curve_vertices(self.outcome.editor, self.outcome.captured, self.curves,
+                                                          self.pins)
+        except SheetError as error:
+            raise DragError(f"{subd.Label}: {error}") from error
+        self.subd, self.start = subd, FreeCAD.Placement(subd.CurveMotion)
+
+    def motion(self, placement):
+        return FreeCAD.Placement(placement).multiply(self.start)
+
+    def move(self, placement):
+        """The limit surface's points with the curves moved by `placement` after their motion."""
+        try:
+            return multiresolution.edited_limit(self.outcome, self.pins, normals=self.normals, curves=self.chained,
+                                                curve_matrix=placement_matrix(self.motion(placement)))
+        except SheetError as error:
+            raise DragError(f"{self.subd.Label}: {error}") from error
+
+    def finish(self, placement, do_command=None):
+        """Write the composed CurveMotion (one undoable step, recorded through do_command)."""
+        p = self.motion(placement)
+        q = p.Rotation.Q
+        lines = [f"{ref(self.subd)}.CurveMotion = App.Placement(App.Vector({p.Base.x!r}, {p.Base.y!r}, {p.Base.z!r}), "
+                 f"App.Rotation({q[0]!r}, {q[1]!r}, {q[2]!r}, {q[3]!r}))",
+                 f"App.getDocument({self.subd.Document.Name!r}).recompute()"]
+        run_in_transaction(self.subd.Document, CURVE_TRANSACTION, lines, do_command)

@@ -132,10 +132,15 @@ def curves_of(obj):
             if len(points) < 32:
                 points = edge.discretize(Number=32)
             polylines.append([(p.x, p.y, p.z) for p in points])
-    matrix = obj.CurveMotion.toMatrix()
-    rows = [[matrix.A11, matrix.A12, matrix.A13, matrix.A14], [matrix.A21, matrix.A22, matrix.A23, matrix.A24],
-            [matrix.A31, matrix.A32, matrix.A33, matrix.A34], [0.0, 0.0, 0.0, 1.0]]
-    return multiresolution.CurveMotion(polylines, int(obj.CurveLevel), int(obj.CurveInfluence), rows)
+    return multiresolution.CurveMotion(polylines, int(obj.CurveLevel), int(obj.CurveInfluence),
+                                       placement_matrix(obj.CurveMotion))
+
+
+def placement_matrix(placement):
+    """A FreeCAD.Placement as 4 x 4 rows (the core's rigid motion)."""
+    m = placement.toMatrix()
+    return [[m.A11, m.A12, m.A13, m.A14], [m.A21, m.A22, m.A23, m.A24], [m.A31, m.A32, m.A33, m.A34],
+            [0.0, 0.0, 0.0, 1.0]]
 
 
 def compute(obj):

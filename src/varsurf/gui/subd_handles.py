@@ -2,7 +2,10 @@
 """The pins of a SubdSurface in the 3D view: a draggable ball at each pin's target. Dragging one
 draws the approximate answer live (varsurf.app.subd_drag.PinDrag: the limit points of the edited
 levels, set on a Coin mesh of the finest faces, the object's own display hidden meanwhile);
-releasing it writes the target in one undoable step and the recompute refines the surface."""
+releasing it writes the target in one undoable step and the recompute refines the surface. Its
+Curves get an arcball at their centre (Boier-Martin et al.'s Fig. 9): turning it (or moving its
+centre) turns the curves and the surface follows the same way (subd_drag.CurveDrag); the release
+writes CurveMotion."""
 
 from __future__ import annotations
 
@@ -59,6 +62,7 @@ class SubdHandles:
         self.scale = 1.0
         self.session = None
         self.preview = None
+        self.arcball = None
         self.errors = []
 
     def rebuild(self, obj):
@@ -73,6 +77,32 @@ class SubdHandles:
         for i, target in enumerate(obj.PinTargets):
             self.draggers.append(add_pin(self.root, V(target), size, lambda i=i: self.begin_drag(i),
                                          self.drag_to, self.end_drag))
+        self.arcball = None
+        centre = curves_centre(obj)
+        if centre is not None:
+            self.arcball = Arcball(self.root, centre, 4 * size, self)
+
+    # -- the curves' arcball --
+    def begin_turn(self):
+        try:
+            self.session = subd_drag.CurveDrag(self.obj)
+        except DragError as error:
+            self.errors.append(str(error))
+            App.Console.PrintError(f"VarSurf: {error}\n")
+            return False
+        self.preview = MeshPreview(self.vobj, self.session.outcome.triangles)
+        return True
+
+    def turn_to(self, placement):
+        if self.session is None:
+            return
+        try:
+            self.preview.show(self.session.move(placement))
+        except ValueError as error:
+            self.errors.append(str(error))
+
+    def end_turn(self, placement):
+        self.end_drag(placement)
 
     def handle_position(self, index):
         return pin_position(self.draggers[index], self.scale)
@@ -107,3 +137,53 @@ class SubdHandles:
                 self.errors.append(str(error))
                 App.Console.PrintError(f"VarSurf: {error}\n")
         self.rebuild(self.obj)
+
+
+def curves_centre(obj):
+    """The centre of a SubdSurface's Curves where CurveMotion puts them, or None without curves."""
+    refs = list(getattr(obj, "Curves", None) or [])
+    boxes = []
+    for link, subs in refs:
+        shape = getattr(link, "Shape", None)
+        if shape is None or shape.isNull():
+            continue
+        for name in subs or [f"Edge{i + 1}" for i in range(len(shape.Edges))]:
+            try:
+                boxes.append(shape.getElement(name).BoundBox)
+            except Exception:  # a stale link: the recompute names it
+                continue
+    if not boxes:
+        return None
+    box = boxes[0]
+    for other in boxes[1:]:
+        box.add(other)
+    return obj.CurveMotion.multVec(box.Center)
+
+
+class Arcball:
+    """Coin's centerball dragger at the curves' centre: its rotation turns them about that centre,
+    its centre's move carries them (a FreeCAD.Placement given to the handles' turn callbacks)."""
+
+    def __init__(self, parent, centre, size, handles):
+        self.centre, self.size = V(centre), size
+        sep = coin.SoSeparator()
+        sep.setName("VarSurfCurveArcball")
+        move = coin.SoTranslation()
+        move.translation.setValue(*self.centre)
+        sep.addChild(move)
+        scale = coin.SoScale()
+        scale.scaleFactor.setValue(size, size, size)
+        sep.addChild(scale)
+        self.dragger = coin.SoCenterballDragger()
+        self.dragger.addStartCallback(lambda *_: handles.begin_turn())
+        self.dragger.addMotionCallback(lambda *_: handles.turn_to(self.placement()))
+        self.dragger.addFinishCallback(lambda *_: handles.end_turn(self.placement()))
+        sep.addChild(self.dragger)
+        parent.addChild(sep)
+
+    def placement(self):
+        """The dragger's turn about the curves' centre and its centre's move, as a placement."""
+        q = self.dragger.rotation.getValue().getValue()
+        c = self.dragger.center.getValue()
+        shift = V(c[0], c[1], c[2]) * self.size
+        return App.Placement(shift, App.Rotation(q[0], q[1], q[2], q[3]), self.centre)

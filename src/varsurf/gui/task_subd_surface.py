@@ -2,7 +2,7 @@
 """Task panel of a SubdSurface: its levels and solve; a level slider that draws that level's mesh
 over the surface; pins added by picking a vertex of the shown level in the 3D view, each with an
 influence slider (its region of influence, drawn as the finest vertices it moves) and its normal
-held or not; pins removed. Each pin edit is a line of varsurf.app.subd_pins run through
+held or not; pins removed; the selected edges made its Curves. Each edit is a line of varsurf.app.subd_pins run through
 Gui.doCommand (a macro replays it) inside the panel's one transaction: OK keeps them, Cancel
 undoes them."""
 
@@ -26,7 +26,8 @@ class TaskPanelSubdSurface(PropertyTaskPanel):
     ICON = "VarSurf_SubdSurface.svg"
     TRANSACTION = "Edit VarSurf subdivision surface"
     EDITABLE = ("Levels", "Solve", "Rings", "PinVertices", "PinLevels", "PinInfluence", "PinTargets",
-                "NormalVertices", "NormalLevels", "NormalInfluence", "NormalDirections")
+                "NormalVertices", "NormalLevels", "NormalInfluence", "NormalDirections", "Curves", "CurveMotion",
+                "CurveLevel", "CurveInfluence")
     COLUMNS = ("Vertex", "Influence", "Normal")  # a vertex as "10 (2)": vertex 10 of level 2
 
     def __init__(self, obj):
@@ -60,6 +61,7 @@ class TaskPanelSubdSurface(PropertyTaskPanel):
         self.child(QtGui.QPushButton, "normalButton").clicked.connect(self.hold_normal)
         self.child(QtGui.QPushButton, "removeButton").clicked.connect(self.remove)
         self.child(QtGui.QPushButton, "updateButton").clicked.connect(self.update)
+        self.child(QtGui.QPushButton, "curvesButton").clicked.connect(self.curves_from_selection)
 
     # -- object <-> widgets --
     def load(self):
@@ -90,6 +92,10 @@ class TaskPanelSubdSurface(PropertyTaskPanel):
     def show_results(self):
         obj = self.obj
         self.status.setText(obj.Status if obj.isValid() else obj.getStatusString())
+        count = sum(len(subs) or 1 for _, subs in (obj.Curves or []))
+        self.child(QtGui.QLabel, "curvesValue").setText(
+            translate("VarSurf", "Curves: {}, pins along them: {}").format(count, obj.CurvePins) if count
+            else translate("VarSurf", "No curves"))
         self.show_level(self.shown.value())
         self.pin_selected()
 
@@ -169,6 +175,29 @@ class TaskPanelSubdSurface(PropertyTaskPanel):
         except Exception as error:  # the line's own words (a SheetError), in the report view
             message(f"{self.obj.Label}: {error}")
         self.fill_table()
+        self.show_results()
+
+    def curves_from_selection(self):
+        """The edges selected (in the view or the tree, the object itself excluded) as Curves."""
+        refs = []
+        for sel in Gui.Selection.getSelectionEx(self.doc.Name):
+            if sel.Object is self.obj:
+                continue
+            edges = [name for name in sel.SubElementNames if name.startswith("Edge")]
+            refs.append(f"(App.getDocument({self.doc.Name!r}).getObject({sel.Object.Name!r}), {edges!r})"
+                        if edges else f"App.getDocument({self.doc.Name!r}).getObject({sel.Object.Name!r})")
+        if not refs:
+            message(f"{self.obj.Label}: select edges lying on the surface first, then press Curves from selection")
+            return
+        lines = ["import varsurf",
+                 f"varsurf.set_curves({ref(self.obj)}, [{', '.join(refs)}], {ref(self.obj)}.CurveMotion, "
+                 f"level={ref(self.obj)}.CurveLevel, influence={ref(self.obj)}.CurveInfluence)",
+                 f"App.getDocument({self.doc.Name!r}).recompute()"]
+        try:
+            for line in lines:
+                Gui.doCommand(line)
+        except Exception as error:
+            message(f"{self.obj.Label}: {error}")
         self.show_results()
 
     def pick(self, on):

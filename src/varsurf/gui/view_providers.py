@@ -241,7 +241,7 @@ class ViewProviderSubdSurface(_EditedInPanel, _ViewProvider):
 
     def updateData(self, obj, prop):
         handles = getattr(self, "handles", None)
-        if handles is not None and prop in ("PinTargets", "Mesh"):
+        if handles is not None and prop in ("PinTargets", "Mesh", "Curves", "CurveMotion"):
             handles.rebuild(obj)
 
     def claimChildren(self):

@@ -74,6 +74,10 @@ class MultiresResult:
     region_levels: List[int] = field(default_factory=list)
     captured: object = None  # the native Multiresolution before the pins (what a drag edits)
     edited: object = None  # the native Multiresolution after them
+
+    def captured_points(self) -> np.ndarray:
+        """The limit surface before the pins, at the finest level's vertices."""
+        return np.asarray(self.editor.limit(self.captured))
     editor: object = None  # the native DetailEditor of its topology
 
 
@@ -225,9 +229,27 @@ def brep(result: MultiresResult, isolation: int = 4, tolerance: float = 0.0) -> 
 DRAG_TOLERANCE = 1e-6
 
 
-def _curve_pins(editor, surface, curves: CurveMotion, pins: Sequence[Pin]):
-    """The pins along `curves` (the vertices of their level that follow each, moved rigidly) and
-    the farthest of those vertices from its curve; a vertex pinned already keeps its own pin."""
+@dataclass
+class CurveVertices:
+    """The vertices of a level that follow some curves (their chains), where they are."""
+    level: int
+    influence: int
+    vertices: List[int]
+    points: np.ndarray
+    distance: float  # the farthest of them from its curve
+
+
+def _rigid(matrix) -> np.ndarray:
+    matrix = np.asarray(matrix, float)
+    rotation = matrix[:3, :3] if matrix.shape == (4, 4) else np.full((3, 3), np.nan)
+    if not np.isfinite(matrix).all() or not np.allclose(rotation @ rotation.T, np.eye(3), atol=1e-9):
+        raise SheetError("the curves' motion is not a rigid motion: give a placement (a rotation and a move)")
+    return matrix
+
+
+def curve_vertices(editor, surface, curves: CurveMotion, pins: Sequence[Pin] = ()) -> CurveVertices:
+    """The vertices of `curves.level` of `surface` (a native Multiresolution) along each curve; a
+    vertex pinned already by `pins` keeps its own pin."""
     nat = native()
     level = int(curves.level)
     if not 0 <= level <= editor.levels():
@@ -235,14 +257,10 @@ def _curve_pins(editor, surface, curves: CurveMotion, pins: Sequence[Pin]):
                          "set one of those")
     if not 0 <= int(curves.influence) <= level:
         raise SheetError(f"the curves' influence level must lie in 0..{level}; set it so")
-    matrix = np.asarray(curves.matrix, float)
-    rotation = matrix[:3, :3] if matrix.shape == (4, 4) else np.full((3, 3), np.nan)
-    if not np.isfinite(matrix).all() or not np.allclose(rotation @ rotation.T, np.eye(3), atol=1e-9):
-        raise SheetError("the curves' motion is not a rigid motion: give a placement (a rotation and a move)")
     points = np.asarray(editor.points(surface)[level])
     mesh = nat.SubdivisionMesh(points, editor.topology(level).faces)
     taken = {(p.level, p.vertex) for p in pins}
-    out, distance = [], 0.0
+    vertices, distance = [], 0.0
     for number, curve in enumerate(curves.curves):
         try:
             chain = nat.curve_chain(mesh, np.asarray(curve, float).reshape(-1, 3))
@@ -250,12 +268,24 @@ def _curve_pins(editor, surface, curves: CurveMotion, pins: Sequence[Pin]):
             raise SheetError(f"curve {number + 1}: {error}") from error
         distance = max(distance, chain.max_distance)
         for v in chain.vertices:
-            if (level, v) in taken:
-                continue
-            taken.add((level, v))
-            moved = rotation @ points[v] + matrix[:3, 3]
-            out.append(Pin(level, int(v), tuple(float(c) for c in moved), int(curves.influence)))
-    return out, distance
+            if (level, v) not in taken:
+                taken.add((level, v))
+                vertices.append(int(v))
+    return CurveVertices(level, int(curves.influence), vertices, points[vertices], distance)
+
+
+def curve_pins(chained: CurveVertices, matrix) -> List[Pin]:
+    """Pins moving the chains' vertices by `matrix` (4 x 4, rigid)."""
+    matrix = _rigid(matrix)
+    moved = chained.points @ matrix[:3, :3].T + matrix[:3, 3]
+    return [Pin(chained.level, v, tuple(float(c) for c in m), chained.influence)
+            for v, m in zip(chained.vertices, moved)]
+
+
+def _curve_pins(editor, surface, curves: CurveMotion, pins: Sequence[Pin]):
+    matrix = _rigid(curves.matrix)
+    chained = curve_vertices(editor, surface, curves, pins)
+    return curve_pins(chained, matrix), chained.distance
 
 
 def _native_pins(pins: Sequence[Pin]):
@@ -269,14 +299,19 @@ def _native_normals(normals: Sequence[Normal]):
 
 
 def edited_limit(result: MultiresResult, pins: Sequence[Pin], solve: str = "Approximate",
-                 normals: Sequence[Normal] = ()) -> np.ndarray:
-    """The limit points of a built surface's captured levels edited by `pins` and `normals` (a
-    drag's move: the approximate solve by default, to DRAG_TOLERANCE), without building anything
+                 normals: Sequence[Normal] = (), curves=None, curve_matrix=None) -> np.ndarray:
+    """The limit points of a built surface's captured levels edited by `pins`, `normals` and the
+    pins along `curves` (a CurveMotion, or a drag's CurveVertices moved by `curve_matrix`): a
+    drag's move, the approximate solve by default, to DRAG_TOLERANCE, without building anything
     again."""
     nat = native()
     options = nat.DetailEditOptions()
     options.solve = _solve(solve)
     options.tolerance = DRAG_TOLERANCE
+    if isinstance(curves, CurveVertices):  # a drag's chains, found once
+        pins = list(pins) + curve_pins(curves, curve_matrix) if curve_matrix is not None else pins
+    elif curves is not None and curves.curves:
+        pins = list(pins) + _curve_pins(result.editor, result.captured, curves, pins)[0]
     try:
         edited = result.editor.edit(result.captured, _native_pins(pins), _native_normals(normals), options)
         return np.asarray(result.editor.limit(edited.surface))
