@@ -82,40 +82,25 @@ class SubdHandles:
         if centre is not None:
             self.arcball = Arcball(self.root, centre, 4 * size, self)
 
-    # -- the curves' arcball --
-    def begin_turn(self):
-        try:
-            self.session = subd_drag.CurveDrag(self.obj)
-        except DragError as error:
-            self.errors.append(str(error))
-            App.Console.PrintError(f"VarSurf: {error}\n")
-            return False
-        self.preview = MeshPreview(self.vobj, self.session.outcome.triangles)
-        return True
-
-    def turn_to(self, placement):
-        if self.session is None:
-            return
-        try:
-            self.preview.show(self.session.move(placement))
-        except ValueError as error:
-            self.errors.append(str(error))
-
-    def end_turn(self, placement):
-        self.end_drag(placement)
-
     def handle_position(self, index):
         return pin_position(self.draggers[index], self.scale)
 
-    def begin_drag(self, index):
+    def _begin(self, make_session):
         try:
-            self.session = subd_drag.PinDrag(self.obj, index)
+            self.session = make_session()
         except DragError as error:
             self.errors.append(str(error))
             App.Console.PrintError(f"VarSurf: {error}\n")
             return False
         self.preview = MeshPreview(self.vobj, self.session.outcome.triangles)
         return True
+
+    def begin_drag(self, index):
+        return self._begin(lambda: subd_drag.PinDrag(self.obj, index))
+
+    def begin_turn(self):
+        """The curves' arcball pressed: their drag (moves and the release take placements)."""
+        return self._begin(lambda: subd_drag.CurveDrag(self.obj))
 
     def drag_to(self, target):
         if self.session is None:
@@ -124,6 +109,8 @@ class SubdHandles:
             self.preview.show(self.session.move(target))
         except ValueError as error:  # a target the pins cannot meet: keep the last picture
             self.errors.append(str(error))
+
+    turn_to = drag_to  # a placement instead of a point: the session tells them apart
 
     def end_drag(self, target):
         session, self.session = self.session, None
@@ -137,6 +124,8 @@ class SubdHandles:
                 self.errors.append(str(error))
                 App.Console.PrintError(f"VarSurf: {error}\n")
         self.rebuild(self.obj)
+
+    end_turn = end_drag
 
 
 def curves_centre(obj):
