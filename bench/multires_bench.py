@@ -109,7 +109,7 @@ def main():
         for k in range(moves):
             goal = finest[pin] + outward * (10.0 * (k + 1) / moves)
             start = time.perf_counter()
-            edited = editor.edit(surface, [nat.DetailPin(4, pin, goal, 2)], options(solve))
+            edited = editor.edit(surface, [nat.DetailPin(4, pin, goal, 2)], [], options(solve))
             shown = editor.points(edited.surface)[-1]
             times.append(time.perf_counter() - start)
             residual = max(residual, edited.report.max_residual)
