@@ -172,7 +172,9 @@ TEST(FactorCorrection, AddedPinsKeepTheFactorAndEqualFreshSolves) {
     pin.v = 0.6;
     pin.target = Eigen::Vector3d(0.7, 0.6, 0.03);
     changed.points.push_back(pin);
-    expect_fresh(prepared.change(changed), changed, 1, "two pins");
+    // Kept for the second pin only while the correction has cost less time than a factorization
+    // (a timed choice: on a loaded machine either way), and equal to a fresh solve either way.
+    expect_fresh(prepared.change(changed), changed, -1, "two pins");
     changed.points.back().target.z() += 0.002;  // a drag of the new pin
     expect_fresh(prepared.update(changed), changed, -1, "drag");
     changed.points.erase(changed.points.begin());
