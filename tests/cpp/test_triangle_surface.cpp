@@ -100,3 +100,28 @@ TEST(TriangleSurface, ACoarseScanCapturesOntoACageWithinItsSagitta) {
     EXPECT_NE(std::string(e.what()).find("too far from the cage"), std::string::npos) << e.what();
   }
 }
+
+TEST(TriangleSurface, CapturesScaleWithTheScene) {
+  // A cube cage whose face centres lie inside a tessellated sphere, on its axes: several facets
+  // are nearest there. The same scene at 0.05x and 500x captures the same details scaled.
+  Eigen::MatrixX3d points;
+  std::vector<std::array<int, 3>> triangles;
+  uv_sphere(6.5, 40, 80, points, triangles);
+  SubdivisionMesh cube;
+  cube.points.resize(8, 3);
+  for (int k = 0; k < 8; ++k)
+    cube.points.row(k) << (k & 1 ? 5.0 : -5.0), (k & 2 ? 5.0 : -5.0), (k & 4 ? 5.0 : -5.0);
+  cube.faces = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  const auto details = [&](double scale) {
+    const TriangleSurface scan(points * scale, triangles);
+    SubdivisionMesh cage = cube;
+    cage.points *= scale;
+    return capture(cage, 3, [&](const Eigen::Vector3d& p) { return scan.closest(p); }).details;
+  };
+  const std::vector<Eigen::MatrixX3d> one = details(1.0);
+  for (const double scale : {0.05, 500.0}) {
+    const std::vector<Eigen::MatrixX3d> scaled = details(scale);
+    for (size_t k = 0; k < one.size(); ++k)
+      EXPECT_LT((scaled[k] / scale - one[k]).cwiseAbs().maxCoeff(), 1e-9) << scale << " " << k;
+  }
+}

@@ -20,11 +20,19 @@ struct TriangleSurface::Tree {
 namespace {
 
 // Eigen's minimizer protocol: the squared distance to a box bounds the triangles inside it.
+// Triangles nearest within this relative margin of the squared distance are ties, broken by the
+// lowest index: a point on the medial axis (a cube cage's face centre inside a tessellated sphere,
+// on its axis) has several nearest facets, and which one rounding picked made captures of the
+// same scene at 0.05x and 500x differ by 0.23 mm of 20 at level 1 (measured).
+constexpr double kTie = 1e-10;
+
 struct Nearest {
   typedef double Scalar;
   const Eigen::MatrixX3d* points;
   const std::vector<std::array<int, 3>>* triangles;
   Eigen::Vector3d query, best;
+  double best_distance = std::numeric_limits<double>::infinity();
+  int best_triangle = -1;
   double minimumOnVolume(const Box& box) const { return box.squaredExteriorDistance(query); }
   double minimumOnObject(int t) {
     const std::array<int, 3>& tri = (*triangles)[static_cast<size_t>(t)];
@@ -32,8 +40,11 @@ struct Nearest {
         closest_on_triangle(query, points->row(tri[0]).transpose(), points->row(tri[1]).transpose(),
                             points->row(tri[2]).transpose());
     const double d = (q - query).squaredNorm();
-    if (d < (best - query).squaredNorm()) best = q;
-    return d;
+    const bool nearer = d < best_distance * (1.0 - kTie);
+    const bool tie = !nearer && d <= best_distance * (1.0 + kTie) && t < best_triangle;
+    if (nearer || tie) best = q, best_distance = d, best_triangle = t;
+    // Reported a little farther, so that boxes holding a tie are still visited.
+    return d * (1.0 + 2.0 * kTie);
   }
 };
 
