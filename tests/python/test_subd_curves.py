@@ -124,6 +124,7 @@ def test_sketch_edges_move_the_surface_near_them(doc):
     (lambda d, s, c: varsurf.set_curves(s, [(c, "Edge1")], level=LEVELS) or setattr(s, "Levels", 2),
      "the curves' level 5 does not exist"),
     (lambda d, s, c: setattr(s, "Curves", [(c, ["Vertex1"])]), "is not an edge"),
+    (lambda d, s, c: setattr(s, "Curves", [(c, ["Edge9"])]), "Ring has no Edge9: link an existing edge"),
 ])
 def test_bad_curves_are_named_and_leave_the_document_intact(doc, edit, words):
     plane, circle, subd = plane_scene(doc)
@@ -160,3 +161,25 @@ def test_turning_the_curves_by_their_arcball_is_the_approximate_recompute_and_on
     doc.undo()
     doc.recompute()
     assert same_placement(subd.CurveMotion, start, 1e-12)
+
+
+def test_a_pins_region_of_influence_is_what_a_move_moves_with_curves_held(doc):
+    """The region the task panel draws for a pin counts the Curves: their pins hold their
+    vertices, so a move of the pin moves exactly the region computed with them."""
+    from varsurf.app import subd_pins
+
+    _, circle, subd = plane_scene(doc)
+    varsurf.set_curves(subd, [(circle, "Edge1")], MOTION, influence=3)
+    subd.Solve = "Approximate"
+    doc.recompute()
+    vertex = subd_pins.pick_vertex(subd, 4, V(22.0, 0.0, 0.0))
+    subd_pins.add_pin(subd, 4, vertex, 3)  # here the curves double the region (437 -> 961 vertices)
+    doc.recompute()
+    assert subd.isValid(), subd.getStatusString()
+    region = set(subd_pins.region(subd, 0).tolist())
+    before = [V(*p) for p in subd.Proxy.outcome.points]
+    varsurf.move_pin(subd, 0, V(subd.PinTargets[0]) + V(0.7, -0.4, 3.0))
+    doc.recompute()
+    assert subd.isValid(), subd.getStatusString()
+    moved = {k for k, (a, b) in enumerate(zip(before, subd.Proxy.outcome.points)) if (a - V(*b)).Length > 1e-9}
+    assert moved and moved == region, (len(moved), len(region), len(moved ^ region))

@@ -10,7 +10,7 @@ from __future__ import annotations
 import FreeCAD
 
 from varsurf.app.feature import last_outcome, value
-from varsurf.app.subd_surface import compute, normals_of, pins_of, set_normals, set_pins
+from varsurf.app.subd_surface import compute, curves_of, normals_of, pins_of, set_normals, set_pins
 from varsurf.solve import multiresolution
 from varsurf.solve.errors import SheetError
 
@@ -87,4 +87,5 @@ def hold_normal(obj, index: int):
 def region(obj, index: int):
     """The finest level's vertices that pin `index` moves: its region of influence."""
     index = _check_index(obj, index)
-    return multiresolution.influence_region(last_outcome(obj, compute), pins_of(obj), index, normals_of(obj))
+    return multiresolution.influence_region(last_outcome(obj, compute), pins_of(obj), index, normals_of(obj),
+                                            curves_of(obj))

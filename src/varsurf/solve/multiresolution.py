@@ -283,9 +283,8 @@ def curve_pins(chained: CurveVertices, matrix) -> List[Pin]:
 
 
 def _curve_pins(editor, surface, curves: CurveMotion, pins: Sequence[Pin]):
-    matrix = _rigid(curves.matrix)
     chained = curve_vertices(editor, surface, curves, pins)
-    return curve_pins(chained, matrix), chained.distance
+    return curve_pins(chained, curves.matrix), chained.distance
 
 
 def _native_pins(pins: Sequence[Pin]):
@@ -346,16 +345,20 @@ PROBE = 1e-3
 
 
 def influence_region(result: MultiresResult, pins: Sequence[Pin], index: int,
-                     normals: Sequence[Normal] = ()) -> np.ndarray:
+                     normals: Sequence[Normal] = (), curves: CurveMotion = None) -> np.ndarray:
     """The finest level's vertices that pin `index` moves (its region of influence, Boier-Martin
     et al. 4.2): the approximate edit with the pin probed along the surface's normal, against the
-    edit without the probe. Exact: outside the region the limit points come out bitwise equal."""
+    edit without the probe, both with the same normals and curves. Exact: outside the region the
+    limit points come out bitwise equal."""
     pins = list(pins)
     p = pins[int(index)]
     size = float(np.linalg.norm(np.ptp(result.points, axis=0))) or 1.0
-    base = edited_limit(result, pins, normals=normals)
+    chained, matrix = None, None
+    if curves is not None and curves.curves:  # the chains found once, as a drag does
+        chained, matrix = curve_vertices(result.editor, result.captured, curves, pins), curves.matrix
+    base = edited_limit(result, pins, normals=normals, curves=chained, curve_matrix=matrix)
     direction = np.asarray(vertex_normal(result, p.level, p.vertex))
     pins[int(index)] = Pin(p.level, p.vertex, tuple(np.asarray(p.target, float) + PROBE * size * direction),
                            p.influence)
-    probed = edited_limit(result, pins, normals=normals)
+    probed = edited_limit(result, pins, normals=normals, curves=chained, curve_matrix=matrix)
     return np.flatnonzero(np.linalg.norm(probed - base, axis=1) > 1e-12 * size)
