@@ -115,23 +115,41 @@ def normals_of(obj):
             for v, lv, inf, d in zip(*lists)]
 
 
+def curve_edges(obj, strict: bool = True):
+    """The edges a SubdSurface's Curves link, in order. strict: a face or vertex reference is an
+    error (the recompute's); otherwise such references and stale links are skipped (a view's)."""
+    edges = []
+    for link, subs in list(getattr(obj, "Curves", None) or []):
+        try:
+            shape = shape_of(link)
+        except ValueError:
+            if strict:
+                raise
+            continue
+        for name in as_names(subs) or tuple(f"Edge{i + 1}" for i in range(len(shape.Edges))):
+            if not name.startswith("Edge"):
+                if strict:
+                    raise errors.SheetError(f"{link.Label}:{name} is not an edge: link edges as Curves")
+                continue
+            try:
+                edges.append(shape.getElement(name))
+            except Exception:  # FreeCAD raises a bare exception for a missing element
+                if strict:
+                    raise errors.SheetError(f"{link.Label} has no {name}: link an existing edge as a Curve")
+    return edges
+
+
 def curves_of(obj):
     """The SubdSurface's Curves as a multiresolution.CurveMotion (None without curves): each edge
     sampled finely enough for the chain (the core densifies further)."""
-    refs = list(getattr(obj, "Curves", None) or [])
-    if not refs:
+    if not list(getattr(obj, "Curves", None) or []):
         return None
     polylines = []
-    for link, subs in refs:
-        shape = shape_of(link)
-        for name in as_names(subs) or tuple(f"Edge{i + 1}" for i in range(len(shape.Edges))):
-            if not name.startswith("Edge"):
-                raise errors.SheetError(f"{link.Label}:{name} is not an edge: link edges as Curves")
-            edge = shape.getElement(name)
-            points = edge.discretize(Deflection=max(1e-4 * edge.Length, 1e-9))
-            if len(points) < 32:
-                points = edge.discretize(Number=32)
-            polylines.append([(p.x, p.y, p.z) for p in points])
+    for edge in curve_edges(obj):
+        points = edge.discretize(Deflection=max(1e-4 * edge.Length, 1e-9))
+        if len(points) < 32:
+            points = edge.discretize(Number=32)
+        polylines.append([(p.x, p.y, p.z) for p in points])
     return multiresolution.CurveMotion(polylines, int(obj.CurveLevel), int(obj.CurveInfluence),
                                        placement_matrix(obj.CurveMotion))
 
@@ -180,13 +198,19 @@ def make_subd_surface(source, levels: int = 3, target=None, pins=(), solve: str 
     return obj
 
 
+def _set_lists(obj, prefix: str, third: str, entries):
+    """Write (level, vertex, (x, y, z), influence) tuples into obj's <prefix>Levels, Vertices,
+    <third> (vectors) and Influence lists: pins and normals are stored alike."""
+    entries = [tuple(e) for e in entries]
+    setattr(obj, prefix + "Levels", [int(e[0]) for e in entries])
+    setattr(obj, prefix + "Vertices", [int(e[1]) for e in entries])
+    setattr(obj, prefix + third, [FreeCAD.Vector(*map(float, e[2])) for e in entries])
+    setattr(obj, prefix + "Influence", [int(e[3]) for e in entries])
+
+
 def set_pins(obj, pins):
     """Replace a SubdSurface's pins by (level, vertex, (x, y, z), influence) tuples."""
-    pins = [tuple(p) for p in pins]
-    obj.PinLevels = [int(p[0]) for p in pins]
-    obj.PinVertices = [int(p[1]) for p in pins]
-    obj.PinTargets = [FreeCAD.Vector(*map(float, p[2])) for p in pins]
-    obj.PinInfluence = [int(p[3]) for p in pins]
+    _set_lists(obj, "Pin", "Targets", pins)
 
 
 def set_curves(obj, curves, motion=None, level=None, influence=0):
@@ -201,11 +225,7 @@ def set_curves(obj, curves, motion=None, level=None, influence=0):
 
 def set_normals(obj, normals):
     """Replace a SubdSurface's prescribed normals by (level, vertex, (x, y, z), influence) tuples."""
-    normals = [tuple(n) for n in normals]
-    obj.NormalLevels = [int(n[0]) for n in normals]
-    obj.NormalVertices = [int(n[1]) for n in normals]
-    obj.NormalDirections = [FreeCAD.Vector(*map(float, n[2])) for n in normals]
-    obj.NormalInfluence = [int(n[3]) for n in normals]
+    _set_lists(obj, "Normal", "Directions", normals)
 
 
 def move_pin(obj, index: int, target):

@@ -14,7 +14,7 @@ import FreeCADGui as Gui
 import numpy
 from pivy import coin
 
-from varsurf.app import subd_drag
+from varsurf.app import subd_drag, subd_surface
 from varsurf.app.drag import DragError
 from varsurf.gui.drag_preview import hide_display, restore_display, styled_root
 from varsurf.gui.handles import HANDLE_SIZE, add_pin, pin_position
@@ -130,17 +130,7 @@ class SubdHandles:
 
 def curves_centre(obj):
     """The centre of a SubdSurface's Curves where CurveMotion puts them, or None without curves."""
-    refs = list(getattr(obj, "Curves", None) or [])
-    boxes = []
-    for link, subs in refs:
-        shape = getattr(link, "Shape", None)
-        if shape is None or shape.isNull():
-            continue
-        for name in subs or [f"Edge{i + 1}" for i in range(len(shape.Edges))]:
-            try:
-                boxes.append(shape.getElement(name).BoundBox)
-            except Exception:  # a stale link: the recompute names it
-                continue
+    boxes = [edge.BoundBox for edge in subd_surface.curve_edges(obj, strict=False)]
     if not boxes:
         return None
     box = boxes[0]
