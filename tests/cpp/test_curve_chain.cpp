@@ -3,7 +3,8 @@
 // constraints): on a regular grid, against the grid's own geometry: consecutive vertices share a
 // face, every vertex lies within half a face diagonal of the curve and the curve within that of
 // the chain, the parameters follow the curve, a closed curve closes, a reversed curve gives the
-// reversed chain, and a curve off the surface is refused.
+// reversed chain, a rigid motion of the scene gives the same chain, and a curve off the surface
+// is refused.
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
@@ -79,6 +80,25 @@ TEST(CurveChain, ACircleOnAGridClosesThroughVerticesThatShareFaces) {
   ASSERT_NE(at, chain.vertices.end());
   const size_t i = static_cast<size_t>(at - chain.vertices.begin());
   EXPECT_EQ(chain.vertices[(i + 1) % n], back.vertices[0]);
+}
+
+TEST(CurveChain, RigidMotionsGiveTheSameChainWhereTheCurvePassesVerticesAtEqualDistances) {
+  // A circle centred on a vertex, of a radius an odd number of half edges: its samples pass
+  // pairs of vertices at equal distances, which rounding in a moved scene told apart.
+  const SubdivisionMesh m = grid();
+  const Eigen::MatrixX3d curve = circle(30.0, 30.0, 5.0 * kEdge / 2.0, 64);
+  const CurveChain reference = curve_chain(m, curve);
+  std::srand(7);
+  for (int trial = 0; trial < 40; ++trial) {
+    const Eigen::Matrix3d turn = Eigen::AngleAxisd(M_PI * (std::rand() / double(RAND_MAX)),
+                                                   Eigen::Vector3d::Random().normalized())
+                                     .toRotationMatrix();
+    const Eigen::RowVector3d move = 1000.0 * Eigen::RowVector3d::Random();
+    SubdivisionMesh moved = m;
+    moved.points = (m.points * turn.transpose()).rowwise() + move;
+    const Eigen::MatrixX3d moved_curve = (curve * turn.transpose()).rowwise() + move;
+    EXPECT_EQ(curve_chain(moved, moved_curve).vertices, reference.vertices) << "trial " << trial;
+  }
 }
 
 TEST(CurveChain, AnOpenLineRunsFromEndToEnd) {

@@ -69,14 +69,24 @@ CurveChain curve_chain(const SubdivisionMesh& mesh, const Eigen::MatrixX3d& curv
   const auto distance2 = [&](int v, const Eigen::Vector3d& p) {
     return (mesh.points.row(v).transpose() - p).squaredNorm();
   };
+  // "Nearer", kept by rigid motions: squared distances within 1e-9 of the longest edge squared
+  // are a tie, broken by the lower index. Rounding alone chose between the vertices a symmetric
+  // curve passes at equal distances, and the moved scene's chain differed.
+  const double tie = 1e-9 * longest * longest;
+  const auto nearer = [&](int w, int v, const Eigen::Vector3d& p) {
+    const double dw = distance2(w, p), dv = distance2(v, p);
+    return dw < dv - tie || (std::abs(dw - dv) <= tie && w < v);
+  };
   // The nearest vertex to p: a descent over face neighbours from `start` (samples are close, so
   // it is short), checked against the whole mesh only for the first sample.
   const auto nearest_from = [&](int start, const Eigen::Vector3d& p) {
     int best = start;
-    for (bool moved = true; moved;) {
-      moved = false;
+    // Ties make "nearer" intransitive: the moves are capped (a cycle is then cut, not followed).
+    for (Eigen::Index moves = 0, bound = mesh.points.rows(); moves < bound; ++moves) {
+      bool moved = false;
       for (const int w : neighbours[static_cast<size_t>(best)])
-        if (distance2(w, p) < distance2(best, p)) best = w, moved = true;
+        if (nearer(w, best, p)) best = w, moved = true;
+      if (!moved) break;
     }
     return best;
   };
@@ -99,9 +109,9 @@ CurveChain curve_chain(const SubdivisionMesh& mesh, const Eigen::MatrixX3d& curv
     return steps;
   };
 
-  Eigen::Index first = 0;
-  (mesh.points.rowwise() - polyline.front().transpose()).rowwise().squaredNorm().minCoeff(&first);
-  int current = static_cast<int>(first);
+  int current = 0;
+  for (int v = 1; v < static_cast<int>(mesh.points.rows()); ++v)
+    if (nearer(v, current, polyline.front())) current = v;
   std::vector<int> chain{current};
   for (size_t k = 1; k < polyline.size(); ++k) {
     const int pieces = std::max(1, static_cast<int>(std::ceil((arc[k] - arc[k - 1]) / step)));
