@@ -3,13 +3,15 @@
 bumpy vase scanned as 65,536 triangles is captured onto a 40-face cage at 4 levels (10,240 faces);
 a pin at the finest level is dragged with its influence at level 2: the approximate solve per move
 (Catmull-Clark rules on the deformation) against the refined ones on release (the sparse direct
-KKT solve, and the paper's SOR), and the memory a surface takes per finest face.
+KKT solve, and the paper's SOR), the memory a surface takes per finest face, and its limit surface
+as B-rep: merged C2 faces against a face per patch.
 
 Run alone (python3 bench/multires_bench.py) or as part of tools/bench.sh."""
 
 from __future__ import annotations
 
 import math
+import os
 import resource
 import subprocess
 import sys
@@ -132,7 +134,60 @@ def main():
         print(f"| {count:,} | {per_face:.0f} | {growth:.0f} |")
     print(f"\nThe feature refuses a surface whose estimate ({multiresolution.BYTES_PER_FINEST_FACE} B a face) "
           f"exceeds {multiresolution.MAX_BYTES / 1e9:.1f} GB.")
+    brep_table(nat, built)
     _ = resource  # the subprocess measures; imported for readers running it by hand
+
+
+def quietly(call):
+    """call() with the process's standard output closed (OCCT's STEP writer prints its statistics)."""
+    sys.stdout.flush()
+    saved, devnull = os.dup(1), os.open(os.devnull, os.O_WRONLY)
+    os.dup2(devnull, 1)
+    try:
+        return call()
+    finally:
+        os.dup2(saved, 1)
+        os.close(devnull)
+        os.close(saved)
+
+
+def brep_table(nat, built):
+    """The limit surface as B-rep: the patches merged into C2 faces (what SubdBRep writes) against
+    a face per patch (the peer, in the same process), on the vase and on a cube captured onto a
+    sphere (valence-3 corners: end caps and refined faces)."""
+    import tempfile
+
+    box = [(x, y, z) for x in (-10.0, 10.0) for y in (-10.0, 10.0) for z in (-10.0, 10.0)]
+    quads = [[0, 2, 3, 1], [4, 5, 7, 6], [0, 1, 5, 4], [2, 6, 7, 3], [0, 4, 6, 2], [1, 3, 7, 5]]
+    u, v = np.meshgrid(np.linspace(0, np.pi, 64), np.linspace(0, 2 * np.pi, 128), indexing="ij")
+    ball = np.stack([13 * np.sin(u) * np.cos(v), 13 * np.sin(u) * np.sin(v), 13 * np.cos(u)], -1).reshape(-1, 3)
+    tris = [t for i in range(63) for j in range(128)
+            for t in ((i * 128 + j, (i + 1) * 128 + j, (i + 1) * 128 + (j + 1) % 128),
+                      (i * 128 + j, (i + 1) * 128 + (j + 1) % 128, i * 128 + (j + 1) % 128))]
+    sphere = multiresolution.build(box, quads, 5, target=(ball, tris))
+    print("\nThe limit surface as B-rep (SubdBRep, isolation 3): regular patches merged into C2 B-spline faces "
+          "against a face per patch:\n")
+    print("| surface | patches | faces merged / one each | build (s) merged / one each | ratio "
+          "| STEP (MB) merged / one each |")
+    print("|---|---|---|---|---|---|")
+    for name, result in (("vase, 10,240 faces", built), ("sphere-captured cube, 6,144 faces", sphere)):
+        start = time.perf_counter()
+        merged = multiresolution.brep(result, 3)
+        merged_s = time.perf_counter() - start
+        finest = nat.SubdivisionMesh(np.asarray(result.levels[-1], float), [list(f) for f in result.faces[-1]])
+        start = time.perf_counter()
+        patches = nat.limit_patches(finest, 3).patches
+        each = nat.patch_shell([p.surface for p in patches], [not p.regular for p in patches],
+                               1e-7 * float(np.linalg.norm(np.ptp(result.points, axis=0))))
+        each_s = time.perf_counter() - start
+        sizes = []
+        with tempfile.TemporaryDirectory() as folder:
+            for k, brep in enumerate((merged.brep, each.shell.brep)):
+                path = Path(folder) / f"{k}.step"
+                quietly(lambda: nat.write_step(brep, str(path)))
+                sizes.append(path.stat().st_size / 1e6)
+        print(f"| {name} | {merged.patches:,} | {merged.faces:,} / {len(patches):,} | {merged_s:.2f} / {each_s:.2f} "
+              f"| {each_s / merged_s:.1f}x | {sizes[0]:.1f} / {sizes[1]:.1f} |")
 
 
 if __name__ == "__main__":

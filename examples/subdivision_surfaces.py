@@ -195,7 +195,7 @@ def relief_height(x, y, amplitude=0.6, wave=6.0):
 def fig7d(doc):
     """A curve drawn on the scanned relief (a closed B-spline through points of the scan) lifted
     12 mm and turned 20 degrees about its own centre: the surface follows it with its bumps."""
-    size, levels = 100.0, 3  # 6,400 faces: its B-rep sews in seconds (25,600 took 23 s)
+    size, levels = 100.0, 4  # 25,600 faces: its B-rep is 9 merged faces, sewn in 0.2 s
     points, quads = grid_points(10, size)
     cage = quad_cage(doc, "ReliefCage", points, quads)
     scan = relief_mesh(doc, "ReliefScan", size)

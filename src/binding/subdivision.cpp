@@ -7,6 +7,7 @@
 #include "varsurf/core/detail_edit.hpp"
 #include "varsurf/core/limit_patches.hpp"
 #include "varsurf/core/multiresolution.hpp"
+#include "varsurf/core/patch_blocks.hpp"
 #include "varsurf/core/subdivision.hpp"
 #include "varsurf/core/triangle_surface.hpp"
 
@@ -190,6 +191,19 @@ void bind_limit_patches(py::module_& m) {
   m.def("end_cap_deviation", &end_cap_deviation, "mesh"_a, "patches"_a,
         "reference_isolation"_a = 10, "samples"_a = 9, py::call_guard<py::gil_scoped_release>(),
         "The end caps' largest distance from the limit surface.");
+  py::class_<PatchBlock>(m, "PatchBlock", "Limit patches written as one B-spline surface.")
+      .def_readonly("surface", &PatchBlock::surface)
+      .def_readonly("patches", &PatchBlock::patches)
+      .def_readonly("cells", &PatchBlock::cells)
+      .def_readonly("width", &PatchBlock::width)
+      .def_readonly("height", &PatchBlock::height)
+      .def_readonly("regular", &PatchBlock::regular);
+  py::class_<PatchBlocks>(m, "PatchBlocks")
+      .def_readonly("blocks", &PatchBlocks::blocks)
+      .def_readonly("deviation", &PatchBlocks::deviation);
+  m.def("patch_blocks", &patch_blocks, "mesh"_a, "patches"_a, "max_span"_a = 64,
+        "tolerance"_a = 1e-9, py::call_guard<py::gil_scoped_release>(),
+        "The limit patches of a quad mesh merged into larger B-spline surfaces.");
 }
 
 }  // namespace

@@ -173,7 +173,7 @@ def test_a_pins_region_of_influence_is_what_a_move_moves_with_curves_held(doc):
     subd.Solve = "Approximate"
     doc.recompute()
     vertex = subd_pins.pick_vertex(subd, 4, V(22.0, 0.0, 0.0))
-    subd_pins.add_pin(subd, 4, vertex, 3)  # here the curves double the region (437 -> 961 vertices)
+    subd_pins.add_pin(subd, 4, vertex, 3)  # here the curves' pins shrink the region (437 -> 176 vertices)
     doc.recompute()
     assert subd.isValid(), subd.getStatusString()
     region = set(subd_pins.region(subd, 0).tolist())

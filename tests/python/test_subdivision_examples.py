@@ -3,12 +3,14 @@
 build what they show: Fig. 8's approximate answer is narrower than the refined one for the same
 pin; Fig. 9's turned inner boundary and held outer boundary are met, and its B-rep is a valid
 shell whose regular seams are tangent; Fig. 7d's curve drawn on a scanned relief, lifted and
-turned, lies on the result and the relief's bumps ride along."""
+turned, lies on the result and the relief's bumps ride along. Both B-reps (merged C2 faces) read
+back from STEP through check(True)."""
 
 import FreeCAD
 
 import Part
 
+import varsurf
 from subdivision_surfaces import fig7d, fig8, fig9
 
 V = FreeCAD.Vector
@@ -26,7 +28,9 @@ def test_fig8_the_approximate_answer_is_narrower_than_the_refined_one(doc):
     assert raised(direct) > 1.5 * raised(approximate), (raised(direct), raised(approximate))
 
 
-def test_fig9_the_turned_hole_meets_its_boundaries_and_its_brep_is_tangent(doc):
+def test_fig9_the_turned_hole_meets_its_boundaries_and_its_brep_is_tangent(doc, native, tmp_path):
+    from step_check import assert_reads_back
+
     (subd,), (brep,) = fig9(doc)
     assert subd.isValid(), subd.getStatusString()
     assert subd.PinResidual < 1e-6, subd.PinResidual
@@ -34,9 +38,16 @@ def test_fig9_the_turned_hole_meets_its_boundaries_and_its_brep_is_tangent(doc):
     assert brep.isValid(), brep.getStatusString()
     assert not brep.Closed and brep.Shape.isValid()
     assert brep.RegularSeamAngle < 1e-6 and brep.EndCapSeamAngle < 1.0
+    # Merged faces: each end cap alone, the regular patches in few C2 faces.
+    assert brep.EndCapCount < brep.FaceCount < brep.PatchCount / 50, (brep.FaceCount, brep.PatchCount)
+    path = tmp_path / "fig9.step"
+    varsurf.export_step(brep, str(path))
+    assert_reads_back(brep.Shape, path, native)
 
 
-def test_fig7d_a_curve_drawn_on_a_relief_carries_it(doc):
+def test_fig7d_a_curve_drawn_on_a_relief_carries_it(doc, native, tmp_path):
+    from step_check import assert_reads_back
+
     (subd,), (brep,) = fig7d(doc)
     assert subd.isValid() and brep.isValid(), (subd.getStatusString(), brep.getStatusString())
     assert subd.CurvePins > 50 and subd.PinResidual < 1e-6
@@ -57,6 +68,9 @@ def test_fig7d_a_curve_drawn_on_a_relief_carries_it(doc):
 
     gap = max(distance(p) for p in moved)
     assert gap <= subd.CurveDistance, (gap, subd.CurveDistance)
+    path = tmp_path / "fig7d.step"
+    varsurf.export_step(brep, str(path))
+    assert_reads_back(brep.Shape, path, native)
     # The bumps ride along: the finest level's detail vectors (in their local frames) keep their
     # size and their pattern through the edit.
     import numpy as np

@@ -10,6 +10,7 @@
 #include <memory>
 #include <string>
 
+#include "bicubic_bezier.hpp"
 #include "osd_refiner.hpp"
 #include "varsurf/core/errors.hpp"
 
@@ -82,17 +83,6 @@ void require_quads(const SubdivisionMesh& mesh) {
                          " sides: limit patches need a quad mesh (refine it once)");
 }
 
-// The Bezier control points of the bicubic through samples at (i / 3, j / 3): the inverse of the
-// Bernstein collocation matrix on each side (exact for a bicubic, as every patch here is).
-Eigen::Matrix4d bernstein_inverse() {
-  Eigen::Matrix4d c;
-  for (int i = 0; i < 4; ++i) {
-    const double t = i / 3.0, s = 1.0 - t;
-    c.row(i) << s * s * s, 3 * t * s * s, 3 * t * t * s, t * t * t;
-  }
-  return c.inverse();
-}
-
 }  // namespace
 
 LimitPatches limit_patches(const SubdivisionMesh& mesh, int isolation) {
@@ -100,7 +90,6 @@ LimitPatches limit_patches(const SubdivisionMesh& mesh, int isolation) {
   require_quads(mesh);
   if (isolation < 1 || isolation > 10) throw InvalidInput("the isolation level must be 1..10");
   const Evaluator e(mesh, isolation, Far::PatchTableFactory::Options::ENDCAP_BSPLINE_BASIS);
-  const Eigen::Matrix4d inverse = bernstein_inverse();
   LimitPatches out;
   for (int array = 0; array < e.table->GetNumPatchArrays(); ++array)
     for (int patch = 0; patch < e.table->GetNumPatches(array); ++patch) {
@@ -114,21 +103,9 @@ LimitPatches limit_patches(const SubdivisionMesh& mesh, int isolation) {
       p.u0 = u0;
       p.v0 = v0;
       p.size = u1 - u0;
-      Eigen::Matrix<double, 4, 4> x, y, z;
-      for (int i = 0; i < 4; ++i)
-        for (int j = 0; j < 4; ++j) {
-          const Eigen::Vector3d q = e.at(p.face, u0 + p.size * i / 3.0, v0 + p.size * j / 3.0);
-          x(i, j) = q.x();
-          y(i, j) = q.y();
-          z(i, j) = q.z();
-        }
-      const Eigen::Matrix4d bx = inverse * x * inverse.transpose();
-      const Eigen::Matrix4d by = inverse * y * inverse.transpose();
-      const Eigen::Matrix4d bz = inverse * z * inverse.transpose();
       p.surface.space = SplineSpace::uniform(3, 3, 1, 1);
-      p.surface.poles.resize(16, 3);
-      for (int i = 0; i < 4; ++i)
-        for (int j = 0; j < 4; ++j) p.surface.poles.row(4 * i + j) << bx(i, j), by(i, j), bz(i, j);
+      p.surface.poles = bicubic_bezier(
+          [&](double s, double t) { return e.at(p.face, u0 + p.size * s, v0 + p.size * t); });
       (p.regular ? out.regular : out.end_caps) += 1;
       out.patches.push_back(std::move(p));
     }

@@ -37,15 +37,15 @@ _PROPERTIES = [
     ("NormalDirections", "App::PropertyVectorList", "Normals", "Per normal: the direction the surface's normal takes there (either sign)", False),
     ("Curves", "App::PropertyLinkSubList", "Curves", "Edges lying on the surface (sketch edges, a hole's boundary): the vertices of CurveLevel along each are moved rigidly by CurveMotion", False),
     ("CurveMotion", "App::PropertyPlacement", "Curves", "The rigid motion of the Curves (about the document's origin)", False),
-    ("CurveLevel", "App::PropertyIntegerConstraint", "Curves", "The level whose vertices follow the curves: finer follows them more closely", False),
-    ("CurveInfluence", "App::PropertyIntegerConstraint", "Curves", "The level the curves' pins are propagated to, their region of influence", False),
+    ("CurveLevel", "App::PropertyIntegerConstraint", "Curves", "The finest level whose vertices follow the curves: finer follows them more closely", False),
+    ("CurveInfluence", "App::PropertyIntegerConstraint", "Curves", "The coarsest level whose vertices follow the curves (a chain at each level from it to CurveLevel, each pinned at its own level): their region of influence", False),
     ("Solve", "App::PropertyEnumeration", "Pins", "Direct: the energy's minimum on each region; SOR: the paper's relaxation; Approximate: Catmull-Clark smoothing of the pins' moves (what a drag shows)", False),
     ("Rings", "App::PropertyIntegerConstraint", "Pins", "How far each region reaches beyond the pins' masks, in rings of faces at its level", False),
     ("FitMax", "App::PropertyFloat", "Result", "The limit surface's largest distance from the Target (mm)", True),
     ("FitRms", "App::PropertyFloat", "Result", "The limit surface's RMS distance from the Target (mm)", True),
     ("PinResidual", "App::PropertyFloat", "Result", "The worst pin's distance from its target (mm)", True),
     ("NormalAngle", "App::PropertyFloat", "Result", "The worst prescribed normal's angle from the surface's normal there (degrees, from the edited mesh's divided differences)", True),
-    ("CurvePins", "App::PropertyInteger", "Result", "Pins placed along the Curves", True),
+    ("CurvePins", "App::PropertyInteger", "Result", "Pins placed along the Curves, at all their levels", True),
     ("CurveDistance", "App::PropertyFloat", "Result", "The farthest of the curves' vertices from its curve before the motion (mm): how closely CurveLevel follows them", True),
     ("FaceCount", "App::PropertyInteger", "Result", "Faces of the finest level", True),
     ("Status", "App::PropertyString", "Result", "OK, or what went wrong", True),
@@ -247,8 +247,10 @@ _BREP_PROPERTIES = [
     ("Base", "App::PropertyLink", "SubdBRep", "The SubdSurface whose limit surface this is", False),
     ("Isolation", "App::PropertyIntegerConstraint", "SubdBRep", "Adaptive refinement levels around extraordinary vertices: the approximate end-cap faces there shrink by half with each", False),
     ("Tolerance", "App::PropertyLength", "SubdBRep", "Sewing tolerance (mm; 0: a ten-millionth of the surface's size)", False),
+    ("MaxSpan", "App::PropertyIntegerConstraint", "SubdBRep", "Most faces of the finest mesh along a side of one B-rep face: its regular patches are written as one C2 B-spline (1: a B-rep face per mesh face)", False),
     ("Closed", "App::PropertyBool", "Result", "True if the faces close into a solid", True),
-    ("PatchCount", "App::PropertyInteger", "Result", "Faces: one bicubic patch each", True),
+    ("PatchCount", "App::PropertyInteger", "Result", "Bicubic patches of the limit surface (OpenSubdiv's patch table)", True),
+    ("FaceCount", "App::PropertyInteger", "Result", "B-rep faces: rectangles of regular patches as one B-spline each, and each face refined near an extraordinary vertex as one", True),
     ("EndCapCount", "App::PropertyInteger", "Result", "Of those, the end caps at extraordinary vertices (approximations of the limit surface)", True),
     ("EndCapDeviation", "App::PropertyFloat", "Result", "The end caps' largest distance from the limit surface (mm), against OpenSubdiv's evaluation 10 levels deep", True),
     ("RegularSeamAngle", "App::PropertyFloat", "Result", "The largest angle between tangent planes across seams of regular patches (degrees; exact faces, so rounding only)", True),
@@ -265,7 +267,7 @@ class SubdBRepFeature(FeatureProxy):
     TYPE = TYPE_BREP
     VIEW_PROVIDER = "ViewProviderSubdBRep"
     PROPERTIES = _BREP_PROPERTIES
-    DEFAULTS = {"Isolation": (4, 1, 8, 1)}
+    DEFAULTS = {"Isolation": (4, 1, 8, 1), "MaxSpan": (64, 1, 1000, 1)}
 
     def consumed(self, obj):
         base = getattr(obj, "Base", None)
@@ -278,13 +280,17 @@ class SubdBRepFeature(FeatureProxy):
             raise mark_failed(obj, error) from error
         obj.Shape = result.shape
         obj.Closed = result.closed
-        obj.PatchCount, obj.EndCapCount = result.patches, result.end_caps
+        obj.PatchCount, obj.EndCapCount, obj.FaceCount = result.patches, result.end_caps, result.faces
         obj.EndCapDeviation = result.end_cap_deviation
         obj.RegularSeamAngle, obj.EndCapSeamAngle = result.regular_angle, result.end_cap_angle
         kind = "solid" if result.closed else "open shell"
-        obj.Status = (f"OK: {kind} of {result.patches} bicubic faces ({result.end_caps} end caps within "
-                      f"{result.end_cap_deviation:.2g} mm of the limit surface); seams: regular within "
-                      f"{result.regular_angle:.2g}°, at end caps within {result.end_cap_angle:.2g}°")
+        caps = (f"{result.end_caps} end caps within {result.end_cap_deviation:.2g} mm of the limit surface"
+                if result.end_caps else "no end caps: the limit surface exactly")
+        seams = f"regular within {result.regular_angle:.2g}°"
+        if result.end_caps:
+            seams += f", at end caps within {result.end_cap_angle:.2g}°"
+        obj.Status = (f"OK: {kind} of {result.faces} B-spline faces from {result.patches} bicubic patches ({caps}); "
+                      f"seams: {seams}")
 
 
 def brep_of(obj):
@@ -296,7 +302,7 @@ def brep_of(obj):
     if outcome is None:
         outcome = compute(base)
     tolerance = float(value(obj, "Tolerance"))
-    result = multiresolution.brep(outcome, int(obj.Isolation), tolerance)
+    result = multiresolution.brep(outcome, int(obj.Isolation), tolerance, int(value(obj, "MaxSpan")))
     result.shape = shape_from_brep(result.brep)
     return result
 
