@@ -3,7 +3,7 @@
 on a plane's surface lifted and tilted by CurveMotion carries the surface with it, the moved
 circle lying on the result (measured on the SubdBRep by OCC) within the chain's own distance
 from the curve; a reversed circle changes nothing; the scene moved rigidly gives the moved
-answer; sketch edges (an arc and a line) work the same; bad curves are named."""
+answer; sketch edges (an arc, a line and a B-spline) work the same; bad curves are named."""
 
 import math
 
@@ -104,6 +104,9 @@ def test_sketch_edges_move_the_surface_near_them(doc):
     sketch = doc.addObject("Sketcher::SketchObject", "Path")
     sketch.addGeometry(Part.ArcOfCircle(Part.Circle(V(0, 0, 0), V(0, 0, 1), 30.0), 0.2, 2.5), False)
     sketch.addGeometry(Part.LineSegment(V(-20, -30, 0), V(25, -10, 0)), False)
+    spline = Part.BSplineCurve()
+    spline.interpolate([V(-35, 10, 0), V(-25, 22, 0), V(-10, 18, 0), V(0, 35, 0)])
+    sketch.addGeometry(spline, False)
     sketch.addConstraint(Sketcher.Constraint("Radius", 0, 30.0))
     doc.recompute()
     lift = FreeCAD.Placement(V(0, 0, 8), FreeCAD.Rotation())
@@ -111,6 +114,7 @@ def test_sketch_edges_move_the_surface_near_them(doc):
     brep = varsurf.make_subd_brep(subd, isolation=2)
     doc.recompute()
     assert subd.isValid(), subd.getStatusString()
+    assert len(sketch.Shape.Edges) == 3 and any("BSpline" in type(e.Curve).__name__ for e in sketch.Shape.Edges)
     for edge in sketch.Shape.Edges:
         assert on_surface(brep, edge, lift) <= subd.CurveDistance
     # Influence 4 (6.25 mm faces) is local: the plane's far corner stays at 0.
