@@ -28,6 +28,7 @@ import Mesh  # noqa: E402
 import Part  # noqa: E402
 
 import varsurf  # noqa: E402
+from varsurf.app import subd_pins  # noqa: E402
 from figures import run_figures  # noqa: E402
 
 V = FreeCAD.Vector
@@ -168,19 +169,12 @@ def fig9(doc):
     cage = quad_cage(doc, "SheetCage", points, quads)
     subd = varsurf.make_subd_surface(cage, levels=levels, name="TurnedHole")
     doc.recompute()
-    pts = subd.Proxy.outcome.levels[levels]
     centre = V(size / 2, size / 2, 0)
-    turn = FreeCAD.Rotation(V(1, 1, 0), 30)  # the arcball's turn
-    pins = []
-    for k, p in enumerate(pts):
-        q = V(*p)
-        inner = abs(q.x - centre.x) <= size * 2 / n + 1e-6 and abs(q.y - centre.y) <= size * 2 / n + 1e-6
-        outer = min(q.x, q.y, size - q.x, size - q.y) < 1e-6
-        if inner:
-            pins.append((levels, k, centre + turn.multVec(q - centre) + V(0, 0, 25), 0))
-        elif outer:
-            pins.append((levels, k, q, 0))
-    varsurf.set_pins(subd, pins)
+    # The hole's boundary loop turned 30 degrees about its centre (the arcball's turn) and lifted;
+    # the outer loop held: their vertices at every level, exactly.
+    inner, outer = subd_pins.loop_at(subd, centre), subd_pins.loop_at(subd, V(0, 0, 0))
+    motion = FreeCAD.Placement(V(0, 0, 25), FreeCAD.Rotation(V(1, 1, 0), 30), centre)
+    varsurf.set_curves(subd, [], motion, loops=[inner], held=[outer], influence=0)
     doc.recompute()
     brep = varsurf.make_subd_brep(subd, isolation=3)
     doc.recompute()

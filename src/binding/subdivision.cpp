@@ -197,6 +197,7 @@ void bind_limit_patches(py::module_& m) {
       .def_readonly("cells", &PatchBlock::cells)
       .def_readonly("width", &PatchBlock::width)
       .def_readonly("height", &PatchBlock::height)
+      .def_readonly("face", &PatchBlock::face)
       .def_readonly("regular", &PatchBlock::regular);
   py::class_<PatchBlocks>(m, "PatchBlocks")
       .def_readonly("blocks", &PatchBlocks::blocks)

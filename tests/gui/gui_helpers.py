@@ -77,9 +77,21 @@ def press_task_button(which):
     Gui.updateGui()
 
 
+def alive(widgets):
+    """The widgets whose C++ side still exists (Qt lists widgets deleted later in the same pass)."""
+    out = []
+    for w in widgets:
+        try:
+            w.objectName()
+        except RuntimeError:
+            continue
+        out.append(w)
+    return out
+
+
 def task_widgets(form="VarSurfSheet"):
     """The named widgets of the open task panel's form (not of other forms with the same names)."""
-    forms = [w for w in QtGui.QApplication.allWidgets() if w.objectName() == form and w.isVisible()]
+    forms = [w for w in alive(QtGui.QApplication.allWidgets()) if w.objectName() == form and w.isVisible()]
     if not forms:
         raise RuntimeError(f"no visible {form} panel")
     return {w.objectName(): w for w in forms[-1].findChildren(QtGui.QWidget) if w.objectName()}

@@ -73,6 +73,7 @@ def run(result):
     result["after_undo"] = sorted(o.Name for o in doc.Objects)
     panel(result, subd)
     turn_curves(result)
+    loop_arcball(result)
     drag_vase(result)
     built = os.environ.get("VARSURF_SUBD_DOC")
     if built:
@@ -221,6 +222,26 @@ def turn_curves(result):
     motion = subd.CurveMotion
     result["turned"] = [subd.isValid(), doc.UndoNames[:1], math.degrees(motion.Rotation.Angle),
                         list(motion.Base), handles.errors, handles.preview is None]
+
+
+def loop_arcball(result):
+    """A sheet with a hole: its inner boundary loop as CurveLoops (lifted 5 mm), the outer held;
+    the arcball stands at the lifted hole's centre."""
+    sys.path.insert(0, os.path.join(REPO, "examples"))
+    from subdivision_surfaces import grid_points, quad_cage
+    from varsurf.app import subd_pins
+
+    doc = App.newDocument("SubdLoops")
+    cage = quad_cage(doc, "HoleCage", *grid_points(6, 60.0, hole=2))
+    subd = varsurf.make_subd_surface(cage, levels=3, name="Holed")
+    doc.recompute()
+    varsurf.set_curves(subd, [], App.Placement(App.Vector(0, 0, 5), App.Rotation()),
+                       loops=[subd_pins.loop_at(subd, App.Vector(30, 30, 0))],
+                       held=[subd_pins.loop_at(subd, App.Vector(0, 0, 0))], influence=1)
+    doc.recompute()
+    Gui.updateGui()
+    arcball = subd.ViewObject.Proxy.handles.arcball
+    result["loop_arcball"] = [subd.isValid(), subd.CurvePins, list(arcball.centre) if arcball is not None else None]
 
 
 def drag_vase(result):

@@ -129,6 +129,8 @@ def test_sketch_edges_move_the_surface_near_them(doc):
      "the curves' level 5 does not exist"),
     (lambda d, s, c: setattr(s, "Curves", [(c, ["Vertex1"])]), "is not an edge"),
     (lambda d, s, c: setattr(s, "Curves", [(c, ["Edge9"])]), "Ring has no Edge9: link an existing edge"),
+    (lambda d, s, c: varsurf.set_curves(s, [], loops=[3]), "the cage has 1 boundary loop, no loop 3: give one of 0..0"),
+    (lambda d, s, c: varsurf.set_curves(s, [], loops=[0], held=[0]), "boundary loop 0 is both moved and held"),
 ])
 def test_bad_curves_are_named_and_leave_the_document_intact(doc, edit, words):
     plane, circle, subd = plane_scene(doc)
@@ -187,3 +189,90 @@ def test_a_pins_region_of_influence_is_what_a_move_moves_with_curves_held(doc):
     assert subd.isValid(), subd.getStatusString()
     moved = {k for k, (a, b) in enumerate(zip(before, subd.Proxy.outcome.points)) if (a - V(*b)).Length > 1e-9}
     assert moved and moved == region, (len(moved), len(region), len(moved ^ region))
+
+
+def hole_sheet(doc, place=FreeCAD.Placement()):
+    """A 60 mm sheet of 6 x 6 quads with a 2 x 2 hole (two boundary loops), placed by `place`."""
+    from subdivision_surfaces import grid_points, quad_cage
+
+    points, quads = grid_points(6, 60.0, hole=2)
+    cage = quad_cage(doc, "HoleCage", [tuple(place.multVec(V(*p))) for p in points], quads)
+    subd = varsurf.make_subd_surface(cage, levels=3)
+    doc.recompute()
+    return cage, subd
+
+
+def finest_boundary(subd):
+    """The finest level's boundary vertices, from its faces' edges used once (independent of the
+    solve's own loop finding)."""
+    count = {}
+    for face in subd.Proxy.outcome.faces[-1]:
+        for a, b in zip(face, list(face[1:]) + [face[0]]):
+            count[frozenset((a, b))] = count.get(frozenset((a, b)), 0) + 1
+    return sorted({v for edge, n in count.items() if n == 1 for v in edge})
+
+
+def turn_the_hole(doc, place):
+    """The sheet's hole turned 25 degrees about its centre and lifted 8 mm (the outer loop held)
+    by CurveLoops / HeldLoops, and the same by pins on every finest boundary vertex."""
+    from varsurf.app import subd_pins
+
+    cage, subd = hole_sheet(doc, place)
+    centre = place.multVec(V(30, 30, 0))
+    inner, outer = subd_pins.loop_at(subd, centre), subd_pins.loop_at(subd, place.multVec(V(0, 0, 0)))
+    motion = FreeCAD.Placement(place.Rotation.multVec(V(0, 0, 8)), place.Rotation.multiply(
+        FreeCAD.Rotation(V(1, 1, 0), 25)).multiply(place.Rotation.inverted()), centre)
+    varsurf.set_curves(subd, [], motion, loops=[inner], held=[outer], influence=1)
+    doc.recompute()
+    pinned = varsurf.make_subd_surface(cage, levels=3, name="Pinned")
+    doc.recompute()
+    finest = pinned.Proxy.outcome.levels[3]
+    pins = []
+    for k in finest_boundary(pinned):
+        p = V(*finest[k])
+        near_hole = (p - centre).Length < 15.0
+        pins.append((3, k, motion.multVec(p) if near_hole else p, 1))
+    varsurf.set_pins(pinned, pins)
+    doc.recompute()
+    return subd, pinned, (inner, outer)
+
+
+def test_a_boundary_loop_turned_is_its_vertices_pinned_and_moves_with_the_scene(doc):
+    subd, pinned, loops = turn_the_hole(doc, FreeCAD.Placement())
+    assert subd.isValid() and pinned.isValid(), (subd.getStatusString(), pinned.getStatusString())
+    assert subd.BoundaryLoops == 2 and set(loops) == {0, 1}
+    assert subd.CurvePins == len(pinned.PinVertices) > 100 and subd.PinResidual < 1e-7
+    assert "pins along the loops" in subd.Status
+    worst = max((V(*a) - V(*b)).Length for a, b in zip(subd.Proxy.outcome.points, pinned.Proxy.outcome.points))
+    assert worst < 1e-9 * 60, worst
+    # The hole's rim rose: its highest limit point near 8 mm plus the turn's lift.
+    assert max(p[2] for p in subd.Proxy.outcome.points) > 8.0
+    # The same scene turned and moved: the same loops, the moved answer.
+    place = FreeCAD.Placement(V(200, -50, 30), FreeCAD.Rotation(V(1, 2, 3), 50))
+    other = FreeCAD.newDocument("MovedLoops")
+    try:
+        moved, _, moved_loops = turn_the_hole(other, place)
+        assert moved.isValid(), moved.getStatusString()
+        assert moved_loops == loops
+        worst = max((place.multVec(V(*a)) - V(*b)).Length
+                    for a, b in zip(subd.Proxy.outcome.points, moved.Proxy.outcome.points))
+        assert worst < 1e-6 * 60, worst
+    finally:
+        FreeCAD.closeDocument(other.Name)
+
+
+def test_turning_a_loop_by_its_arcball_is_the_approximate_recompute(doc):
+    """The loops' drag (what the arcball runs): a move equals the Approximate recompute of the
+    written motion; the arcball sits at the moved hole's centre."""
+    from varsurf.app import subd_drag, subd_pins
+
+    _, subd = hole_sheet(doc)
+    varsurf.set_curves(subd, [], loops=[subd_pins.loop_at(subd, V(30, 30, 0))],
+                       held=[subd_pins.loop_at(subd, V(0, 0, 0))], influence=1)
+    subd.Solve = "Approximate"
+    doc.recompute()
+    drag = subd_drag.CurveDrag(subd)
+    turn = FreeCAD.Placement(V(0, 0, 6), FreeCAD.Rotation(V(0, 1, 0), 20), V(30, 30, 0))
+    moved = drag.move(turn)
+    drag.finish(turn)
+    assert max((V(*p) - V(*q)).Length for p, q in zip(moved, subd.Proxy.outcome.points)) < 1e-4

@@ -119,5 +119,12 @@ def test_the_curves_arcball_turns_them_in_one_undo_step(subd):
     assert Path(subd["turn_shot"]).is_file()
 
 
+def test_a_moved_boundary_loop_has_its_arcball_at_the_loops_centre(subd):
+    assert "error" not in subd, subd.get("error")
+    valid, pins, centre = subd["loop_arcball"]
+    assert valid and pins > 0 and centre is not None, subd["loop_arcball"]
+    assert max(abs(a - b) for a, b in zip(centre, (30.0, 30.0, 5.0))) < 1e-6, centre
+
+
 def test_the_report_view_has_no_traceback(subd):
     assert "Traceback" not in subd["report"], subd["report"]

@@ -34,7 +34,8 @@ def test_fig9_the_turned_hole_meets_its_boundaries_and_its_brep_is_tangent(doc, 
     (subd,), (brep,) = fig9(doc)
     assert subd.isValid(), subd.getStatusString()
     assert subd.PinResidual < 1e-6, subd.PinResidual
-    assert len(subd.PinVertices) > 100  # both boundary loops, every finest vertex on them
+    # Both boundary loops (CurveLoops and HeldLoops), every finest vertex on them.
+    assert subd.BoundaryLoops == 2 and subd.CurvePins == 512
     assert brep.isValid(), brep.getStatusString()
     assert not brep.Closed and brep.Shape.isValid()
     assert brep.RegularSeamAngle < 1e-6 and brep.EndCapSeamAngle < 1.0

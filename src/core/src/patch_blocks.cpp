@@ -300,6 +300,9 @@ PatchBlocks patch_blocks(const SubdivisionMesh& mesh, const LimitPatches& patche
         in_block[c.face] = 1;
         rows[0].push_back(c);
       }
+      // Rows northwards as far as some prefix of them lines up, then the prefix width and the
+      // height of the largest rectangle (the first full row only gave strips a face wide where
+      // one cell of the next row was taken).
       while (static_cast<int>(rows.size()) < max_span) {
         std::vector<Cell> next;
         for (const Cell& below : rows.back()) {
@@ -308,14 +311,20 @@ PatchBlocks patch_blocks(const SubdivisionMesh& mesh, const LimitPatches& patche
           next.push_back(c);
           in_block[c.face] = 1;  // a row running into itself stops
         }
-        if (next.size() != rows.back().size()) {
-          for (const Cell& c : next) in_block[c.face] = 0;
-          break;
-        }
+        if (next.empty()) break;
         rows.push_back(std::move(next));
       }
+      size_t best_width = rows[0].size(), best_height = 1, width = rows[0].size();
+      for (size_t h = 1; h <= rows.size(); ++h) {
+        width = std::min(width, rows[h - 1].size());
+        if (width * h > best_width * best_height) best_width = width, best_height = h;
+      }
       for (const auto& row : rows)
-        for (const Cell& c : row) in_block[c.face] = 0, taken[c.face] = 1;
+        for (const Cell& c : row) in_block[c.face] = 0;
+      rows.resize(best_height);
+      for (auto& row : rows) row.resize(best_width);
+      for (const auto& row : rows)
+        for (const Cell& c : row) taken[c.face] = 1;
       if (rows.size() == 1 && rows[0].size() == 1) {
         lone(single[corner.face]);
         continue;

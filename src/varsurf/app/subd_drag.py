@@ -70,7 +70,8 @@ class CurveDrag:
         except SheetError as error:
             raise DragError(f"{subd.Label}: {error}") from error
         if self.curves is None:
-            raise DragError(f"{subd.Label} has no Curves: link edges lying on it first")
+            raise DragError(f"{subd.Label} has no Curves or CurveLoops: link edges lying on it, or list "
+                            "boundary loops, first")
         try:  # the chains once: a move only turns their vertices
             self.chained = multiresolution.curve_vertices(self.outcome.editor, self.outcome.captured, self.curves,
                                                           self.pins)

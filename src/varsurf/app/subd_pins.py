@@ -8,6 +8,7 @@ of influence of a pin, the finest vertices it moves."""
 from __future__ import annotations
 
 import FreeCAD
+import numpy as np
 
 from varsurf.app.feature import last_outcome, value
 from varsurf.app.subd_surface import compute, curves_of, normals_of, pins_of, set_normals, set_pins
@@ -89,3 +90,15 @@ def region(obj, index: int):
     index = _check_index(obj, index)
     return multiresolution.influence_region(last_outcome(obj, compute), pins_of(obj), index, normals_of(obj),
                                             curves_of(obj))
+
+
+def loop_at(obj, point) -> int:
+    """The number of the cage's boundary loop that comes nearest to `point` (a pick in the view),
+    as CurveLoops and HeldLoops number them."""
+    outcome = last_outcome(obj, compute)
+    cage = np.asarray(outcome.levels[0], float)
+    loops = multiresolution.boundary_loops(outcome.faces[0])
+    if not loops:
+        raise SheetError(f"{obj.Label}'s cage is closed: it has no boundary loops to move or hold")
+    p = np.asarray(FreeCAD.Vector(point), float)
+    return int(np.argmin([np.min(np.linalg.norm(cage[loop] - p, axis=1)) for loop in loops]))

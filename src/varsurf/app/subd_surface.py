@@ -39,6 +39,8 @@ _PROPERTIES = [
     ("CurveMotion", "App::PropertyPlacement", "Curves", "The rigid motion of the Curves (about the document's origin)", False),
     ("CurveLevel", "App::PropertyIntegerConstraint", "Curves", "The finest level whose vertices follow the curves: finer follows them more closely", False),
     ("CurveInfluence", "App::PropertyIntegerConstraint", "Curves", "The coarsest level whose vertices follow the curves (a chain at each level from it to CurveLevel, each pinned at its own level): their region of influence", False),
+    ("CurveLoops", "App::PropertyIntegerList", "Curves", "Boundary loops of the cage (numbered by their lowest vertex) moved rigidly with the Curves by CurveMotion: their vertices at each level from CurveInfluence to CurveLevel", False),
+    ("HeldLoops", "App::PropertyIntegerList", "Curves", "Boundary loops of the cage held where they are, at the same levels", False),
     ("Solve", "App::PropertyEnumeration", "Pins", "Direct: the energy's minimum on each region; SOR: the paper's relaxation; Approximate: Catmull-Clark smoothing of the pins' moves (what a drag shows)", False),
     ("Rings", "App::PropertyIntegerConstraint", "Pins", "How far each region reaches beyond the pins' masks, in rings of faces at its level", False),
     ("FitMax", "App::PropertyFloat", "Result", "The limit surface's largest distance from the Target (mm)", True),
@@ -46,6 +48,7 @@ _PROPERTIES = [
     ("PinResidual", "App::PropertyFloat", "Result", "The worst pin's distance from its target (mm)", True),
     ("NormalAngle", "App::PropertyFloat", "Result", "The worst prescribed normal's angle from the surface's normal there (degrees, from the edited mesh's divided differences)", True),
     ("CurvePins", "App::PropertyInteger", "Result", "Pins placed along the Curves, at all their levels", True),
+    ("BoundaryLoops", "App::PropertyInteger", "Result", "The cage's boundary loops (CurveLoops and HeldLoops number them 0..BoundaryLoops-1)", True),
     ("CurveDistance", "App::PropertyFloat", "Result", "The farthest of the curves' vertices from its curve before the motion (mm): how closely CurveLevel follows them", True),
     ("FaceCount", "App::PropertyInteger", "Result", "Faces of the finest level", True),
     ("Status", "App::PropertyString", "Result", "OK, or what went wrong", True),
@@ -75,21 +78,26 @@ class SubdSurfaceFeature(FeatureProxy):
             result = compute(obj)
         except Exception as error:
             raise mark_failed(obj, error) from error
+        self.outcome = result  # first: the view's handles, rebuilt as Mesh changes, read it
         obj.Mesh = subdivision.mesh_of(result.points, result.triangles)
-        self.outcome = result
         obj.FitMax = result.fit_max if result.fit_max is not None else 0.0
         obj.FitRms = result.fit_rms if result.fit_rms is not None else 0.0
         obj.PinResidual = result.residual
         obj.NormalAngle = math.degrees(result.normal_angle)
         obj.CurvePins, obj.CurveDistance = result.curve_pins, result.curve_distance
+        obj.BoundaryLoops = len(multiresolution.boundary_loops(result.faces[0]))
         obj.FaceCount = len(result.faces[-1])
         obj.Status = f"OK: {obj.FaceCount} faces at level {obj.Levels}"
         if result.fit_max is not None:
             obj.Status += f", {obj.Target.Label} captured within {result.fit_max:.3g} mm (RMS {result.fit_rms:.3g})"
-        if result.region_sizes and obj.PinTargets:
-            obj.Status += f", pins met within {result.residual:.2g} mm"
         if result.curve_pins:
-            obj.Status += f", {result.curve_pins} pins along the curves (within {result.curve_distance:.2g} mm of them)"
+            kinds = [k for k, there in (("curves", list(getattr(obj, "Curves", None) or [])),
+                                        ("loops", list(obj.CurveLoops) + list(obj.HeldLoops))) if there]
+            obj.Status += f", {result.curve_pins} pins along the {' and '.join(kinds)}"
+            if list(getattr(obj, "Curves", None) or []):
+                obj.Status += f" (within {result.curve_distance:.2g} mm of the curves)"
+        if result.region_sizes and (obj.PinTargets or result.curve_pins):
+            obj.Status += f", pins met within {result.residual:.2g} mm"
         if result.region_sizes and obj.NormalDirections:
             obj.Status += f", normals within {obj.NormalAngle:.2g}°"
 
@@ -142,7 +150,8 @@ def curve_edges(obj, strict: bool = True):
 def curves_of(obj):
     """The SubdSurface's Curves as a multiresolution.CurveMotion (None without curves): each edge
     sampled finely enough for the chain (the core densifies further)."""
-    if not list(getattr(obj, "Curves", None) or []):
+    loops, held = [int(n) for n in getattr(obj, "CurveLoops", ())], [int(n) for n in getattr(obj, "HeldLoops", ())]
+    if not list(getattr(obj, "Curves", None) or []) and not loops and not held:
         return None
     polylines = []
     for edge in curve_edges(obj):
@@ -151,7 +160,7 @@ def curves_of(obj):
             points = edge.discretize(Number=32)
         polylines.append([(p.x, p.y, p.z) for p in points])
     return multiresolution.CurveMotion(polylines, int(obj.CurveLevel), int(obj.CurveInfluence),
-                                       placement_matrix(obj.CurveMotion))
+                                       placement_matrix(obj.CurveMotion), loops, held)
 
 
 def placement_matrix(placement):
@@ -213,14 +222,18 @@ def set_pins(obj, pins):
     _set_lists(obj, "Pin", "Targets", pins)
 
 
-def set_curves(obj, curves, motion=None, level=None, influence=0):
+def set_curves(obj, curves, motion=None, level=None, influence=0, loops=(), held=()):
     """Move `curves` lying on a SubdSurface rigidly: (object, "EdgeN") or (object, ("EdgeN", ...))
-    references (a bare object: all its edges), `motion` a FreeCAD.Placement, `level` the level
-    whose vertices follow them (default: the finest), `influence` their region of influence."""
+    references (a bare object: all its edges), `motion` a FreeCAD.Placement, `level` the finest
+    level whose vertices follow them (default: the finest), `influence` the coarsest, their region
+    of influence; `loops` boundary loops of the cage moved with them, `held` loops kept in place
+    (numbered as multiresolution.boundary_loops numbers the cage's)."""
     obj.Curves = [(o, list(names)) for o, names in normalize_curves(curves)]
     obj.CurveMotion = motion if motion is not None else FreeCAD.Placement()
     obj.CurveLevel = int(obj.Levels if level is None else level)
     obj.CurveInfluence = int(influence)
+    obj.CurveLoops = [int(n) for n in loops]
+    obj.HeldLoops = [int(n) for n in held]
 
 
 def set_normals(obj, normals):

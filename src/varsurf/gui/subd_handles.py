@@ -19,6 +19,8 @@ from varsurf.app.drag import DragError
 from varsurf.gui.drag_preview import hide_display, restore_display, styled_root
 from varsurf.gui.handles import HANDLE_SIZE, add_pin, pin_position
 from varsurf.gui.scene_roots import own_root
+from varsurf.solve import multiresolution
+from varsurf.solve.errors import SheetError
 
 V = App.Vector
 
@@ -129,14 +131,26 @@ class SubdHandles:
 
 
 def curves_centre(obj):
-    """The centre of a SubdSurface's Curves where CurveMotion puts them, or None without curves."""
-    boxes = [edge.BoundBox for edge in subd_surface.curve_edges(obj, strict=False)]
+    """The centre of a SubdSurface's Curves and CurveLoops where CurveMotion puts them, or None
+    without either."""
+    motion = obj.CurveMotion.toMatrix()
+    boxes = [edge.BoundBox.transformed(motion) for edge in subd_surface.curve_edges(obj, strict=False)]
+    outcome = getattr(getattr(obj, "Proxy", None), "outcome", None)
+    if outcome is not None:  # the loops' vertices where the last recompute moved them
+        finest = len(outcome.levels) - 1
+        for loop in getattr(obj, "CurveLoops", ()):
+            try:
+                vertices = multiresolution.loop_vertices(outcome.editor, finest, loop)
+            except SheetError:  # a loop the cage lacks: the recompute names it
+                continue
+            boxes.append(App.BoundBox(*numpy.min(outcome.levels[-1][vertices], axis=0),
+                                      *numpy.max(outcome.levels[-1][vertices], axis=0)))
     if not boxes:
         return None
     box = boxes[0]
     for other in boxes[1:]:
         box.add(other)
-    return obj.CurveMotion.multVec(box.Center)
+    return box.Center
 
 
 class Arcball:

@@ -55,6 +55,11 @@ class CurveMotion:
     level: int
     influence: int
     matrix: Sequence[Sequence[float]]
+    loops: Sequence[int] = ()  # boundary loops of the cage (boundary_loops' numbers) moved with the curves
+    held: Sequence[int] = ()  # boundary loops held where they are
+
+    def __bool__(self):
+        return bool(self.curves) or bool(self.loops) or bool(self.held)
 
 
 @dataclass
@@ -159,7 +164,7 @@ def build(points: Sequence[Point], faces: Sequence[Sequence[int]], levels: int,
             multires = nat.Multiresolution(base, details)
         report, captured = None, multires
         chained, distance = [], 0.0
-        if curves is not None and curves.curves:
+        if curves:
             chained, distance = _curve_pins(editor, multires, curves, pins)
         pins = list(pins) + chained
         if pins or normals:
@@ -248,6 +253,8 @@ class CurveVertices:
     points: np.ndarray
     distance: float  # the farthest of the curves' level's chain vertices from its curve
     levels: List[int] = field(default_factory=list)  # each vertex's level (default: all `level`)
+    held: List[bool] = field(default_factory=list)  # True: the vertex stays (a held loop's)
+    influences: List[int] = field(default_factory=list)  # each pin's influence (default: its level)
 
 
 def _rigid(matrix) -> np.ndarray:
@@ -256,6 +263,43 @@ def _rigid(matrix) -> np.ndarray:
     if not np.isfinite(matrix).all() or not np.allclose(rotation @ rotation.T, np.eye(3), atol=1e-9):
         raise SheetError("the curves' motion is not a rigid motion: give a placement (a rotation and a move)")
     return matrix
+
+
+def boundary_loops(faces) -> List[List[int]]:
+    """The boundary loops of a mesh (faces as vertex lists, consistently oriented): each the
+    vertices of its boundary edges in order, the loops numbered by their lowest vertex."""
+    count = {}
+    for face in faces:
+        for a, b in zip(face, list(face[1:]) + [face[0]]):
+            count[(min(a, b), max(a, b))] = count.get((min(a, b), max(a, b)), 0) + 1
+    following = {}
+    for face in faces:
+        for a, b in zip(face, list(face[1:]) + [face[0]]):
+            if count[(min(a, b), max(a, b))] == 1:
+                following[int(a)] = int(b)
+    loops, seen = [], set()
+    for start in sorted(following):
+        if start in seen:
+            continue
+        loop, v = [], start
+        while v not in seen and v in following:
+            seen.add(v)
+            loop.append(v)
+            v = following[v]
+        loops.append(loop)
+    return loops
+
+
+def loop_vertices(editor, level: int, loop: int) -> List[int]:
+    """The vertices at `level` of the cage's boundary loop number `loop` (boundary_loops of the
+    cage): the loop there through the cage vertex it starts from (vertices keep their numbers)."""
+    cage_loops = boundary_loops(editor.topology(0).faces)
+    if not 0 <= int(loop) < len(cage_loops):
+        raise SheetError(f"the cage has {len(cage_loops)} boundary loop{'' if len(cage_loops) == 1 else 's'}, "
+                         f"no loop {loop}: "
+                         + (f"give one of 0..{len(cage_loops) - 1}" if cage_loops else "it is closed; remove the loop"))
+    first = cage_loops[int(loop)][0]
+    return next(found for found in boundary_loops(editor.topology(level).faces) if first in found)
 
 
 def curve_vertices(editor, surface, curves: CurveMotion, pins: Sequence[Pin] = ()) -> CurveVertices:
@@ -268,8 +312,12 @@ def curve_vertices(editor, surface, curves: CurveMotion, pins: Sequence[Pin] = (
                          "set one of those")
     if not 0 <= int(curves.influence) <= level:
         raise SheetError(f"the curves' influence level must lie in 0..{level}; set it so")
+    both = set(map(int, curves.loops)) & set(map(int, curves.held))
+    if both:
+        raise SheetError(f"boundary loop {min(both)} is both moved and held: "
+                         "remove it from CurveLoops or from HeldLoops")
     taken = {(p.level, p.vertex) for p in pins}
-    vertices, levels, points, distance = [], [], [], 0.0
+    vertices, levels, points, held, influences, distance = [], [], [], [], [], 0.0
     # A chain at each level from the influence level on, each vertex pinned at its own level: the
     # finest chain propagated down instead would put more pins on a coarse level than it has
     # vertices near the curve (225 pins on a 10 x 10 cage folded a relief's surface over).
@@ -289,16 +337,36 @@ def curve_vertices(editor, surface, curves: CurveMotion, pins: Sequence[Pin] = (
                     vertices.append(int(v))
                     levels.append(at)
                     points.append(level_points[v])
+                    held.append(False)
+                    influences.append(at)
+        if at != level:
+            continue
+        # Boundary loops: their vertices exactly (topology, not a chain) at the curves' level,
+        # propagated to the influence level (their masks there take only boundary vertices, so
+        # a rigid motion meets them all; a loop pinned at every level left a flange along it).
+        for loop, stays in [(n, False) for n in curves.loops] + [(n, True) for n in curves.held]:
+            for v in loop_vertices(editor, at, loop):
+                if (at, v) not in taken:
+                    taken.add((at, v))
+                    vertices.append(int(v))
+                    levels.append(at)
+                    points.append(level_points[v])
+                    held.append(stays)
+                    influences.append(int(curves.influence))
     return CurveVertices(level, int(curves.influence), vertices, np.asarray(points, float).reshape(-1, 3), distance,
-                         levels)
+                         levels, held, influences)
 
 
 def curve_pins(chained: CurveVertices, matrix) -> List[Pin]:
     """Pins moving the chains' vertices by `matrix` (4 x 4, rigid)."""
     matrix = _rigid(matrix)
     moved = chained.points @ matrix[:3, :3].T + matrix[:3, 3]
+    if chained.held:
+        moved = np.where(np.asarray(chained.held, bool)[:, None], chained.points, moved)
     levels = chained.levels or [chained.level] * len(chained.vertices)
-    return [Pin(lv, v, tuple(float(c) for c in m), lv) for v, lv, m in zip(chained.vertices, levels, moved)]
+    influences = chained.influences or levels
+    return [Pin(lv, v, tuple(float(c) for c in m), inf)
+            for v, lv, inf, m in zip(chained.vertices, levels, influences, moved)]
 
 
 def _curve_pins(editor, surface, curves: CurveMotion, pins: Sequence[Pin]):
@@ -328,7 +396,7 @@ def edited_limit(result: MultiresResult, pins: Sequence[Pin], solve: str = "Appr
     options.tolerance = DRAG_TOLERANCE
     if isinstance(curves, CurveVertices):  # a drag's chains, found once
         pins = list(pins) + curve_pins(curves, curve_matrix) if curve_matrix is not None else pins
-    elif curves is not None and curves.curves:
+    elif curves:
         pins = list(pins) + _curve_pins(result.editor, result.captured, curves, pins)[0]
     try:
         edited = result.editor.edit(result.captured, _native_pins(pins), _native_normals(normals), options)
@@ -373,7 +441,7 @@ def influence_region(result: MultiresResult, pins: Sequence[Pin], index: int,
     p = pins[int(index)]
     size = float(np.linalg.norm(np.ptp(result.points, axis=0))) or 1.0
     chained, matrix = None, None
-    if curves is not None and curves.curves:  # the chains found once, as a drag does
+    if curves:  # the chains found once, as a drag does
         chained, matrix = curve_vertices(result.editor, result.captured, curves, pins), curves.matrix
     base = edited_limit(result, pins, normals=normals, curves=chained, curve_matrix=matrix)
     direction = np.asarray(vertex_normal(result, p.level, p.vertex))
