@@ -318,6 +318,16 @@ def curve_vertices(editor, surface, curves: CurveMotion, pins: Sequence[Pin] = (
                          "remove it from CurveLoops or from HeldLoops")
     taken = {(p.level, p.vertex) for p in pins}
     vertices, levels, points, held, influences, distance = [], [], [], [], [], 0.0
+
+    def add(at, v, where, stays, influence):
+        if (at, v) not in taken:  # a vertex pinned already keeps its first pin
+            taken.add((at, v))
+            vertices.append(int(v))
+            levels.append(at)
+            points.append(where)
+            held.append(stays)
+            influences.append(influence)
+
     # A chain at each level from the influence level on, each vertex pinned at its own level: the
     # finest chain propagated down instead would put more pins on a coarse level than it has
     # vertices near the curve (225 pins on a 10 x 10 cage folded a relief's surface over).
@@ -332,27 +342,14 @@ def curve_vertices(editor, surface, curves: CurveMotion, pins: Sequence[Pin] = (
             if at == level:
                 distance = max(distance, chain.max_distance)
             for v in chain.vertices:
-                if (at, v) not in taken:
-                    taken.add((at, v))
-                    vertices.append(int(v))
-                    levels.append(at)
-                    points.append(level_points[v])
-                    held.append(False)
-                    influences.append(at)
-        if at != level:
-            continue
-        # Boundary loops: their vertices exactly (topology, not a chain) at the curves' level,
-        # propagated to the influence level (their masks there take only boundary vertices, so
-        # a rigid motion meets them all; a loop pinned at every level left a flange along it).
-        for loop, stays in [(n, False) for n in curves.loops] + [(n, True) for n in curves.held]:
-            for v in loop_vertices(editor, at, loop):
-                if (at, v) not in taken:
-                    taken.add((at, v))
-                    vertices.append(int(v))
-                    levels.append(at)
-                    points.append(level_points[v])
-                    held.append(stays)
-                    influences.append(int(curves.influence))
+                add(at, v, level_points[v], False, at)
+    # Boundary loops: every vertex of the loop at the curves' level (from the topology, exactly),
+    # propagated to the influence level: their masks there take boundary vertices only, so a
+    # rigid motion meets them all, as pinning each boundary vertex by hand does.
+    finest_points = np.asarray(editor.points(surface)[level])
+    for loop, stays in [(n, False) for n in curves.loops] + [(n, True) for n in curves.held]:
+        for v in loop_vertices(editor, level, loop):
+            add(level, v, finest_points[v], stays, int(curves.influence))
     return CurveVertices(level, int(curves.influence), vertices, np.asarray(points, float).reshape(-1, 3), distance,
                          levels, held, influences)
 
