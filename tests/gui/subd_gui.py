@@ -91,9 +91,10 @@ def run(result):
 def click_on(point):
     """A left click on the 3D view at a model point, as the pointer gives it (the GL widget's Qt
     events)."""
+    from varsurf.gui.region_painter import gl_widget
+
     view = Gui.ActiveDocument.ActiveView
-    gl = next(w for w in Gui.getMainWindow().findChildren(QtGui.QWidget)
-              if w.metaObject().className() == "QOpenGLWidget" and w.isVisible())
+    gl = gl_widget(view)  # the active document's (other documents' views may count as visible)
     width, height = view.getSize()
     x, y = view.getPointOnScreen(point)
     at = QtCore.QPoint(round(x * gl.width() / width), round((height - 1 - y) * gl.height() / height))
@@ -225,23 +226,38 @@ def turn_curves(result):
 
 
 def loop_arcball(result):
-    """A sheet with a hole: its inner boundary loop as CurveLoops (lifted 5 mm), the outer held;
-    the arcball stands at the lifted hole's centre."""
+    """A sheet with a hole: in its panel, Move a loop and a click beside the hole, Hold a loop and
+    a click beside the outer edge, OK (one undo step); then lifted 5 mm, the arcball stands at
+    the lifted hole's centre."""
     sys.path.insert(0, os.path.join(REPO, "examples"))
     from subdivision_surfaces import grid_points, quad_cage
-    from varsurf.app import subd_pins
 
     doc = App.newDocument("SubdLoops")
+    doc.UndoMode = 1
     cage = quad_cage(doc, "HoleCage", *grid_points(6, 60.0, hole=2))
     subd = varsurf.make_subd_surface(cage, levels=3, name="Holed")
     doc.recompute()
-    varsurf.set_curves(subd, [], App.Placement(App.Vector(0, 0, 5), App.Rotation()),
-                       loops=[subd_pins.loop_at(subd, App.Vector(30, 30, 0))],
-                       held=[subd_pins.loop_at(subd, App.Vector(0, 0, 0))], influence=1)
+    cage.ViewObject.Visibility = False  # as the command leaves it: clicks land on the surface
+    Gui.ActiveDocument.ActiveView.viewTop()
+    Gui.SendMsgToActiveView("ViewFit")
+    subd.ViewObject.doubleClicked()
+    Gui.updateGui()
+    w = task_widgets("VarSurfSubdSurface")
+    w["moveLoopButton"].setChecked(True)
+    click_on(App.Vector(30, 17, 0))  # beside the hole
+    w["holdLoopButton"].setChecked(True)
+    click_on(App.Vector(30, 3, 0))  # beside the outer edge
+    picked = [list(subd.CurveLoops), list(subd.HeldLoops), w["curvesValue"].text(),
+              w["moveLoopButton"].isChecked(), w["holdLoopButton"].isChecked()]
+    press_task_button(QtGui.QDialogButtonBox.Ok)
+    result["loops_picked"] = picked + [doc.UndoNames[:1], subd.BoundaryLoops]
+    subd.CurveMotion = App.Placement(App.Vector(0, 0, 5), App.Rotation())
     doc.recompute()
     Gui.updateGui()
     arcball = subd.ViewObject.Proxy.handles.arcball
     result["loop_arcball"] = [subd.isValid(), subd.CurvePins, list(arcball.centre) if arcball is not None else None]
+    Gui.ActiveDocument.ActiveView.viewIsometric()
+    result["loop_shot"] = window_shot(os.path.join(OUT, "subd_loops.png"))
 
 
 def drag_vase(result):

@@ -108,7 +108,7 @@ def test_the_curves_arcball_turns_them_in_one_undo_step(subd):
     assert "error" not in subd, subd.get("error")
     curves, undo, valid = subd["curves_set"]
     assert curves == [["Ring", ["Edge1"]]] and undo == ["Edit VarSurf subdivision surface"], subd["curves_set"]
-    assert valid and subd["curves_label"].startswith("Curves: 1, pins along them: "), subd["curves_label"]
+    assert valid and subd["curves_label"].startswith("Curves: 1; pins along them: "), subd["curves_label"]
     present, pins, centre = subd["arcball"]
     assert present and pins > 0 and abs(centre[2] - 10.0) < 1e-6, subd["arcball"]
     assert subd["turn_began"] is True
@@ -119,8 +119,15 @@ def test_the_curves_arcball_turns_them_in_one_undo_step(subd):
     assert Path(subd["turn_shot"]).is_file()
 
 
-def test_a_moved_boundary_loop_has_its_arcball_at_the_loops_centre(subd):
+def test_boundary_loops_picked_in_the_panel_and_their_arcball_at_the_moved_loops_centre(subd):
+    """Move a loop and Hold a loop, each followed by a click beside a boundary of a sheet with a
+    hole: the hole's loop moved, the outer held, in one undo step; lifted, the arcball stands at
+    the hole's lifted centre."""
     assert "error" not in subd, subd.get("error")
+    moved, held, label, move_on, hold_on, undo, loops = subd["loops_picked"]
+    assert loops == 2 and len(moved) == 1 and len(held) == 1 and moved != held, subd["loops_picked"]
+    assert "loops moved: 1, held: 1" in label and not move_on and not hold_on, subd["loops_picked"]
+    assert undo == ["Edit VarSurf subdivision surface"], subd["loops_picked"]
     valid, pins, centre = subd["loop_arcball"]
     assert valid and pins > 0 and centre is not None, subd["loop_arcball"]
     assert max(abs(a - b) for a, b in zip(centre, (30.0, 30.0, 5.0))) < 1e-6, centre

@@ -15,11 +15,31 @@ RegionSolver::RegionSolver(const Sparse& h, const Sparse& a, const DetailEditOpt
     : options_(options), h_(h), a_(a) {
   const Eigen::Index f = a.cols(), m = a.rows();
   if (options.solve != DetailSolve::direct) {
-    dense_a_ = Eigen::MatrixXd(a);
-    masks_.compute(dense_a_ * dense_a_.transpose());
-    if (options.solve == DetailSolve::sor)
+    // The masks' least-norm move A^T (A A^T)^-1 c: A A^T is sparse (masks overlap only near
+    // each other), so a sparse factorization, checked by a probe as the KKT's below; dependent
+    // masks (a curve's vertices at a coarse level) fall back to a dense complete orthogonal
+    // decomposition, which takes them in least norm.
+    const Sparse aat = Sparse(a * a.transpose());
+    sparse_masks_.compute(aat);
+    bool sparse_ok = sparse_masks_.info() == Eigen::Success;
+    if (sparse_ok && m > 0) {
+      const Eigen::VectorXd probe = Eigen::VectorXd::LinSpaced(m, 1.0, 2.0);
+      const Eigen::VectorXd back = sparse_masks_.solve(probe);
+      sparse_ok = back.allFinite() && (aat * back - probe).norm() <= 1e-10 * probe.norm();
+    }
+    if (!sparse_ok) {
+      dense_a_ = Eigen::MatrixXd(a);
+      masks_.compute(dense_a_ * dense_a_.transpose());
+      dense_masks_ = true;
+    }
+    if (options.solve == DetailSolve::sor) {
+      std::vector<char> masked(static_cast<size_t>(f), 0);
+      for (int outer = 0; outer < a.outerSize(); ++outer)
+        for (Sparse::InnerIterator it(a, outer); it; ++it)
+          if (it.value() != 0.0) masked[static_cast<size_t>(it.col())] = 1;
       for (Eigen::Index c = 0; c < f; ++c)
-        if (dense_a_.col(c).cwiseAbs().maxCoeff() == 0.0) relaxed_.push_back(c);
+        if (!masked[static_cast<size_t>(c)]) relaxed_.push_back(c);
+    }
     return;
   }
   std::vector<Eigen::Triplet<double>> k_entries;
@@ -84,7 +104,8 @@ Eigen::MatrixXd RegionSolver::solve(const Eigen::MatrixXd& c, double stop, int& 
     rhs.bottomRows(m) = c;
     return kkt_.solve(rhs).topRows(f);
   }
-  Eigen::MatrixXd x = dense_a_.transpose() * masks_.solve(c);
+  Eigen::MatrixXd x = dense_masks_ ? Eigen::MatrixXd(dense_a_.transpose() * masks_.solve(c))
+                                   : Eigen::MatrixXd(a_.transpose() * sparse_masks_.solve(c));
   if (options_.solve != DetailSolve::sor) return x;
   // Gauss-Seidel with over-relaxation on the rest of the region (the paper's sec. 4.3); the
   // unknowns outside the region stand still.

@@ -32,7 +32,11 @@ class RegionSolver {
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> penalty_;
   double penalty_weight_ = 0.0;
   bool least_squares_ = false;
-  Eigen::MatrixXd dense_a_;  // approximate and SOR: the masks' least-norm move
+  // Approximate and SOR: the masks' least-norm move, by a sparse factorization of A A^T, or
+  // densely where the masks are dependent.
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> sparse_masks_;
+  bool dense_masks_ = false;
+  Eigen::MatrixXd dense_a_;
   Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> masks_;
   std::vector<Eigen::Index> relaxed_;  // SOR: the unknowns outside every mask
 };

@@ -102,3 +102,24 @@ def loop_at(obj, point) -> int:
         raise SheetError(f"{obj.Label}'s cage is closed: it has no boundary loops to move or hold")
     p = np.asarray(FreeCAD.Vector(point), float)
     return int(np.argmin([np.min(np.linalg.norm(cage[loop] - p, axis=1)) for loop in loops]))
+
+
+#: A boundary loop's modes: moved with the curves by CurveMotion, held where it is, or free.
+LOOP_MODES = ("moved", "held", "free")
+
+
+def set_loop(obj, loop: int, mode: str):
+    """Make the cage's boundary loop `loop` moved (CurveLoops), held (HeldLoops) or free."""
+    loops = multiresolution.boundary_loops(last_outcome(obj, compute).faces[0])
+    if not 0 <= int(loop) < len(loops):
+        raise SheetError(f"{obj.Label}'s cage has {len(loops)} boundary loops, no loop {loop}: pick one of its "
+                         "boundaries")
+    if mode not in LOOP_MODES:
+        raise SheetError(f"a loop is {', '.join(LOOP_MODES)}, not {mode!r}: give one of those")
+    moved = [int(n) for n in obj.CurveLoops if int(n) != int(loop)]
+    held = [int(n) for n in obj.HeldLoops if int(n) != int(loop)]
+    if mode == "moved":
+        moved.append(int(loop))
+    elif mode == "held":
+        held.append(int(loop))
+    obj.CurveLoops, obj.HeldLoops = moved, held

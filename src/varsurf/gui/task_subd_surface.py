@@ -57,11 +57,15 @@ class TaskPanelSubdSurface(PropertyTaskPanel):
         self.table.itemSelectionChanged.connect(self.pin_selected)
         self.influence.sliderReleased.connect(self.influence_set)
         self.influence.valueChanged.connect(self.influence_shown)
-        self.pick_button.toggled.connect(self.pick)
+        self.pick_button.toggled.connect(self.pick_pin)
         self.child(QtGui.QPushButton, "normalButton").clicked.connect(self.hold_normal)
         self.child(QtGui.QPushButton, "removeButton").clicked.connect(self.remove)
         self.child(QtGui.QPushButton, "updateButton").clicked.connect(self.update)
         self.child(QtGui.QPushButton, "curvesButton").clicked.connect(self.curves_from_selection)
+        self.loop_buttons = {"moved": self.child(QtGui.QPushButton, "moveLoopButton"),
+                             "held": self.child(QtGui.QPushButton, "holdLoopButton")}
+        for mode, button in self.loop_buttons.items():
+            button.toggled.connect(lambda on, mode=mode: self.pick_loop(mode, on))
 
     # -- object <-> widgets --
     def load(self):
@@ -93,9 +97,13 @@ class TaskPanelSubdSurface(PropertyTaskPanel):
         obj = self.obj
         self.status.setText(obj.Status if obj.isValid() else obj.getStatusString())
         count = sum(len(subs) or 1 for _, subs in (obj.Curves or []))
+        moved, held = len(obj.CurveLoops), len(obj.HeldLoops)
+        parts = [translate("VarSurf", "Curves: {}").format(count)] if count else []
+        if moved or held:
+            parts.append(translate("VarSurf", "loops moved: {}, held: {}").format(moved, held))
         self.child(QtGui.QLabel, "curvesValue").setText(
-            translate("VarSurf", "Curves: {}, pins along them: {}").format(count, obj.CurvePins) if count
-            else translate("VarSurf", "No curves"))
+            ", ".join(parts) + translate("VarSurf", "; pins along them: {}").format(obj.CurvePins) if parts
+            else translate("VarSurf", "No curves or loops"))
         self.show_level(self.shown.value())
         self.pin_selected()
 
@@ -200,12 +208,37 @@ class TaskPanelSubdSurface(PropertyTaskPanel):
             message(f"{self.obj.Label}: {error}")
         self.show_results()
 
-    def pick(self, on):
-        if on and self.picker is None:
-            self.picker = VertexPicker(self.obj, self.picked)
-        elif not on and self.picker is not None:
+    def pick(self, on, callback=None):
+        """Clicks on the surface go to `callback` (a pinned vertex by default) while `on`."""
+        if self.picker is not None:
             self.picker.stop()
             self.picker = None
+        if on:
+            self.picker = VertexPicker(self.obj, callback or self.picked)
+
+    def pick_pin(self, on):
+        """Pick vertex: the next click pins the shown level's vertex nearest to it."""
+        if on:
+            for button in self.loop_buttons.values():
+                button.setChecked(False)
+        self.pick(on)
+
+    def pick_loop(self, mode, on):
+        """Move a loop / Hold a loop: the next click names the boundary loop nearest to it."""
+        if on:
+            for other, button in list(self.loop_buttons.items()) + [("pin", self.pick_button)]:
+                if other != mode and button.isChecked():
+                    button.setChecked(False)
+        self.pick(on, lambda point: self.loop_picked(mode, point))
+
+    def loop_picked(self, mode, point):
+        try:
+            loop = subd_pins.loop_at(self.obj, point)
+        except SheetError as error:
+            message(f"{self.obj.Label}: {error}")
+            return
+        self.run(f"set_loop({ref(self.obj)}, {loop}, {mode!r})")
+        self.loop_buttons[mode].setChecked(False)
 
     def picked(self, point):
         """A click on the surface: pin the shown level's vertex nearest to it."""
