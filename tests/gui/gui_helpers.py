@@ -3,7 +3,10 @@
 task panel's buttons, read its widgets, find what the task view cuts off, read the report view,
 take a picture of the whole main window."""
 
+import json
 import os
+import sys
+import traceback
 
 import FreeCADGui as Gui
 from PySide import QtCore, QtGui
@@ -95,3 +98,25 @@ def task_widgets(form="VarSurfSheet"):
     if not forms:
         raise RuntimeError(f"no visible {form} panel")
     return {w.objectName(): w for w in forms[-1].findChildren(QtGui.QWidget) if w.objectName()}
+
+
+def run_when_up(steps, path, mark_ok=False):
+    """Once the event loop is up (commands, task panels and the recorder need it): run each of
+    `steps` on one result dict, the first failure's traceback kept as its "error" (and "ok" set
+    when all ran, with `mark_ok`); write the result as JSON to `path` and end FreeCAD."""
+    def main():
+        result = {"ok": False} if mark_ok else {}
+        try:
+            for step in steps:
+                step(result)
+            if mark_ok:
+                result["ok"] = True
+        except Exception:
+            result["error"] = traceback.format_exc()
+        with open(path, "w") as handle:
+            json.dump(result, handle, indent=1, default=str)
+        sys.stdout.flush()
+        sys.stderr.flush()
+        os._exit(0)
+
+    QtCore.QTimer.singleShot(0, main)

@@ -14,12 +14,10 @@ with inertia at the timer's frames, settles after the release, which is written.
 $VARSURF_GUI_OUT/pde_panel.json and quits.
 """
 
-import json
 import math
 import os
 import sys
 import time
-import traceback
 
 import FreeCAD as App
 import FreeCADGui as Gui
@@ -31,7 +29,8 @@ import varsurf  # the Mod link puts VarSurf on the path
 # The helpers the GUI scripts share live beside this one.
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(varsurf.__file__)))),
                                 "tests", "gui"))
-from gui_helpers import clipped_widgets, press_task_button, report_view_text, task_widgets, window_shot  # noqa: E402
+from gui_helpers import (clipped_widgets, press_task_button, report_view_text, run_when_up, task_widgets,  # noqa: E402
+                         window_shot)
 
 OUT = os.environ.get("VARSURF_GUI_OUT") or os.path.join(os.getcwd(), "out", "gui-pde-panel")
 os.makedirs(OUT, exist_ok=True)
@@ -251,15 +250,4 @@ def paint_rectangle(pde, corner0, corner1, shot):
     return drag_over(pde, path, shot)
 
 
-def main():
-    result = {}
-    try:
-        run(result)
-    except Exception:
-        result["error"] = traceback.format_exc()
-    with open(os.path.join(OUT, "pde_panel.json"), "w") as out:
-        json.dump(result, out, indent=1)
-    os._exit(0)
-
-
-QtCore.QTimer.singleShot(0, main)
+run_when_up([run], os.path.join(OUT, "pde_panel.json"))

@@ -9,11 +9,9 @@ task panel, saves a screenshot and checks that it is not blank. Writes the outco
 $VARSURF_GUI_OUT/smoke.json (default: a folder next to this file's repository's out/) and quits.
 """
 
-import json
 import os
 import sys
 import time
-import traceback
 
 import FreeCAD as App
 import FreeCADGui as Gui
@@ -26,7 +24,8 @@ import varsurf  # the Mod link puts VarSurf on the path
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(varsurf.__file__)))),
                                 "tests", "gui"))
 import gui_helpers  # noqa: E402
-from gui_helpers import clipped_widgets, panel_in_view, press_task_button, report_view_text, task_widgets  # noqa: E402
+from gui_helpers import (clipped_widgets, panel_in_view, press_task_button, report_view_text, run_when_up,  # noqa: E402
+                         task_widgets)
 
 OUT = os.environ.get("VARSURF_GUI_OUT") or os.path.join(os.getcwd(), "out", "gui-smoke")
 os.makedirs(OUT, exist_ok=True)
@@ -1002,22 +1001,10 @@ def headless_document(result, saved):
     App.closeDocument(again.Name)
 
 
-def main():
-    result = {"ok": False}
-    try:
-        run(result)
-        drag_space_curve(result)
-        headless_document(result, os.path.join(OUT, "smoke.FCStd"))
-        result["report_view_at_end"] = report_view_lines()
-        result["ok"] = True
-    except Exception:
-        result["error"] = traceback.format_exc()
-    with open(RESULT, "w") as handle:
-        json.dump(result, handle, indent=1, default=str)
-    sys.stdout.flush()
-    sys.stderr.flush()
-    os._exit(0)
+def report_at_end(result):
+    result["report_view_at_end"] = report_view_lines()
 
 
-# run once the event loop is up (commands and the task panel need it)
-QtCore.QTimer.singleShot(0, main)
+# Run once the event loop is up (commands and the task panel need it).
+run_when_up([run, drag_space_curve, lambda result: headless_document(result, os.path.join(OUT, "smoke.FCStd")),
+             report_at_end], RESULT, mark_ok=True)

@@ -14,12 +14,10 @@ written without the GUI
 $VARSURF_GUI_OUT/subd.json and quits.
 """
 
-import json
 import math
 import os
 import sys
 import time
-import traceback
 
 import FreeCAD as App
 import FreeCADGui as Gui
@@ -29,7 +27,8 @@ import varsurf  # the Mod link puts VarSurf on the path
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(varsurf.__file__)))),
                                 "tests", "gui"))
-from gui_helpers import clipped_widgets, press_task_button, report_view_text, task_widgets, window_shot  # noqa: E402
+from gui_helpers import (clipped_widgets, press_task_button, report_view_text, run_when_up, task_widgets,  # noqa: E402
+                         window_shot)
 
 REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(varsurf.__file__))))
 OUT = os.environ.get("VARSURF_GUI_OUT") or os.path.join(os.getcwd(), "out", "gui-subd")
@@ -309,15 +308,4 @@ def drag_vase(result):
     result["shown_after"] = [vase.ViewObject.Visibility, handles.preview is None]
 
 
-def main():
-    result = {}
-    try:
-        run(result)
-    except Exception:
-        result["error"] = traceback.format_exc()
-    with open(os.path.join(OUT, "subd.json"), "w") as out:
-        json.dump(result, out, indent=1)
-    os._exit(0)
-
-
-QtCore.QTimer.singleShot(0, main)
+run_when_up([run], os.path.join(OUT, "subd.json"))
