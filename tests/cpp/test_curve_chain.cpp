@@ -171,7 +171,8 @@ TEST(CurveChain, PinsAlongACurveSolvedWhereTheirMasksAreDependentStayBounded) {
   // (the points compared as sets: the numbering differs), within the lift's range.
   // Approximate and SOR take the masks' least-norm move: sparsely, or densely for dependent masks
   // as these are (the sparse factorization's probe sends them there).
-  for (const DetailSolve solve : {DetailSolve::direct, DetailSolve::sor, DetailSolve::approximate}) {
+  for (const DetailSolve solve :
+       {DetailSolve::direct, DetailSolve::sor, DetailSolve::approximate}) {
     const Eigen::MatrixX3d a = lifted_circle({0, 2, 3, 1}, solve);
     const Eigen::MatrixX3d b = lifted_circle({1, 0, 2, 3}, solve);
     for (const Eigen::MatrixX3d* s : {&a, &b}) {
