@@ -12,6 +12,7 @@ import Part
 import pytest
 
 import varsurf
+from varsurf.solve.errors import SheetError
 
 V = FreeCAD.Vector
 LEVELS = 5
@@ -256,6 +257,11 @@ def test_a_boundary_loop_turned_is_its_vertices_pinned_and_moves_with_the_scene(
     assert worst < 1e-9 * 60, worst
     # The hole's rim rose: its highest limit point near 8 mm plus the turn's lift.
     assert max(p[2] for p in subd.Proxy.outcome.points) > 8.0
+    # The arcball's place (headless): the centre of the hole's loop, lifted and turned with it.
+    from varsurf.app import subd_drag
+
+    centre = subd_drag.curves_centre(subd)
+    assert (centre - V(30, 30, 8)).Length < 1.0, centre
     # The same scene turned and moved: the same loops, the moved answer.
     place = FreeCAD.Placement(V(200, -50, 30), FreeCAD.Rotation(V(1, 2, 3), 50))
     other = FreeCAD.newDocument("MovedLoops")
@@ -268,6 +274,23 @@ def test_a_boundary_loop_turned_is_its_vertices_pinned_and_moves_with_the_scene(
         assert worst < 1e-6 * 60, worst
     finally:
         FreeCAD.closeDocument(other.Name)
+
+
+def test_a_loop_set_and_freed_in_one_list_at_a_time_and_bad_loops_named(doc):
+    from varsurf.app import subd_pins
+
+    _, subd = hole_sheet(doc)
+    subd_pins.set_loop(subd, 1, "moved")
+    subd_pins.set_loop(subd, 0, "held")
+    assert (list(subd.CurveLoops), list(subd.HeldLoops)) == ([1], [0])
+    subd_pins.set_loop(subd, 1, "held")
+    assert (list(subd.CurveLoops), list(subd.HeldLoops)) == ([], [0, 1])
+    subd_pins.set_loop(subd, 0, "free")
+    assert (list(subd.CurveLoops), list(subd.HeldLoops)) == ([], [1])
+    with pytest.raises(SheetError, match="the cage has 2 boundary loops, no loop 2: give one of 0..1"):
+        subd_pins.set_loop(subd, 2, "moved")
+    with pytest.raises(SheetError, match="give one of those"):
+        subd_pins.set_loop(subd, 0, "turned")
 
 
 def test_turning_a_loop_by_its_arcball_is_the_approximate_recompute(doc):

@@ -8,11 +8,13 @@ Solve."""
 from __future__ import annotations
 
 import FreeCAD
+import numpy as np
 
 from varsurf.app.drag import DragError
 from varsurf.app.feature import last_outcome
 from varsurf.app.macro import ref
-from varsurf.app.subd_surface import compute, curves_of, is_subd_surface, normals_of, pins_of, placement_matrix
+from varsurf.app.subd_surface import (compute, curve_edges, curves_of, is_subd_surface, normals_of, pins_of,
+                                      placement_matrix)
 from varsurf.app.transaction import run_in_transaction
 from varsurf.solve import multiresolution
 from varsurf.solve.errors import SheetError
@@ -98,3 +100,26 @@ class CurveDrag:
                  f"App.Rotation({q[0]!r}, {q[1]!r}, {q[2]!r}, {q[3]!r}))",
                  f"App.getDocument({self.subd.Document.Name!r}).recompute()"]
         run_in_transaction(self.subd.Document, CURVE_TRANSACTION, lines, do_command)
+
+
+def curves_centre(subd):
+    """Where the arcball of a SubdSurface's Curves and CurveLoops stands: the centre of their box
+    where CurveMotion puts them (the loops' vertices as the last recompute moved them), or None
+    without either."""
+    motion = subd.CurveMotion.toMatrix()
+    boxes = [edge.BoundBox.transformed(motion) for edge in curve_edges(subd, strict=False)]
+    outcome = getattr(getattr(subd, "Proxy", None), "outcome", None)
+    if outcome is not None:
+        finest = np.asarray(outcome.levels[-1], float)
+        for loop in getattr(subd, "CurveLoops", ()):
+            try:
+                vertices = multiresolution.loop_vertices(outcome.editor, len(outcome.levels) - 1, loop)
+            except SheetError:  # a loop the cage lacks: the recompute names it
+                continue
+            boxes.append(FreeCAD.BoundBox(*finest[vertices].min(axis=0), *finest[vertices].max(axis=0)))
+    if not boxes:
+        return None
+    box = boxes[0]
+    for other in boxes[1:]:
+        box.add(other)
+    return box.Center

@@ -110,10 +110,10 @@ LOOP_MODES = ("moved", "held", "free")
 
 def set_loop(obj, loop: int, mode: str):
     """Make the cage's boundary loop `loop` moved (CurveLoops), held (HeldLoops) or free."""
-    loops = multiresolution.boundary_loops(last_outcome(obj, compute).faces[0])
-    if not 0 <= int(loop) < len(loops):
-        raise SheetError(f"{obj.Label}'s cage has {len(loops)} boundary loops, no loop {loop}: pick one of its "
-                         "boundaries")
+    try:  # the loop exists (its vertices on the cage)
+        multiresolution.loop_vertices(last_outcome(obj, compute).editor, 0, loop)
+    except SheetError as error:
+        raise SheetError(f"{obj.Label}: {error}") from error
     if mode not in LOOP_MODES:
         raise SheetError(f"a loop is {', '.join(LOOP_MODES)}, not {mode!r}: give one of those")
     moved = [int(n) for n in obj.CurveLoops if int(n) != int(loop)]

@@ -14,13 +14,11 @@ import FreeCADGui as Gui
 import numpy
 from pivy import coin
 
-from varsurf.app import subd_drag, subd_surface
+from varsurf.app import subd_drag
 from varsurf.app.drag import DragError
 from varsurf.gui.drag_preview import hide_display, restore_display, styled_root
 from varsurf.gui.handles import HANDLE_SIZE, add_pin, pin_position
 from varsurf.gui.scene_roots import own_root
-from varsurf.solve import multiresolution
-from varsurf.solve.errors import SheetError
 
 V = App.Vector
 
@@ -80,7 +78,7 @@ class SubdHandles:
             self.draggers.append(add_pin(self.root, V(target), size, lambda i=i: self.begin_drag(i),
                                          self.drag_to, self.end_drag))
         self.arcball = None
-        centre = curves_centre(obj)
+        centre = subd_drag.curves_centre(obj)
         if centre is not None:
             self.arcball = Arcball(self.root, centre, 4 * size, self)
 
@@ -128,29 +126,6 @@ class SubdHandles:
         self.rebuild(self.obj)
 
     end_turn = end_drag
-
-
-def curves_centre(obj):
-    """The centre of a SubdSurface's Curves and CurveLoops where CurveMotion puts them, or None
-    without either."""
-    motion = obj.CurveMotion.toMatrix()
-    boxes = [edge.BoundBox.transformed(motion) for edge in subd_surface.curve_edges(obj, strict=False)]
-    outcome = getattr(getattr(obj, "Proxy", None), "outcome", None)
-    if outcome is not None:  # the loops' vertices where the last recompute moved them
-        finest = len(outcome.levels) - 1
-        for loop in getattr(obj, "CurveLoops", ()):
-            try:
-                vertices = multiresolution.loop_vertices(outcome.editor, finest, loop)
-            except SheetError:  # a loop the cage lacks: the recompute names it
-                continue
-            boxes.append(App.BoundBox(*numpy.min(outcome.levels[-1][vertices], axis=0),
-                                      *numpy.max(outcome.levels[-1][vertices], axis=0)))
-    if not boxes:
-        return None
-    box = boxes[0]
-    for other in boxes[1:]:
-        box.add(other)
-    return box.Center
 
 
 class Arcball:
