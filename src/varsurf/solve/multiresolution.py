@@ -79,11 +79,11 @@ class MultiresResult:
     region_levels: List[int] = field(default_factory=list)
     captured: object = None  # the native Multiresolution before the pins (what a drag edits)
     edited: object = None  # the native Multiresolution after them
+    editor: object = None  # the native DetailEditor of its topology
 
     def captured_points(self) -> np.ndarray:
         """The limit surface before the pins, at the finest level's vertices."""
         return np.asarray(self.editor.limit(self.captured))
-    editor: object = None  # the native DetailEditor of its topology
 
 
 def finest_faces(faces: Sequence[Sequence[int]], levels: int) -> int:
@@ -245,16 +245,14 @@ DRAG_TOLERANCE = 1e-6
 
 @dataclass
 class CurveVertices:
-    """The vertices that follow some curves (their chains at each level from the influence level
-    to the curves' level), where they are."""
-    level: int
-    influence: int
+    """The vertices that follow some curves and boundary loops, each a pin to be: its level, where
+    it is, whether it stays (a held loop's) and the level it is propagated to."""
     vertices: List[int]
+    levels: List[int]
     points: np.ndarray
+    held: List[bool]
+    influences: List[int]
     distance: float  # the farthest of the curves' level's chain vertices from its curve
-    levels: List[int] = field(default_factory=list)  # each vertex's level (default: all `level`)
-    held: List[bool] = field(default_factory=list)  # True: the vertex stays (a held loop's)
-    influences: List[int] = field(default_factory=list)  # each pin's influence (default: its level)
 
 
 def _rigid(matrix) -> np.ndarray:
@@ -303,8 +301,9 @@ def loop_vertices(editor, level: int, loop: int) -> List[int]:
 
 
 def curve_vertices(editor, surface, curves: CurveMotion, pins: Sequence[Pin] = ()) -> CurveVertices:
-    """The vertices of `curves.level` of `surface` (a native Multiresolution) along each curve; a
-    vertex pinned already by `pins` keeps its own pin."""
+    """The vertices of `surface` (a native Multiresolution) along each curve at each level from
+    `curves.influence` to `curves.level`, and on its moved and held boundary loops; a vertex
+    pinned already by `pins` keeps its own pin."""
     nat = native()
     level = int(curves.level)
     if not 0 <= level <= editor.levels():
@@ -350,20 +349,16 @@ def curve_vertices(editor, surface, curves: CurveMotion, pins: Sequence[Pin] = (
     for loop, stays in [(n, False) for n in curves.loops] + [(n, True) for n in curves.held]:
         for v in loop_vertices(editor, level, loop):
             add(level, v, finest_points[v], stays, int(curves.influence))
-    return CurveVertices(level, int(curves.influence), vertices, np.asarray(points, float).reshape(-1, 3), distance,
-                         levels, held, influences)
+    return CurveVertices(vertices, levels, np.asarray(points, float).reshape(-1, 3), held, influences, distance)
 
 
 def curve_pins(chained: CurveVertices, matrix) -> List[Pin]:
     """Pins moving the chains' vertices by `matrix` (4 x 4, rigid)."""
     matrix = _rigid(matrix)
     moved = chained.points @ matrix[:3, :3].T + matrix[:3, 3]
-    if chained.held:
-        moved = np.where(np.asarray(chained.held, bool)[:, None], chained.points, moved)
-    levels = chained.levels or [chained.level] * len(chained.vertices)
-    influences = chained.influences or levels
+    moved = np.where(np.asarray(chained.held, bool).reshape(-1, 1), chained.points, moved)
     return [Pin(lv, v, tuple(float(c) for c in m), inf)
-            for v, lv, inf, m in zip(chained.vertices, levels, influences, moved)]
+            for v, lv, inf, m in zip(chained.vertices, chained.levels, chained.influences, moved)]
 
 
 def _curve_pins(editor, surface, curves: CurveMotion, pins: Sequence[Pin]):
