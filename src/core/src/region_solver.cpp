@@ -10,6 +10,24 @@ namespace varsurf {
 
 using Sparse = Eigen::SparseMatrix<double>;
 
+namespace {
+
+// Whether a factorization of `matrix` is sound: it reports success and a right-hand side reaching
+// every direction comes back (to `tolerance`, relative) through it. Sparse factorizations of
+// singular systems can report success and answer garbage.
+template <class Solver>
+bool solves_back(const Solver& solver, const Sparse& matrix, double tolerance) {
+  if (solver.info() != Eigen::Success) return false;
+  const Eigen::Index n = matrix.rows();
+  const Eigen::VectorXd probe =
+      Eigen::VectorXd::LinSpaced(n, 1.0, 2.0)
+          .cwiseProduct(Eigen::VectorXd::LinSpaced(n, 0.0, 37.0).array().sin().matrix());
+  const Eigen::VectorXd back = solver.solve(probe);
+  return back.allFinite() && (matrix * back - probe).norm() <= tolerance * probe.norm();
+}
+
+}  // namespace
+
 RegionSolver::RegionSolver(const Sparse& h, const Sparse& a, const DetailEditOptions& options,
                            int level)
     : options_(options), h_(h), a_(a) {
@@ -21,13 +39,7 @@ RegionSolver::RegionSolver(const Sparse& h, const Sparse& a, const DetailEditOpt
     // decomposition, which takes them in least norm.
     const Sparse aat = Sparse(a * a.transpose());
     sparse_masks_.compute(aat);
-    bool sparse_ok = sparse_masks_.info() == Eigen::Success;
-    if (sparse_ok && m > 0) {
-      const Eigen::VectorXd probe = Eigen::VectorXd::LinSpaced(m, 1.0, 2.0);
-      const Eigen::VectorXd back = sparse_masks_.solve(probe);
-      sparse_ok = back.allFinite() && (aat * back - probe).norm() <= 1e-10 * probe.norm();
-    }
-    if (!sparse_ok) {
+    if (m > 0 && !solves_back(sparse_masks_, aat, 1e-10)) {
       dense_a_ = Eigen::MatrixXd(a);
       masks_.compute(dense_a_ * dense_a_.transpose());
       dense_masks_ = true;
@@ -69,16 +81,10 @@ RegionSolver::RegionSolver(const Sparse& h, const Sparse& a, const DetailEditOpt
   Sparse k(f + m, f + m);
   k.setFromTriplets(k_entries.begin(), k_entries.end());
   kkt_.compute(k);
-  if (kkt_.info() == Eigen::Success) {
-    // SparseLU factors some singular KKT systems (dependent masks, as the vertices along a curve
-    // give a coarse level) without a word, and its answer then swings the region by 1e5 times
-    // the model (measured): a solve of a right-hand side reaching every direction must come back.
-    const Eigen::VectorXd probe =
-        Eigen::VectorXd::LinSpaced(f + m, 1.0, 2.0)
-            .cwiseProduct(Eigen::VectorXd::LinSpaced(f + m, 0.0, 37.0).array().sin().matrix());
-    const Eigen::VectorXd back = kkt_.solve(probe);
-    if (back.allFinite() && (k * back - probe).norm() <= 1e-8 * probe.norm()) return;
-  }
+  // SparseLU factors some singular KKT systems (dependent masks, as the vertices along a curve
+  // give a coarse level) without a word, and its answer then swings the region by 1e5 times the
+  // model (measured).
+  if (solves_back(kkt_, k, 1e-8)) return;
   // More constraints than this level can meet (their masks dependent): their least-squares fit,
   // the energy keeping it smooth; the finer levels then meet them.
   Sparse h_ff(f, f);
