@@ -92,14 +92,16 @@ void bind_detail_edit(py::module_& m) {
   py::class_<DetailPin>(m, "DetailPin",
                         "A vertex of a level moved to a target, propagated to its influence "
                         "level.")
-      .def(py::init([](int level, int vertex, Eigen::Vector3d target, int influence) {
-             return DetailPin{level, vertex, target, influence};
-           }),
-           "level"_a, "vertex"_a, "target"_a, "influence"_a)
+      .def(
+          py::init([](int level, int vertex, Eigen::Vector3d target, int influence, bool on_limit) {
+            return DetailPin{level, vertex, target, influence, on_limit};
+          }),
+          "level"_a, "vertex"_a, "target"_a, "influence"_a, "on_limit"_a = false)
       .def_readwrite("level", &DetailPin::level)
       .def_readwrite("vertex", &DetailPin::vertex)
       .def_readwrite("target", &DetailPin::target)
-      .def_readwrite("influence", &DetailPin::influence);
+      .def_readwrite("influence", &DetailPin::influence)
+      .def_readwrite("on_limit", &DetailPin::on_limit);
   py::class_<DetailNormal>(m, "DetailNormal",
                            "A normal prescribed at a vertex of a level, propagated to its "
                            "influence level.")
@@ -159,13 +161,26 @@ void bind_detail_edit(py::module_& m) {
                              const std::vector<DetailNormal>&, const DetailEditOptions&>(
                &DetailEditor::edit, py::const_),
            "surface"_a, "pins"_a, "normals"_a, "options"_a,
-           py::call_guard<py::gil_scoped_release>(), "The surface edited by the pins and normals.");
+           py::call_guard<py::gil_scoped_release>(), "The surface edited by the pins and normals.")
+      .def(
+          "snap",
+          [](const DetailEditor& e, const Multiresolution& surface, int level,
+             const std::vector<int>& vertices, const Eigen::MatrixX3d& targets,
+             const TriangleSurface& before) {
+            return e.snap(surface, level, vertices, targets,
+                          [&](const Eigen::Vector3d& p) { return before.closest(p); });
+          },
+          "surface"_a, "level"_a, "vertices"_a, "targets"_a, "before"_a,
+          py::call_guard<py::gil_scoped_release>(),
+          "The surface re-parameterized so that the vertices of a level lie on the targets, its "
+          "shape kept (before: the surface as triangles).");
 }
 
 void bind_curve_chain(py::module_& m) {
   py::class_<CurveChain>(m, "CurveChain", "The vertices of a mesh level that follow a curve.")
       .def_readonly("vertices", &CurveChain::vertices)
       .def_readonly("parameters", &CurveChain::parameters)
+      .def_readonly("points", &CurveChain::points)
       .def_readonly("max_distance", &CurveChain::max_distance)
       .def_readonly("max_gap", &CurveChain::max_gap)
       .def_readonly("closed", &CurveChain::closed);

@@ -582,6 +582,10 @@ def hostile_pins():
         out.append([nat.DetailPin(2, 5, np.array([x, 2.0, 3.0]), 1)])
     out.append([nat.DetailPin(2, 5, np.array([1.0, 2.0, 3.0]), 1)] * 2)
     out.append([nat.DetailPin(2, k, np.array([1e6 * k, 0.0, 0.0]), 0) for k in range(40)])
+    # Pins on the limit surface: held at every finer level too, from the base up.
+    out.append([nat.DetailPin(0, 4, np.array([1.0, 2.0, 3.0]), 0, True)])
+    out.append([nat.DetailPin(level, 5, np.array([1e9, -1e9, 3.0]), 0, True) for level in (1, 2)])
+    out.append([nat.DetailPin(2, 5, np.array([1.0, 2.0, 3.0]), 1, True), nat.DetailPin(2, 5, np.zeros(3), 1)])
     return out
 
 

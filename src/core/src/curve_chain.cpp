@@ -137,15 +137,19 @@ CurveChain curve_chain(const SubdivisionMesh& mesh, const Eigen::MatrixX3d& curv
   for (const int v : chain)
     if (seen.insert(v).second) out.vertices.push_back(v);
   // Parameters and distances: each vertex's closest point on the polyline.
-  for (const int v : out.vertices) {
-    const Eigen::Vector3d p = mesh.points.row(v).transpose();
+  out.points.resize(static_cast<Eigen::Index>(out.vertices.size()), 3);
+  for (size_t i = 0; i < out.vertices.size(); ++i) {
+    const Eigen::Vector3d p = mesh.points.row(out.vertices[i]).transpose();
     double best = std::numeric_limits<double>::infinity(), at = 0.0;
+    Eigen::Vector3d foot = p;
     for (size_t k = 1; k < polyline.size(); ++k) {
       const double t = segment_parameter(polyline[k - 1], polyline[k], p);
-      const double d = (polyline[k - 1] + t * (polyline[k] - polyline[k - 1]) - p).norm();
-      if (d < best) best = d, at = (arc[k - 1] + t * (arc[k] - arc[k - 1])) / length;
+      const Eigen::Vector3d q = polyline[k - 1] + t * (polyline[k] - polyline[k - 1]);
+      const double d = (q - p).norm();
+      if (d < best) best = d, at = (arc[k - 1] + t * (arc[k] - arc[k - 1])) / length, foot = q;
     }
     out.parameters.push_back(at);
+    out.points.row(static_cast<Eigen::Index>(i)) = foot.transpose();
     out.max_distance = std::max(out.max_distance, best);
   }
   // How far the curve strays from the chain's polyline (at the samples).

@@ -190,6 +190,50 @@ DetailEditResult DetailEditor::edit(const Multiresolution& surface,
       throw InvalidInput(name(normal, "normal") + " is given twice: remove one");
   }
 
+  // What a pin holds, as a row on its own level's points (the control point, or the limit
+  // stencil: the limit of a vertex is the same from every level it lives on, so this is the
+  // finished surface's point there while the finer details stand still) and where it is now (on
+  // the finished surface, with the details riding along: the rounds close the difference).
+  // A pin on the limit is held at every level from its influence on, finer ones included: an
+  // edit of a finer level moves the limit there too. above[k][l]: its row at level l > its own.
+  std::vector<Row> held, finished;  // finished: the limit stencil on the finest level's points
+  std::vector<std::vector<Row>> above(pins.size());
+  {
+    using RowMajor = Eigen::SparseMatrix<double, Eigen::RowMajor>;
+    std::map<int, RowMajor> stencils;  // level -> its limit stencils, one row per vertex
+    const auto stencil = [&](int level, int vertex) {
+      auto found = stencils.find(level);
+      if (found == stencils.end())
+        found =
+            stencils.emplace(level, RowMajor(steps_[static_cast<size_t>(level - 1)].limit)).first;
+      Row row(found->second.cols());
+      for (RowMajor::InnerIterator it(found->second, vertex); it; ++it)
+        row.insert(it.index()) = it.value();
+      return row;
+    };
+    for (size_t k = 0; k < pins.size(); ++k) {
+      const DetailPin& pin = pins[k];
+      Row row(vertices(pin.level)), finish;
+      if (!pin.on_limit) {
+        row.insert(pin.vertex) = 1.0;
+      } else {
+        const Row at = stencil(std::max(pin.level, 1), pin.vertex);
+        row = pin.level == 0 ? Row(steps_[0].refine.transpose() * at) : at;
+        above[k].resize(static_cast<size_t>(levels()) + 1);
+        for (int level = pin.level + 1; level <= levels(); ++level)
+          above[k][static_cast<size_t>(level)] = stencil(level, pin.vertex);
+        finish = stencil(levels(), pin.vertex);
+      }
+      held.push_back(row);
+      finished.push_back(finish);
+    }
+  }
+  const auto where = [&](const DetailPin& pin, const std::vector<Eigen::MatrixX3d>& p) {
+    if (!pin.on_limit) return Eigen::RowVector3d(p[static_cast<size_t>(pin.level)].row(pin.vertex));
+    return Eigen::RowVector3d(finished[static_cast<size_t>(&pin - pins.data())].transpose() *
+                              p.back());
+  };
+
   DetailEditResult out{surface, {}};
   std::vector<Eigen::MatrixX3d> points = this->points(out.surface);
   const Eigen::MatrixX3d& finest = points.back();
@@ -226,7 +270,8 @@ DetailEditResult DetailEditor::edit(const Multiresolution& surface,
   // multigrid).
   int first = levels(), last = 0;
   for (const DetailPin& pin : pins)
-    first = std::min(first, pin.influence), last = std::max(last, pin.level);
+    first = std::min(first, pin.influence),
+    last = std::max(last, pin.on_limit ? levels() : pin.level);
   for (const DetailNormal& n : normals)
     first = std::min(first, n.influence), last = std::max(last, n.level);
 
@@ -236,8 +281,7 @@ DetailEditResult DetailEditor::edit(const Multiresolution& surface,
     double worst = 0.0;
     for (const Active& a : active) {
       if (a.pin) {
-        const Eigen::RowVector3d gap = a.pin->target.transpose() -
-                                       points[static_cast<size_t>(a.pin->level)].row(a.pin->vertex);
+        const Eigen::RowVector3d gap = a.pin->target.transpose() - where(*a.pin, points);
         worst = std::max(worst, gap.norm() / tolerance);
       } else {
         const size_t k = static_cast<size_t>(a.normal - normals.data());
@@ -258,11 +302,12 @@ DetailEditResult DetailEditor::edit(const Multiresolution& surface,
   for (int level = first; level <= last; ++level) {
     std::vector<Active> active;
     std::vector<int> seed;
-    for (const DetailPin& pin : pins) {
-      if (pin.influence > level || pin.level < level) continue;
-      Row row(vertices(pin.level));
-      row.insert(pin.vertex) = 1.0;
-      active.push_back({propagate(row, pin.level, level), &pin, nullptr, nullptr});
+    for (size_t k = 0; k < pins.size(); ++k) {
+      const DetailPin& pin = pins[k];
+      if (pin.influence > level || (pin.level < level && !pin.on_limit)) continue;
+      active.push_back({pin.level < level ? above[k][static_cast<size_t>(level)]
+                                          : propagate(held[k], pin.level, level),
+                        &pin, nullptr, nullptr});
     }
     for (size_t k = 0; k < normals.size(); ++k) {
       const DetailNormal& normal = normals[k];
@@ -369,9 +414,7 @@ DetailEditResult DetailEditor::edit(const Multiresolution& surface,
       Eigen::Index r = 0;
       for (const Active* a : kept) {
         if (a->pin) {
-          const Eigen::RowVector3d gap =
-              a->pin->target.transpose() -
-              points[static_cast<size_t>(a->pin->level)].row(a->pin->vertex);
+          const Eigen::RowVector3d gap = a->pin->target.transpose() - where(*a->pin, points);
           if (coupled)
             for (int d = 0; d < 3; ++d) c(r++, 0) = gap(d);
           else
@@ -400,9 +443,8 @@ DetailEditResult DetailEditor::edit(const Multiresolution& surface,
     }
   }
   for (const DetailPin& pin : pins)
-    out.report.max_residual = std::max(
-        out.report.max_residual,
-        (pin.target.transpose() - points[static_cast<size_t>(pin.level)].row(pin.vertex)).norm());
+    out.report.max_residual =
+        std::max(out.report.max_residual, (pin.target.transpose() - where(pin, points)).norm());
   for (size_t k = 0; k < normals.size(); ++k) {
     const DetailNormal& normal = normals[k];
     SubdivisionMesh shape = meshes_[static_cast<size_t>(normal.level)];

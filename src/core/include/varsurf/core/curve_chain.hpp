@@ -19,6 +19,7 @@ namespace varsurf {
 struct CurveChain {
   std::vector<int> vertices;       // in the curve's order, each once (closed: first not repeated)
   std::vector<double> parameters;  // each vertex's closest curve point, as arc length in 0..1
+  Eigen::MatrixX3d points;         // those closest curve points (one row per vertex)
   double max_distance = 0.0;       // the farthest chain vertex from the curve
   double max_gap = 0.0;            // the farthest curve point from the chain's polyline
   bool closed = false;

@@ -9,6 +9,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <functional>
 #include <vector>
 
 #include "varsurf/core/detail_energy.hpp"
@@ -21,6 +22,10 @@ struct DetailPin {
   int vertex = 0;  // its index at that level
   Eigen::Vector3d target = Eigen::Vector3d::Zero();
   int influence = 0;  // the level it is propagated to, 0 .. level: its region of influence
+  // Whether the target holds the vertex's point on the finished limit surface (where the finer
+  // levels' details ride along) rather than its control point at `level`: a curve's vertices
+  // then carry the surface itself through the curve's points.
+  bool on_limit = false;
 };
 
 // A normal prescribed at a vertex (sec. 4.2): the vertex's tangents Q_u, Q_v, from the divided
@@ -96,6 +101,18 @@ class DetailEditor {
                         const DetailEditOptions& options) const {
     return edit(surface, pins, {}, options);
   }
+  // The Appendix's re-parameterization at `level`: the surface re-expressed so that `vertices`
+  // of that level (and the same vertices of every finer level) lie at `targets`, points on or
+  // near the surface such as a curve lying on it, while the shape stays: each such vertex goes to
+  // closest(target), keeping its offset from the surface (a control point's natural distance
+  // from its limit), every finer vertex the move displaces is re-captured onto `closest` (the
+  // surface before) the same way, and last the vertices' limit points are put at
+  // closest(target) exactly. Defined in detail_snap.cpp. InvalidInput for a surface of another
+  // topology, a level or vertices that do not exist, a vertex given twice, targets not finite or
+  // not one per vertex.
+  Multiresolution snap(const Multiresolution& surface, int level, const std::vector<int>& vertices,
+                       const Eigen::MatrixX3d& targets,
+                       const std::function<Eigen::Vector3d(const Eigen::Vector3d&)>& closest) const;
 
  private:
   void check(const Multiresolution& surface) const;
