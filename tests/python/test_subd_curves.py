@@ -39,9 +39,9 @@ def same_placement(a, b, tolerance):
 MOTION = FreeCAD.Placement(V(0, 0, 15), FreeCAD.Rotation(V(1, 0, 0), 10))
 
 
-def on_surface(brep, edge, motion):
-    """The farthest of 60 points of `edge` moved by `motion` from the B-rep."""
-    points = [motion.multVec(p) for p in edge.discretize(60)]
+def on_surface(brep, edge, motion, count=60):
+    """The farthest of `count` points of `edge` moved by `motion` from the B-rep."""
+    points = [motion.multVec(p) for p in edge.discretize(count)]
     return max(brep.Shape.distToShape(Part.Vertex(p))[0] for p in points)
 
 
@@ -53,16 +53,43 @@ def test_a_circle_lifted_and_tilted_carries_the_surface(doc):
     assert subd.isValid(), subd.getStatusString()
     spacing = SIZE / 2 ** LEVELS
     assert subd.CurvePins > 2 * math.pi * 25.0 / (spacing * math.sqrt(2))  # a vertex a face or closer
-    assert 0.0 < subd.CurveDistance <= spacing / math.sqrt(2), subd.CurveDistance
+    assert 0.0 < subd.CurveDistance <= 0.04 * spacing, subd.CurveDistance
     assert "pins along the curves" in subd.Status
-    # The moved circle lies on the moved surface within the chain's distance from it (the pins are
-    # met exactly; between them the surface is the energy's).
-    gap = on_surface(brep, circle.Shape.Edges[0], MOTION)
-    assert gap <= subd.CurveDistance, (gap, subd.CurveDistance)
-    # Far from the circle the plane stays (influence 0 is global, but the corners are held by
-    # nothing: they follow smoothly; the middle rises with the ring).
+    # The moved circle lies on the moved surface: exactly at the vertices snapped onto it (their
+    # limit points are held), between them within 4 % of a finest face (measured on the exact
+    # B-rep at 400 points: 0.083 mm; the chains pinned unsnapped gave 0.18 mm). CurveDistance,
+    # measured on the limit's patches, says the same.
+    gap = on_surface(brep, circle.Shape.Edges[0], MOTION, 400)
+    assert gap <= 0.04 * spacing, (gap, spacing)
+    assert abs(gap - subd.CurveDistance) <= 0.005 * spacing, (gap, subd.CurveDistance)
+    # The disc rises with the ring; it bulges above it (the ring holds positions only, so the
+    # bending energy carries the outside's slope across it: 18.9 mm at the middle for 15).
     middle = min(subd.Proxy.outcome.points, key=lambda p: math.hypot(p[0], p[1]))
-    assert abs(middle[2] - 15.0) < 3.0, middle
+    assert 15.0 < middle[2] < 20.0, middle
+
+
+@pytest.mark.parametrize("influence", [3, 4, 5])
+def test_a_line_through_the_middle_of_faces_is_met_by_snapping_vertices_onto_it(doc, influence):
+    """The case chains alone could not meet (Boier-Martin et al.'s Appendix): a line half a finest
+    face from every vertex. The vertices beside it are snapped onto it, and the lifted line lies
+    on the result within 12 % of a finest face (0.27-0.37 mm measured on the exact B-rep); pinned
+    where they were, the chains left it 0.43-4.3 mm away."""
+    spacing = SIZE / 2 ** LEVELS
+    plane = doc.addObject("Part::Plane", "Cage")
+    plane.Length = plane.Width = SIZE
+    plane.Placement = FreeCAD.Placement(V(-SIZE / 2, -SIZE / 2, 0), FreeCAD.Rotation())
+    line = doc.addObject("Part::Line", "MidLine")
+    line.X1, line.Y1, line.Z1, line.X2, line.Y2, line.Z2 = -30.0, spacing / 2, 0.0, 30.0, spacing / 2, 0.0
+    doc.recompute()
+    subd = varsurf.make_subd_surface(plane, levels=LEVELS)
+    varsurf.set_curves(subd, [(line, "Edge1")], MOTION, influence=influence)
+    brep = varsurf.make_subd_brep(subd, isolation=2)
+    doc.recompute()
+    assert subd.isValid() and brep.isValid(), (subd.getStatusString(), brep.getStatusString())
+    gap = on_surface(brep, line.Shape.Edges[0], MOTION, 400)
+    assert gap <= 0.12 * spacing, (gap, spacing)
+    assert abs(gap - subd.CurveDistance) <= 0.01 * spacing, (gap, subd.CurveDistance)
+    brep.Shape.check(True)
 
 
 def test_a_reversed_circle_changes_nothing(doc):
@@ -117,7 +144,9 @@ def test_sketch_edges_move_the_surface_near_them(doc):
     assert subd.isValid(), subd.getStatusString()
     assert len(sketch.Shape.Edges) == 3 and any("BSpline" in type(e.Curve).__name__ for e in sketch.Shape.Edges)
     for edge in sketch.Shape.Edges:
-        assert on_surface(brep, edge, lift) <= subd.CurveDistance
+        # CurveDistance is measured at the points of the edges' polylines; between them the edges
+        # stray a little further (a hundredth of a finest face here).
+        assert on_surface(brep, edge, lift) <= subd.CurveDistance + 0.01 * SIZE / 2 ** LEVELS
     # Influence 4 (6.25 mm faces) is local: the plane's far corner stays at 0.
     corner = min(subd.Proxy.outcome.points, key=lambda p: math.hypot(p[0] - 50, p[1] + 50))
     assert abs(corner[2]) < 1e-9, corner
@@ -179,6 +208,26 @@ def test_turning_the_curves_by_their_arcball_is_the_approximate_recompute_and_on
     assert same_placement(subd.CurveMotion, start, 1e-12)
 
 
+def test_a_pin_dragged_beside_curves_is_the_approximate_recompute_with_them(doc):
+    """A pin's drag (subd_drag.PinDrag) on a surface with Curves keeps the curves' pins: its move
+    equals the Approximate recompute with the pin there (the drag once dropped the curves, and
+    the ring swung with the pin until the release)."""
+    from varsurf.app import subd_drag, subd_pins
+
+    _, circle, subd = plane_scene(doc)
+    varsurf.set_curves(subd, [(circle, "Edge1")], MOTION, influence=3)
+    subd.Solve = "Approximate"
+    doc.recompute()
+    subd_pins.add_pin(subd, 4, subd_pins.pick_vertex(subd, 4, V(10.0, 5.0, 0.0)), 2)
+    doc.recompute()
+    target = V(subd.PinTargets[0]) + V(1.0, -0.5, 6.0)
+    moved = subd_drag.PinDrag(subd, 0).move(target)
+    varsurf.move_pin(subd, 0, target)
+    doc.recompute()
+    assert subd.isValid(), subd.getStatusString()
+    assert max((V(*p) - V(*q)).Length for p, q in zip(moved, subd.Proxy.outcome.points)) < 1e-4
+
+
 def test_a_pins_region_of_influence_is_what_a_move_moves_with_curves_held(doc):
     """The region the task panel draws for a pin counts the Curves: their pins hold their
     vertices, so a move of the pin moves exactly the region computed with them."""
@@ -197,8 +246,15 @@ def test_a_pins_region_of_influence_is_what_a_move_moves_with_curves_held(doc):
     varsurf.move_pin(subd, 0, V(subd.PinTargets[0]) + V(0.7, -0.4, 3.0))
     doc.recompute()
     assert subd.isValid(), subd.getStatusString()
-    moved = {k for k, (a, b) in enumerate(zip(before, subd.Proxy.outcome.points)) if (a - V(*b)).Length > 1e-9}
-    assert moved and moved == region, (len(moved), len(region), len(moved ^ region))
+    change = [(a - V(*b)).Length for a, b in zip(before, subd.Proxy.outcome.points)]
+    # The curves' vertices hold limit points, met in rounds to the solve's tolerance (1e-9 of the
+    # size): outside the region nothing moves by more than that, inside most does (89 %).
+    tolerance = 1e-9 * SIZE
+    outside = [c for k, c in enumerate(change) if k not in region]
+    assert max(outside) < tolerance, max(outside)
+    inside = [change[k] for k in region]
+    assert sum(c > tolerance for c in inside) >= 0.8 * len(region), (sum(c > tolerance for c in inside), len(region))
+    assert min(inside) > 0.0
 
 
 def hole_sheet(doc, place=FreeCAD.Placement()):

@@ -67,8 +67,13 @@ def test_fig7d_a_curve_drawn_on_a_relief_carries_it(doc, native, tmp_path):
                 near.append(f)
         return Part.Compound(near).distToShape(Part.Vertex(p))[0]
 
+    # The curve, a B-spline through 48 points of the scan, lies on the bumpy surface only so far
+    # (CurveDistance before the motion); the motion adds nothing to that, and the exact B-rep
+    # agrees with the limit's triangles within a tenth of a finest face.
     gap = max(distance(p) for p in moved)
-    assert gap <= subd.CurveDistance, (gap, subd.CurveDistance)
+    assert gap <= subd.CurveDistance + 0.1 * 100.0 / 10 / 16, (gap, subd.CurveDistance)
+    start = subd.Proxy.outcome.curve_start
+    assert 0.0 < start and subd.CurveDistance <= start + 0.01, (subd.CurveDistance, start)
     path = tmp_path / "fig7d.step"
     varsurf.export_step(brep, str(path))
     assert_reads_back(brep.Shape, path, native)
@@ -77,7 +82,7 @@ def test_fig7d_a_curve_drawn_on_a_relief_carries_it(doc, native, tmp_path):
     import numpy as np
 
     outcome = subd.Proxy.outcome
-    before, after = (np.asarray(m.details[-1]) for m in (outcome.captured, outcome.edited))
+    before, after = (np.asarray(m.details[-1]) for m in (outcome.rest, outcome.edited))
     ratio = np.linalg.norm(after) / np.linalg.norm(before)
     correlation = np.corrcoef(before.ravel(), after.ravel())[0, 1]
     assert abs(ratio - 1.0) < 0.1 and correlation > 0.9, (ratio, correlation)

@@ -36,6 +36,10 @@ class PinDrag:
             self.pins = pins_of(subd)
             self.normals = normals_of(subd)
             self.outcome = last_outcome(subd, compute)
+            # The Curves hold their vertices while the pin moves (their chains found once).
+            self.curves = curves_of(subd)
+            self.chained = multiresolution.curve_vertices(self.outcome.editor, self.outcome.captured, self.curves,
+                                                          self.pins) if self.curves else None
         except SheetError as error:
             raise DragError(f"{subd.Label}: {error}") from error
         self.subd, self.index = subd, int(index)
@@ -45,7 +49,8 @@ class PinDrag:
         pins = list(self.pins)
         p = pins[self.index]
         pins[self.index] = multiresolution.Pin(p.level, p.vertex, (target.x, target.y, target.z), p.influence)
-        return multiresolution.edited_limit(self.outcome, pins, normals=self.normals)
+        return multiresolution.edited_limit(self.outcome, pins, normals=self.normals, curves=self.chained,
+                                            curve_matrix=self.curves.matrix if self.curves else None)
 
     def finish(self, target, do_command=None):
         """Write the target (one undoable step, recorded through do_command) and recompute."""

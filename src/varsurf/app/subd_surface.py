@@ -49,7 +49,7 @@ _PROPERTIES = [
     ("NormalAngle", "App::PropertyFloat", "Result", "The worst prescribed normal's angle from the surface's normal there (degrees, from the edited mesh's divided differences)", True),
     ("CurvePins", "App::PropertyInteger", "Result", "Pins placed along the Curves, at all their levels", True),
     ("BoundaryLoops", "App::PropertyInteger", "Result", "The cage's boundary loops (CurveLoops and HeldLoops number them 0..BoundaryLoops-1)", True),
-    ("CurveDistance", "App::PropertyFloat", "Result", "The farthest of the curves' vertices from its curve before the motion (mm): how closely CurveLevel follows them", True),
+    ("CurveDistance", "App::PropertyFloat", "Result", "The farthest of the moved curves' points from the result (mm, on the finest level's triangles): how closely the surface follows them", True),
     ("FaceCount", "App::PropertyInteger", "Result", "Faces of the finest level", True),
     ("Status", "App::PropertyString", "Result", "OK, or what went wrong", True),
 ]
@@ -95,7 +95,9 @@ class SubdSurfaceFeature(FeatureProxy):
                                         ("loops", list(obj.CurveLoops) + list(obj.HeldLoops))) if there]
             obj.Status += f", {result.curve_pins} pins along the {' and '.join(kinds)}"
             if list(getattr(obj, "Curves", None) or []):
-                obj.Status += f" (within {result.curve_distance:.2g} mm of the curves)"
+                obj.Status += (f" (the moved curves on it within {result.curve_distance:.2g} mm, the curves on it "
+                               f"within {result.curve_start:.2g} mm before; re-parameterized along them within "
+                               f"{result.curve_change:.2g} mm of its shape)")
         if result.region_sizes and (obj.PinTargets or result.curve_pins):
             obj.Status += f", pins met within {result.residual:.2g} mm"
         if result.region_sizes and obj.NormalDirections:
