@@ -12,6 +12,7 @@
 #include <cmath>
 #include <set>
 
+#include "flat_grid.hpp"
 #include "varsurf/core/curve_chain.hpp"
 #include "varsurf/core/detail_edit.hpp"
 #include "varsurf/core/errors.hpp"
@@ -24,15 +25,7 @@ constexpr double kEdge = 2.0;
 constexpr int kCells = 30;
 
 SubdivisionMesh grid() {
-  SubdivisionMesh m;
-  const int n = kCells + 1;
-  m.points.resize(n * n, 3);
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) m.points.row(i * n + j) << i * kEdge, j * kEdge, 0.0;
-  for (int i = 0; i < kCells; ++i)
-    for (int j = 0; j < kCells; ++j)
-      m.faces.push_back({i * n + j, (i + 1) * n + j, (i + 1) * n + j + 1, i * n + j + 1});
-  return m;
+  return test::flat_grid(kCells, kEdge);
 }
 
 bool share_a_face(const SubdivisionMesh& m, int a, int b) {

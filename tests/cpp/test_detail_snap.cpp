@@ -10,6 +10,7 @@
 #include <cmath>
 #include <string>
 
+#include "flat_grid.hpp"
 #include "varsurf/core/detail_edit.hpp"
 #include "varsurf/core/errors.hpp"
 
@@ -22,15 +23,7 @@ constexpr int kCells = 8;
 constexpr double kSize = kSpacing * kCells;
 
 SubdivisionMesh plane() {
-  SubdivisionMesh m;
-  const int n = kCells + 1;
-  m.points.resize(n * n, 3);
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) m.points.row(i * n + j) << i * kSpacing, j * kSpacing, 0.0;
-  for (int i = 0; i < kCells; ++i)
-    for (int j = 0; j < kCells; ++j)
-      m.faces.push_back({i * n + j, (i + 1) * n + j, (i + 1) * n + j + 1, i * n + j + 1});
-  return m;
+  return test::flat_grid(kCells, kSpacing);
 }
 
 double height(double x, double y) {
