@@ -1,0 +1,77 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+#include "varsurf/core/triangular_energy.hpp"
+
+#include <cmath>
+#include <string>
+
+#include "varsurf/core/errors.hpp"
+#include "varsurf/core/triangular_bezier.hpp"
+
+namespace varsurf {
+
+namespace {
+
+double factorial(int n) {
+  return std::tgamma(n + 1.0);
+}
+
+double multinomial(int m, int i, int j) {
+  return factorial(m) / (factorial(i) * factorial(j) * factorial(m - i - j));
+}
+
+// The derivative along a barycentric direction as a matrix: degree m nets to degree m - 1 nets.
+Eigen::MatrixXd derivative_matrix(int m, const Eigen::Vector3d& d) {
+  Eigen::MatrixXd out = Eigen::MatrixXd::Zero(triangle_points(m - 1), triangle_points(m));
+  for (int i = 0; i <= m - 1; ++i)
+    for (int j = 0; i + j <= m - 1; ++j) {
+      const int r = triangle_index(m - 1, i, j);
+      out(r, triangle_index(m, i + 1, j)) += m * d(0);
+      out(r, triangle_index(m, i, j + 1)) += m * d(1);
+      out(r, triangle_index(m, i, j)) += m * d(2);
+    }
+  return out;
+}
+
+}  // namespace
+
+Eigen::MatrixXd bernstein_gram(int m, double area) {
+  const int q = triangle_points(m);
+  Eigen::MatrixXd g(q, q);
+  for (int i = 0; i <= m; ++i)
+    for (int j = 0; i + j <= m; ++j)
+      for (int k = 0; k <= m; ++k)
+        for (int l = 0; k + l <= m; ++l)
+          g(triangle_index(m, i, j), triangle_index(m, k, l)) =
+              2.0 * area * multinomial(m, i, j) * multinomial(m, k, l) /
+              (multinomial(2 * m, i + k, j + l) * (2.0 * m + 1.0) * (2.0 * m + 2.0));
+  return g;
+}
+
+TriangleEnergy triangle_energy(int degree, double side) {
+  if (degree < 1 || degree > 20)
+    throw InvalidInput("a triangular patch has degree 1 to 20, not " + std::to_string(degree));
+  if (!(side > 0.0) || !std::isfinite(side))
+    throw InvalidInput("the domain triangle's side must be a positive number");
+  // The barycentric coordinates' gradients on the equilateral triangle: a Cartesian direction e
+  // is the barycentric direction (grad u . e, grad v . e, grad w . e).
+  const double h = side * std::sqrt(3.0) / 2.0, area = side * h / 2.0;
+  const Eigen::Vector3d dx(-1.0 / side, 1.0 / side, 0.0);
+  const Eigen::Vector3d dy(-0.5 / h, -0.5 / h, 1.0 / h);
+  const int n = degree;
+  TriangleEnergy out;
+  const Eigen::MatrixXd gx = derivative_matrix(n, dx), gy = derivative_matrix(n, dy);
+  const Eigen::MatrixXd g1 = bernstein_gram(n - 1, area);
+  out.stretch = gx.transpose() * g1 * gx + gy.transpose() * g1 * gy;
+  if (n >= 2) {
+    const Eigen::MatrixXd g2 = bernstein_gram(n - 2, area);
+    const Eigen::MatrixXd xx = derivative_matrix(n - 1, dx) * gx;
+    const Eigen::MatrixXd xy = derivative_matrix(n - 1, dy) * gx;
+    const Eigen::MatrixXd yy = derivative_matrix(n - 1, dy) * gy;
+    out.bend = xx.transpose() * g2 * xx + 2.0 * xy.transpose() * g2 * xy + yy.transpose() * g2 * yy;
+  } else {
+    out.bend = Eigen::MatrixXd::Zero(triangle_points(n), triangle_points(n));
+  }
+  return out;
+}
+
+}  // namespace varsurf
