@@ -344,10 +344,12 @@ def curve_vertices(editor, surface, curves: CurveMotion, pins: Sequence[Pin] = (
     # A chain at each level from the influence level on, each vertex pinned at its own level: the
     # finest chain propagated down instead would put more pins on a coarse level than it has
     # vertices near the curve (225 pins on a 10 x 10 cage folded a relief's surface over). The
-    # coarser chains carry the curve's neighbourhood as found; the curves' level's chain is
-    # snapped onto the curve (DetailEditor.snap) and holds the limit surface there. Snapping the
-    # coarser chains too moved coarse vertices whole faces, leaving the finest limit points up to
-    # 0.9 finest edges off the curve, which only a fold could mend (Fig. 7d's relief).
+    # coarser chains carry the curve's neighbourhood as found; the finest level's chain, when
+    # CurveLevel is the finest, is snapped onto the curve (DetailEditor.snap) and holds the limit
+    # surface there. Snapping coarser chains too moved coarse vertices whole faces, leaving the
+    # finest limit points up to 0.9 finest edges off the curve, which only a fold could mend
+    # (Fig. 7d's relief); holding the limit from a coarser CurveLevel folded a plane's B-rep
+    # (levels 3 and 4 of 5), so a coarser CurveLevel pins its chain as found.
     for at in range(int(curves.influence), level + 1 if curves.curves else 0):
         level_points = np.asarray(editor.points(surface)[at])
         mesh = nat.SubdivisionMesh(level_points, editor.topology(at).faces)
@@ -357,7 +359,7 @@ def curve_vertices(editor, surface, curves: CurveMotion, pins: Sequence[Pin] = (
                 chains.append(nat.curve_chain(mesh, np.asarray(curve, float).reshape(-1, 3)))
             except nat.InvalidInput as error:
                 raise SheetError(f"curve {number + 1} at level {at}: {error}") from error
-        if at == level:
+        if at == level == editor.levels():
             shortest = _shortest_edges(level_points, mesh.faces)
             for chain in chains:
                 for v, target in _snappable(chain, level_points, shortest):
