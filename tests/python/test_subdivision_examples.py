@@ -80,7 +80,7 @@ def test_fig7d_a_curve_drawn_on_a_relief_carries_it(doc, native, tmp_path):
     # The bumps ride along: the finest level's detail vectors (in their local frames) keep their
     # size and their pattern through the edit, exactly beyond four finest edges of the curve (2.5
     # mm); nearer, the surface is drawn through the curve's points, which lie up to 0.4 mm off its
-    # bumps, and the details there change (all of them: 1.055 x, correlation 0.963).
+    # bumps, and the details there change (all of them: 1.016 x, correlation 0.989).
     import numpy as np
 
     outcome = subd.Proxy.outcome
