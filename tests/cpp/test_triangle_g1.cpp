@@ -165,4 +165,5 @@ TEST(TriangleG1, BadVerticesAndEdgesAreRefused) {
   TriangularBezier p{1, Eigen::MatrixX3d::Zero(3, 3)};
   refused([&] { shared_edge_angle(p, 0, 0, p, 0, 1); }, "two different corners");
   refused([&] { shared_edge_angle(p, 0, 3, p, 0, 1); }, "corners are 0, 1 and 2");
+  refused([&] { shared_edge_angle(p, 0, 1, p, 0, 1, 1); }, "2 to 100000 samples");
 }

@@ -250,4 +250,6 @@ TEST(TriangularBezier, BadPatchesAndSplitsAreRefused) {
   refused([&] { split_at_edge(p, 1, 1.0); }, "t in (0, 1)");
   refused([&] { p.derivative({1.0, -1.0, 0.0}, 4); }, "order must lie in 0..3");
   refused([] { triangle_energy(3, -1.0); }, "positive number");
+  refused([] { bernstein_gram(41, 1.0); }, "degree 0 to 40");
+  refused([] { bernstein_gram(2, NAN); }, "area must be a finite number");
 }

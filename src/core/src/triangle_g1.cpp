@@ -73,7 +73,8 @@ double shared_edge_angle(const TriangularBezier& a, int a_from, int a_to, const 
   for (const int c : {a_from, a_to, b_from, b_to})
     if (c < 0 || c > 2) throw InvalidInput("a triangle's corners are 0, 1 and 2");
   if (a_from == a_to || b_from == b_to) throw InvalidInput("an edge joins two different corners");
-  if (samples < 2) throw InvalidInput("an edge's angle needs at least 2 samples");
+  if (samples < 2 || samples > 100000)
+    throw InvalidInput("an edge's angle takes 2 to 100000 samples");
   double worst = 0.0;
   for (int s = 0; s < samples; ++s) {
     const double t = static_cast<double>(s) / (samples - 1);

@@ -35,6 +35,9 @@ Eigen::MatrixXd derivative_matrix(int m, const Eigen::Vector3d& d) {
 }  // namespace
 
 Eigen::MatrixXd bernstein_gram(int m, double area) {
+  if (m < 0 || m > 40) throw InvalidInput("a Bernstein basis on a triangle has degree 0 to 40");
+  if (!(area >= 0.0) || !std::isfinite(area))
+    throw InvalidInput("a triangle's area must be a finite number >= 0");
   const int q = triangle_points(m);
   Eigen::MatrixXd g(q, q);
   for (int i = 0; i <= m; ++i)

@@ -40,7 +40,7 @@ Eigen::MatrixXd g1_edge_equations(int degree, const G1Weights& start, const G1We
 // `samples` points: the edge runs from corner `a_from` to `a_to` of patch a and from `b_from` to
 // `b_to` of patch b (the same points in the same order), normals from each patch's own corner
 // order (two patches oriented alike meet with equal normals). InvalidInput for bad corners or
-// fewer than 2 samples.
+// samples outside 2..100000.
 double shared_edge_angle(const TriangularBezier& a, int a_from, int a_to, const TriangularBezier& b,
                          int b_from, int b_to, int samples = 50);
 

@@ -12,6 +12,7 @@ namespace varsurf {
 
 // The integrals over a triangle of area `area` of B_a B_b, a and b of degree m (numbered as
 // triangle_index): 2 area C(m; a) C(m; b) / (C(2m; a + b) (2m + 1)(2m + 2)), C the multinomial.
+// InvalidInput for a degree outside 0..40 or an area that is negative or not finite.
 Eigen::MatrixXd bernstein_gram(int degree, double area);
 
 struct TriangleEnergy {
