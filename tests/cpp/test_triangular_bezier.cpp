@@ -116,7 +116,9 @@ TEST(TriangularBezier, DerivativesMatchCentralDifferences) {
   for (int k = 0; k < 10; ++k) {
     const Eigen::Vector3d b = random_point(rng);
     const Eigen::Vector3d fd = (p.evaluate(b + h * d) - p.evaluate(b - h * d)) / (2 * h);
-    EXPECT_LT((p.derivative(d).evaluate(b) - fd).norm(), 1e-6);
+    // Central differences miss by h^2 / 6 of the third derivative: up to about 1e-9 x 2,400 for
+    // a quintic net within +-5 (the standard libraries draw different nets from one seed).
+    EXPECT_LT((p.derivative(d).evaluate(b) - fd).norm(), 1e-5);
     const Eigen::Vector3d fd2 =
         (p.evaluate(b + h * d) - 2 * p.evaluate(b) + p.evaluate(b - h * d)) / (h * h);
     EXPECT_LT((p.derivative(d, 2).evaluate(b) - fd2).norm(), 1e-4);
