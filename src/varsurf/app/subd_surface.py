@@ -49,7 +49,7 @@ _PROPERTIES = [
     ("NormalAngle", "App::PropertyFloat", "Result", "The worst prescribed normal's angle from the surface's normal there (degrees, from the edited mesh's divided differences)", True),
     ("CurvePins", "App::PropertyInteger", "Result", "Pins placed along the Curves, at all their levels", True),
     ("BoundaryLoops", "App::PropertyInteger", "Result", "The cage's boundary loops (CurveLoops and HeldLoops number them 0..BoundaryLoops-1)", True),
-    ("CurveDistance", "App::PropertyFloat", "Result", "The farthest of the moved curves' points from the result (mm, on the finest level's triangles): how closely the surface follows them", True),
+    ("CurveDistance", "App::PropertyFloat", "Result", "The farthest of the moved curves' points from the result (mm, on its bicubic limit patches near them): how closely the surface follows them", True),
     ("FaceCount", "App::PropertyInteger", "Result", "Faces of the finest level", True),
     ("Status", "App::PropertyString", "Result", "OK, or what went wrong", True),
 ]

@@ -182,9 +182,7 @@ def build(points: Sequence[Point], faces: Sequence[Sequence[int]], levels: int,
         limit = editor.limit(multires)
     except nat.InvalidInput as error:
         raise SheetError(str(error)) from error
-    triangles = []
-    for face in finest.faces:
-        triangles += [(face[0], face[k], face[k + 1]) for k in range(1, len(face) - 1)]
+    triangles = [tuple(t) for t in _triangles(finest)]
     result = MultiresResult(np.asarray(limit), triangles, level_points,
                             [editor.topology(k).faces for k in range(levels + 1)], captured=captured, editor=editor,
                             edited=multires, rest=chained.surface if chained is not None else captured)
@@ -541,8 +539,8 @@ def edited_limit(result: MultiresResult, pins: Sequence[Pin], solve: str = "Appr
                  tolerance: float = DRAG_TOLERANCE) -> np.ndarray:
     """The limit points of a built surface's captured levels edited by `pins`, `normals` and the
     pins along `curves` (a CurveMotion, or a drag's CurveVertices moved by `curve_matrix`): a
-    drag's move, the approximate solve by default, to DRAG_TOLERANCE, without building anything
-    again."""
+    drag's move, the approximate solve by default, to `tolerance` (a drag's DRAG_TOLERANCE by
+    default), without building anything again."""
     nat = native()
     options = nat.DetailEditOptions()
     options.solve = _solve(solve)
@@ -590,8 +588,9 @@ def influence_region(result: MultiresResult, pins: Sequence[Pin], index: int,
                      normals: Sequence[Normal] = (), curves: CurveMotion = None) -> np.ndarray:
     """The finest level's vertices that pin `index` moves (its region of influence, Boier-Martin
     et al. 4.2): the approximate edit with the pin probed along the surface's normal, against the
-    edit without the probe, both with the same normals and curves. Exact: outside the region the
-    limit points come out bitwise equal."""
+    edit without the probe, both with the same normals and curves, to the recompute's tolerance:
+    outside the region nothing moves by more than that tolerance (bitwise nothing without curves,
+    whose limit-surface pins are met in rounds)."""
     nat = native()
     pins = list(pins)
     p = pins[int(index)]
