@@ -82,8 +82,9 @@ double shared_edge_angle(const TriangularBezier& a, int a_from, int a_to, const 
         (1.0 - t) * Eigen::Vector3d::Unit(a_from) + t * Eigen::Vector3d::Unit(a_to);
     const Eigen::Vector3d pb =
         (1.0 - t) * Eigen::Vector3d::Unit(b_from) + t * Eigen::Vector3d::Unit(b_to);
-    const double c = std::clamp(normal_at(a, pa).dot(normal_at(b, pb)), -1.0, 1.0);
-    worst = std::max(worst, std::acos(c));
+    const double d = normal_at(a, pa).dot(normal_at(b, pb));
+    if (!std::isfinite(d)) return M_PI;  // a patch without a normal there: as bad as it gets
+    worst = std::max(worst, std::acos(std::clamp(d, -1.0, 1.0)));
   }
   return worst;
 }

@@ -39,7 +39,8 @@ Eigen::MatrixXd g1_edge_equations(int degree, const G1Weights& start, const G1We
 // The largest angle (radians) between the normals of two patches along their shared edge, at
 // `samples` points: the edge runs from corner `a_from` to `a_to` of patch a and from `b_from` to
 // `b_to` of patch b (the same points in the same order), normals from each patch's own corner
-// order (two patches oriented alike meet with equal normals). InvalidInput for bad corners or
+// order (two patches oriented alike meet with equal normals); pi where a patch has no normal (a
+// collapsed tangent). InvalidInput for bad corners or
 // samples outside 2..100000.
 double shared_edge_angle(const TriangularBezier& a, int a_from, int a_to, const TriangularBezier& b,
                          int b_from, int b_to, int samples = 50);
