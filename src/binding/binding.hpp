@@ -15,5 +15,6 @@ void bind_model(pybind11::module_& m);           // several sheets and curves as
 void bind_hierarchical(pybind11::module_& m);    // locally refined sheets
 void bind_pde(pybind11::module_& m);             // the PDE energy's coefficient
 void bind_subdivision(pybind11::module_& m);     // Catmull-Clark meshes, multiresolution, edits
+void bind_triangular(pybind11::module_& m);      // triangular Bezier surfaces over triangulations
 
 }  // namespace varsurf::binding

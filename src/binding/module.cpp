@@ -18,4 +18,5 @@ PYBIND11_MODULE(_native, m) {
   varsurf::binding::bind_model(m);
   varsurf::binding::bind_hierarchical(m);
   varsurf::binding::bind_subdivision(m);
+  varsurf::binding::bind_triangular(m);
 }

@@ -255,3 +255,49 @@ TEST(TriangularBezier, BadPatchesAndSplitsAreRefused) {
   refused([] { bernstein_gram(41, 1.0); }, "degree 0 to 40");
   refused([] { bernstein_gram(2, NAN); }, "area must be a finite number");
 }
+
+TEST(TriangularEnergy, AnyDomainTriangleIntegratesItsOwnClosedForms) {
+  // Over the triangle a, b, c: the domain's own x and y have stretch = area and no bend, and
+  // z = p x^2 + q xy + r y^2 has bend area (4 p^2 + 2 q^2 + 4 r^2).
+  const Eigen::Vector2d a(0.3, -0.2), b(4.1, 0.5), c(1.2, 1.7);
+  const double area = 0.5 * ((b - a).x() * (c - a).y() - (b - a).y() * (c - a).x());
+  const double p = 0.6, q = -0.9, r = 1.1;
+  for (const int n : {2, 3, 6}) {
+    const TriangleEnergy e = triangle_energy(n, a, b, c);
+    Eigen::VectorXd x(triangle_points(n)), y(triangle_points(n)), z(triangle_points(n));
+    // The quadratic's Bezier net of degree n by its blossom: for x^2 the products of pairs of
+    // distinct corner x's (i.e. mean of x_s x_t over the multiset of corners), likewise xy, y^2.
+    for (int i = 0; i <= n; ++i)
+      for (int j = 0; i + j <= n; ++j) {
+        const int k = n - i - j, row = triangle_index(n, i, j);
+        const Eigen::Vector2d m = (i * a + j * b + k * c) / n;
+        x(row) = m.x();
+        y(row) = m.y();
+        // Blossom of a quadratic f at n arguments: sum over pairs s < t of f~(p_s, p_t) / C(n, 2)
+        // with f~ the polar form; over corners repeated i, j, k times.
+        std::vector<Eigen::Vector2d> args;
+        for (int s = 0; s < i; ++s) args.push_back(a);
+        for (int s = 0; s < j; ++s) args.push_back(b);
+        for (int s = 0; s < k; ++s) args.push_back(c);
+        double sum = 0.0;
+        for (std::size_t s = 0; s < args.size(); ++s)
+          for (std::size_t t = s + 1; t < args.size(); ++t)
+            sum += p * args[s].x() * args[t].x() +
+                   0.5 * q * (args[s].x() * args[t].y() + args[s].y() * args[t].x()) +
+                   r * args[s].y() * args[t].y();
+        z(row) = sum / (n * (n - 1) / 2.0);
+      }
+    EXPECT_NEAR(x.dot(e.stretch * x), area, 1e-12 * area) << n;
+    EXPECT_NEAR(y.dot(e.stretch * y), area, 1e-12 * area) << n;
+    EXPECT_NEAR(x.dot(e.bend * x), 0.0, 1e-11) << n;
+    EXPECT_NEAR(z.dot(e.bend * z), area * (4 * p * p + 2 * q * q + 4 * r * r), 1e-10) << n;
+  }
+  // The equilateral domain is the special case, and a clockwise or flat triangle is refused.
+  const double h = std::sqrt(3.0) / 2.0;
+  const TriangleEnergy eq = triangle_energy(4, 2.0);
+  const TriangleEnergy same =
+      triangle_energy(4, Eigen::Vector2d(0, 0), Eigen::Vector2d(2, 0), Eigen::Vector2d(1, 2 * h));
+  EXPECT_LT((eq.bend - same.bend).cwiseAbs().maxCoeff(), 1e-12 * eq.bend.cwiseAbs().maxCoeff());
+  EXPECT_THROW(triangle_energy(3, a, c, b), InvalidInput);
+  EXPECT_THROW(triangle_energy(3, a, b, a + 2.0 * (b - a)), InvalidInput);
+}

@@ -623,8 +623,76 @@ def hostile_edit_options():
     return out
 
 
+def triangular_problem():
+    p = nat.TriangularProblem()
+    p.vertices = np.array([[0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [-1.0, 0.0, 0.0], [0.0, -1.0, 0.0],
+                           [0.0, 0.0, -1.0]])
+    p.triangles = [(0, 1, 2), (0, 2, 3), (0, 3, 4), (0, 4, 1), (5, 2, 1), (5, 3, 2), (5, 4, 3), (5, 1, 4)]
+    return p
+
+
+def hostile_triangular_problems():
+    out = []
+
+    def variant(**changes):
+        p = triangular_problem()
+        for name, value in changes.items():
+            setattr(p, name, value)
+        out.append(p)
+
+    variant(triangles=[])
+    variant(triangles=[(0, 1, 99)])
+    variant(triangles=[(0, 1, -1)])
+    variant(triangles=[(0, 0, 1)])
+    variant(triangles=[(0, 1, 2), (0, 1, 3), (0, 1, 4)])
+    variant(triangles=[(0, 1, 2), (0, 3, 4)])
+    variant(triangles=[(0, 1, 2), (0, 2, 1)])
+    variant(vertices=np.zeros((6, 3)))
+    variant(vertices=np.zeros((0, 3)))
+    bad = triangular_problem().vertices.copy()
+    bad[2, 1] = NAN
+    variant(vertices=bad)
+    for n in (-1, 0, 2, 13, 2 ** 31 - 1):
+        variant(degree=n)
+    for name in ("stretch", "bend", "g1_weight", "border_angle", "cg_tolerance", "angle_tolerance"):
+        for x in hostile_floats():
+            variant(**{name: x})
+    for name in ("g1_rounds", "cg_above", "cg_iterations", "angle_samples"):
+        for n in hostile_ints():
+            variant(**{name: n})
+    variant(stretch=0.0, bend=0.0)
+    variant(interpolate_vertices=False)
+    variant(solver=nat.TriangularSolver.cg, cg_iterations=1)
+    kinds = list(nat.TriangularConstraintKind.__members__.values())
+    for kind in kinds:
+        for triangle in (-1, 8, 2 ** 31 - 1):
+            variant(constraints=[nat.TriangularConstraint(kind, triangle, np.array([1 / 3, 1 / 3, 1 / 3]))])
+        for at in ([1.2, -0.1, -0.1], [NAN, 0.5, 0.5], [0.0, 0.0, 0.0]):
+            variant(constraints=[nat.TriangularConstraint(kind, 0, np.array(at))])
+        variant(constraints=[nat.TriangularConstraint(kind, 0, np.array([1 / 3, 1 / 3, 1 / 3]), np.array([INF, 0, 0]),
+                                                      np.zeros(3))])
+    # Conflicting constraints: one point held at two places.
+    variant(constraints=[nat.TriangularConstraint(kinds[0], 0, np.array([1 / 3, 1 / 3, 1 / 3]), np.array(t))
+                         for t in ([0.0, 0.0, 2.0], [0.0, 0.0, 3.0])])
+    return out
+
+
+def hostile_triangular_patches():
+    out = []
+    for degree in (1, 3, 20):
+        points = np.zeros(((degree + 1) * (degree + 2) // 2, 3))
+        points[0, 0] = 1.0
+        out.append(nat.TriangularBezier(degree, points))
+    return out
+
+
 CLASS_VALUES = {
     "SplineSpace": (space, hostile_spaces),
+    "TriangularProblem": (triangular_problem, hostile_triangular_problems),
+    "TriangularBezier": (lambda: nat.TriangularBezier(1, np.array([[0.0, 0, 0], [1, 0, 0], [0, 1, 0]])),
+                         hostile_triangular_patches),
+    "TriangularConstraintKind": (lambda: nat.TriangularConstraintKind.point,
+                                 lambda: list(nat.TriangularConstraintKind.__members__.values())),
     "BSplineSurface": (surface, hostile_surfaces),
     "SheetProblem": (problem, hostile_problems),
     "SolveOptions": (nat.SolveOptions, hostile_options),

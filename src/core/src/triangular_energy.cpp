@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: LGPL-2.1-or-later
 #include "varsurf/core/triangular_energy.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -51,15 +52,33 @@ Eigen::MatrixXd bernstein_gram(int m, double area) {
 }
 
 TriangleEnergy triangle_energy(int degree, double side) {
-  if (degree < 1 || degree > 20)
-    throw InvalidInput("a triangular patch has degree 1 to 20, not " + std::to_string(degree));
   if (!(side > 0.0) || !std::isfinite(side))
     throw InvalidInput("the domain triangle's side must be a positive number");
-  // The barycentric coordinates' gradients on the equilateral triangle: a Cartesian direction e
-  // is the barycentric direction (grad u . e, grad v . e, grad w . e).
-  const double h = side * std::sqrt(3.0) / 2.0, area = side * h / 2.0;
-  const Eigen::Vector3d dx(-1.0 / side, 1.0 / side, 0.0);
-  const Eigen::Vector3d dy(-0.5 / h, -0.5 / h, 1.0 / h);
+  return triangle_energy(degree, Eigen::Vector2d(0.0, 0.0), Eigen::Vector2d(side, 0.0),
+                         Eigen::Vector2d(0.5 * side, 0.5 * std::sqrt(3.0) * side));
+}
+
+TriangleEnergy triangle_energy(int degree, const Eigen::Vector2d& a, const Eigen::Vector2d& b,
+                               const Eigen::Vector2d& c) {
+  if (degree < 1 || degree > 20)
+    throw InvalidInput("a triangular patch has degree 1 to 20, not " + std::to_string(degree));
+  if (!a.allFinite() || !b.allFinite() || !c.allFinite())
+    throw InvalidInput("the domain triangle's corners must be finite");
+  const double twice = (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
+  const double longest =
+      std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()});
+  if (!(twice > 1e-12 * longest))
+    throw InvalidInput("the domain triangle must have area, its corners counterclockwise");
+  // The barycentric coordinates' gradients: a Cartesian direction e is the barycentric direction
+  // (grad u . e, grad v . e, grad w . e); grad of the coordinate of a corner is the opposite
+  // edge turned inward, over twice the area.
+  const auto gradient = [twice](const Eigen::Vector2d& p,
+                                const Eigen::Vector2d& q) -> Eigen::Vector2d {
+    return Eigen::Vector2d(-(q - p).y(), (q - p).x()) / twice;  // of the corner left of p -> q
+  };
+  const Eigen::Vector2d ga = gradient(b, c), gb = gradient(c, a), gc = gradient(a, b);
+  const Eigen::Vector3d dx(ga.x(), gb.x(), gc.x()), dy(ga.y(), gb.y(), gc.y());
+  const double area = 0.5 * twice;
   const int n = degree;
   TriangleEnergy out;
   const Eigen::MatrixXd gx = derivative_matrix(n, dx), gy = derivative_matrix(n, dy);

@@ -203,17 +203,27 @@ TriangularResult solve_triangular(const TriangularProblem& problem) {
 
   for (int v = 0; v < vcount; ++v) start.row(v) = net.vertices.row(v);  // exactly, not (n V) / n
 
-  // Energy: per patch over the equilateral triangle of its own area (the stretch term does not
-  // depend on the size, the bend term goes as 1 / side^2).
+  // Energy: per patch over its domain triangle: the mesh triangle itself laid flat, or (their eq.
+  // 25) the equilateral triangle of its area, on which the stretch term does not depend on the
+  // size and the bend term goes as 1 / side^2.
   const TriangleEnergy unit = triangle_energy(n, 1.0);
   Triplets q_terms;
   for (int t = 0; t < tcount; ++t) {
     const auto& c = net.triangles[t];
     const Eigen::Vector3d p = net.vertices.row(c[0]), a = net.vertices.row(c[1]),
                           b = net.vertices.row(c[2]);
-    const double area = 0.5 * (a - p).cross(b - p).norm();
-    const double side2 = 4.0 * area / std::sqrt(3.0);
-    const Eigen::MatrixXd local = problem.stretch * unit.stretch + problem.bend / side2 * unit.bend;
+    Eigen::MatrixXd local;
+    if (problem.equilateral_domain) {
+      const double side2 = 4.0 * (0.5 * (a - p).cross(b - p).norm()) / std::sqrt(3.0);
+      local = problem.stretch * unit.stretch + problem.bend / side2 * unit.bend;
+    } else {
+      const Eigen::Vector3d x = (a - p).normalized();
+      const Eigen::Vector3d y = ((a - p).cross(b - p)).cross(x).normalized();
+      const TriangleEnergy own =
+          triangle_energy(n, Eigen::Vector2d::Zero(), Eigen::Vector2d((a - p).dot(x), 0.0),
+                          Eigen::Vector2d((b - p).dot(x), (b - p).dot(y)));
+      local = problem.stretch * own.stretch + problem.bend * own.bend;
+    }
     for (int r = 0; r < local.rows(); ++r)
       for (int s = 0; s < local.cols(); ++s)
         q_terms.emplace_back(net.control[t][r], net.control[t][s], local(r, s));

@@ -21,6 +21,7 @@ TRANSACTION_FILL_HOLE = "Fill hole with VarSurf sheet"
 TRANSACTION_TUBE = "Add VarSurf tube"
 TRANSACTION_SUBD = "Add VarSurf subdivision surface"
 TRANSACTION_SUBD_BREP = "Add VarSurf subdivision B-rep"
+TRANSACTION_TRIANGULAR = "Add VarSurf triangular surface"
 
 
 def _report(error, on_error):
@@ -117,6 +118,18 @@ def run_subd_brep_command(selection_ex, do_command=None, on_error=None):
         _report(error, on_error)
         return None
     return run_in_transaction(subd.Document, TRANSACTION_SUBD_BREP, macro.subd_brep_command_lines(subd), do_command)
+
+
+def run_triangular_command(selection_ex, do_command=None, on_error=None):
+    """What VarSurf_TriangularSurface does: a G1 surface of triangular patches over the selected
+    mesh."""
+    try:
+        source = selection.triangular_selection_to_args(selection_ex)
+    except ValueError as error:
+        _report(error, on_error)
+        return None
+    return run_in_transaction(source.Document, TRANSACTION_TRIANGULAR, macro.triangular_command_lines(source),
+                              do_command)
 
 
 def run_fill_hole_command(selection_ex, do_command=None, on_error=None):

@@ -13,6 +13,7 @@ from varsurf.app.actions import (
     run_sheet_command,
     run_solid_command,
     run_space_curve_command,
+    run_triangular_command,
 )
 from varsurf.app.macro import constraint_command_lines, sheet_command_lines
 from varsurf.app.make import (
@@ -41,6 +42,7 @@ from varsurf.app.selection import (
     space_curve_selection_to_base,
 )
 from varsurf.app.transaction import run_in_transaction
+from varsurf.app.triangular_surface import is_triangular_surface, make_triangular_surface
 from varsurf.app.tube import make_tube
 
 __all__ = [
@@ -69,6 +71,9 @@ __all__ = [
     "is_pde_surface",
     "make_subd_surface",
     "make_subd_brep",
+    "make_triangular_surface",
+    "is_triangular_surface",
+    "run_triangular_command",
     "is_subd_surface",
     "set_pins",
     "set_normals",

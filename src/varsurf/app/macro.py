@@ -73,6 +73,15 @@ def subd_brep_command_lines(subd) -> List[str]:
     ]
 
 
+def triangular_command_lines(source) -> List[str]:
+    """Macro lines that add a TriangularSurface over a mesh and recompute."""
+    return [
+        "import varsurf",
+        f"_surface = varsurf.make_triangular_surface({ref(source)})",
+        f"App.getDocument({source.Document.Name!r}).recompute()",
+    ]
+
+
 def constraint_command_lines(kind: str, sheet, args) -> List[str]:
     """Macro lines that add a constraint with editable defaults and recompute."""
     parts = [ref(sheet), repr(kind)]

@@ -126,6 +126,7 @@ def fill_hole_selection_to_args(selection_ex):
 SUBD_HINT = ("Select the cage (a Mesh, a shape whose faces make the control mesh, or a VarSurf sheet) and, "
              "optionally, a Mesh or shape whose detail to capture.")
 SUBD_BREP_HINT = "Select one SubdSurface."
+TRIANGULAR_HINT = "Select one Mesh (a coarse triangle mesh: each triangle becomes a patch) or a shape with faces."
 
 
 def _has_mesh_or_faces(obj) -> bool:
@@ -153,6 +154,14 @@ def subd_brep_selection_to_args(selection_ex):
     objects = [sel.Object for sel in selection_ex or []]
     if len(objects) != 1 or getattr(getattr(objects[0], "Proxy", None), "Type", "") != "VarSurf::SubdSurface":
         raise ValueError(f"no single SubdSurface is selected. {SUBD_BREP_HINT}")
+    return objects[0]
+
+
+def triangular_selection_to_args(selection_ex):
+    """The Mesh (or shape with faces) of a selection. ValueError saying what to select otherwise."""
+    objects = [sel.Object for sel in selection_ex or []]
+    if len(objects) != 1 or not _has_mesh_or_faces(objects[0]):
+        raise ValueError(f"no single mesh is selected. {TRIANGULAR_HINT}")
     return objects[0]
 
 

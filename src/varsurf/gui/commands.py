@@ -139,6 +139,14 @@ SELECTION_COMMANDS = [
          "The limit surface of a SubdSurface as bicubic B-spline faces sewn into a shell or solid (exact\n"
          "where regular, within a measured deviation at extraordinary vertices). Select one SubdSurface."),
      selection.subd_brep_selection_to_args, actions.run_subd_brep_command),
+    ("VarSurf_TriangularSurface", "VarSurf_TriangularSurface.svg",
+     QT_TRANSLATE_NOOP("VarSurf_TriangularSurface", "Triangular surface from a mesh"),
+     QT_TRANSLATE_NOOP(
+         "VarSurf_TriangularSurface",
+         "The fairest G1 surface of triangular Bezier patches through a coarse triangle mesh (Veltkamp &\n"
+         "Wesselink): one patch per triangle, any topology (N-sided regions, branches, closed shapes of any\n"
+         "genus), written exactly as B-spline faces sewn into a shell or solid. Select one Mesh."),
+     selection.triangular_selection_to_args, actions.run_triangular_command),
     ("VarSurf_SpaceCurve", "VarSurf_SpaceCurve.svg",
      QT_TRANSLATE_NOOP("VarSurf_SpaceCurve", "Variational space curve"),
      QT_TRANSLATE_NOOP(

@@ -261,6 +261,19 @@ class ViewProviderSubdBRep(_ViewProvider):
         return [base] if base is not None else []
 
 
+class ViewProviderTriangularSurface(_EditedInPanel, _ViewProvider):
+    """Tree icon of a TriangularSurface (triangular Bezier patches over a mesh), with its mesh as
+    child; double click opens its task panel."""
+
+    TYPE = "VarSurf::ViewProviderTriangularSurface"
+    ICON = "VarSurf_TriangularSurface.svg"
+    PANEL = ("varsurf.gui.task_triangular_surface", "TaskPanelTriangularSurface")
+
+    def claimChildren(self):
+        source = getattr(getattr(self, "Object", None), "Source", None)
+        return [source] if source is not None else []
+
+
 class ViewProviderSpaceCurve(_ViewProvider):
     """Tree icon of a variational SpaceCurve, drawn thick so it reads as a handle-driven curve,
     with a draggable pin on each handle (gui.handles.CurveHandles)."""

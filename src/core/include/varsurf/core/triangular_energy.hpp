@@ -26,4 +26,9 @@ struct TriangleEnergy {
 // is not a positive finite number.
 TriangleEnergy triangle_energy(int degree, double side = 1.0);
 
+// The same over any triangle of the plane, corners a, b, c counterclockwise (corner 1, 2, 3 of
+// the patch). InvalidInput for a degree outside 1..20 or a triangle without area.
+TriangleEnergy triangle_energy(int degree, const Eigen::Vector2d& a, const Eigen::Vector2d& b,
+                               const Eigen::Vector2d& c);
+
 }  // namespace varsurf

@@ -54,6 +54,9 @@ struct TriangularProblem {
   double stretch = 0.0;  // weights of eq. 1's internal energy
   double bend = 1.0;
   bool interpolate_vertices = true;  // the mesh's vertices are points of the surface
+  // Each patch's energy over the equilateral triangle of its area (their eq. 25), or over the mesh
+  // triangle itself laid flat, which follows the mesh's own proportions.
+  bool equilateral_domain = true;
   bool g1 = true;
   bool approximate_g1 = false;  // their weaker variant (one row between the vertex rows)
   // Border vertices: the angle the surface turns through there. Negative: the angle the mesh's

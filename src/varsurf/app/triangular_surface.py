@@ -1,0 +1,113 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""The TriangularSurface feature: the fairest G1 surface of triangular Bezier patches over a
+triangle mesh (Veltkamp & Wesselink), one patch per triangle, through the mesh's vertices; its
+Shape is the patches written exactly as tensor-product Bezier faces (three per patch) sewn into a
+shell, or a solid when the mesh is closed. Parametric: editing the mesh or a setting recomputes
+it. The computation is varsurf.solve.triangular."""
+
+from __future__ import annotations
+
+from varsurf.app.feature import FeatureProxy, mark_failed, value
+from varsurf.app.subdivision import target_triangles
+from varsurf.app.view_link import attach as attach_view_provider
+from varsurf.solve import errors, triangular
+from varsurf.solve.shapes import shape_from_brep
+
+TYPE = "VarSurf::TriangularSurface"
+
+# name, type, group, tooltip, output?
+_PROPERTIES = [
+    ("Source", "App::PropertyLink", "TriangularSurface", "The triangulation: a Mesh (each triangle becomes a patch through its corners), or a shape whose faces are tessellated", False),
+    ("Degree", "App::PropertyIntegerConstraint", "TriangularSurface", "Degree of every patch (3: the paper's cubics; higher degrees meet G1 with more freedom)", False),
+    ("Stretch", "App::PropertyFloat", "Energy", "Weight of the stretch energy (area-like)", False),
+    ("Bend", "App::PropertyFloat", "Energy", "Weight of the bend energy (thin plate)", False),
+    ("G1", "App::PropertyBool", "Continuity", "Tangent-plane continuity across every inner edge (the default constraints)", False),
+    ("ApproximateG1", "App::PropertyBool", "Continuity", "The weaker variant: G1 at the vertices, one condition between them", False),
+    ("BorderAngle", "App::PropertyAngle", "Continuity", "The angle the surface turns through at each border vertex (0: the angle the mesh's own triangles span there)", False),
+    ("Solver", "App::PropertyEnumeration", "Solve", "Direct (sparse Cholesky), CG (conjugate gradients) or Automatic", False),
+    ("Tolerance", "App::PropertyLength", "Solve", "Sewing tolerance (mm; 0: a ten-millionth of the mesh's size)", False),
+    ("Closed", "App::PropertyBool", "Result", "True if the faces close into a solid", True),
+    ("PatchCount", "App::PropertyInteger", "Result", "Triangular patches (one per triangle)", True),
+    ("FaceCount", "App::PropertyInteger", "Result", "B-rep faces: three tensor-product Bezier faces per patch", True),
+    ("Unknowns", "App::PropertyInteger", "Result", "Free control-point coordinates solved for", True),
+    ("WorstAngle", "App::PropertyFloat", "Result", "The largest angle between the normals of two patches along their shared edge (degrees, 50 points an edge)", True),
+    ("SeamAngle", "App::PropertyFloat", "Result", "The largest angle between tangent planes across any seam of the B-rep, the patches' internal seams included (degrees)", True),
+    ("OverruledEdges", "App::PropertyInteger", "Result", "Inner edges whose patches meet at more than 0.01 degree", True),
+    ("SingularVertices", "App::PropertyIntegerList", "Result", "Vertices where the surface's tangents nearly collapse", True),
+    ("SolveTime", "App::PropertyFloat", "Result", "Seconds to assemble and solve", True),
+    ("Status", "App::PropertyString", "Result", "OK, or what went wrong", True),
+]
+
+
+def _set_solver(obj):
+    obj.Solver = list(triangular.SOLVERS)
+    obj.Solver = "Automatic"
+
+
+class TriangularSurfaceFeature(FeatureProxy):
+    """Proxy of a VarSurf TriangularSurface (Part::FeaturePython)."""
+
+    Type = TYPE
+    TYPE = TYPE
+    VIEW_PROVIDER = "ViewProviderTriangularSurface"
+    PROPERTIES = _PROPERTIES
+    DEFAULTS = {"Degree": (3, 3, 12, 1), "Bend": 1.0, "G1": True, "Solver": _set_solver}
+
+    def consumed(self, obj):
+        source = getattr(obj, "Source", None)
+        return [source] if source is not None else []
+
+    def execute(self, obj):
+        try:
+            outcome = compute(obj)
+        except Exception as error:
+            raise mark_failed(obj, error) from error
+        self.outcome = outcome
+        obj.Shape = shape_from_brep(outcome.brep)
+        report = outcome.report
+        obj.Closed = outcome.closed
+        obj.PatchCount, obj.FaceCount, obj.Unknowns = report.patches, outcome.faces, report.unknowns
+        obj.WorstAngle, obj.SeamAngle = report.worst_angle, outcome.seam_angle
+        obj.OverruledEdges = len(report.overruled_edges)
+        obj.SingularVertices = list(report.singular_vertices)
+        obj.SolveTime = report.assembly_seconds + report.solve_seconds
+        kind = "solid" if outcome.closed else "open shell"
+        obj.Status = (f"OK: {kind} of {outcome.faces} Bezier faces from {report.patches} patches of degree "
+                      f"{int(obj.Degree)}; patches meet within {report.worst_angle:.2g}°")
+        if outcome.warnings:
+            obj.Status = f"{obj.Status}; " + "; ".join(outcome.warnings)
+            import FreeCAD
+            FreeCAD.Console.PrintWarning(f"{obj.Label}: {outcome.warnings[0]}\n")
+
+
+def settings_of(obj) -> triangular.Settings:
+    return triangular.Settings(
+        degree=int(obj.Degree), stretch=float(obj.Stretch), bend=float(obj.Bend), g1=bool(obj.G1),
+        approximate_g1=bool(obj.ApproximateG1), border_angle=float(value(obj, "BorderAngle")) or -1.0,
+        solver=str(obj.Solver))
+
+
+def compute(obj) -> triangular.Outcome:
+    """The surface of the feature's Source with its settings, and its B-rep."""
+    source = obj.Source
+    if source is None:
+        raise errors.SheetError("no Source: link a Mesh (a coarse triangle mesh) whose triangles become patches")
+    points, triangles = target_triangles(source)
+    if not triangles:
+        raise errors.SheetError(f"{source.Label} has no triangles: give a Mesh with facets as Source")
+    return triangular.solve(points, triangles, settings_of(obj), tolerance=float(value(obj, "Tolerance")))
+
+
+def is_triangular_surface(obj) -> bool:
+    return getattr(getattr(obj, "Proxy", None), "Type", "") == TYPE
+
+
+def make_triangular_surface(source, degree: int = 3, name: str = "TriangularSurface"):
+    """Add a TriangularSurface over ``source`` (a Mesh object, or a shape whose faces are
+    tessellated): a patch of degree ``degree`` per triangle (computed at the next recompute)."""
+    obj = source.Document.addObject("Part::FeaturePython", name)
+    TriangularSurfaceFeature(obj)
+    obj.Source = source
+    obj.Degree = int(degree)
+    attach_view_provider(obj, "ViewProviderTriangularSurface")
+    return obj

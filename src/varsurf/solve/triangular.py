@@ -1,0 +1,175 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""Triangular Bezier surfaces over triangulations without a document (Veltkamp & Wesselink): the
+core's fairest G1 patches over a triangle mesh, each patch written exactly as three tensor-product
+Bezier faces of degree n x n and all faces sewn into one shell (a solid when the mesh is closed),
+and the triangulation of an N-sided loop for filling a hole. This module builds the core's inputs,
+words its errors and gathers what the feature reports."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import List, Sequence, Tuple
+
+import numpy as np
+
+from varsurf.solve.errors import SheetError, advised
+from varsurf.solve.native import native
+
+Point = Tuple[float, float, float]
+Triangle = Tuple[int, int, int]
+
+#: Solvers of a triangular surface, as a feature names them.
+SOLVERS = ("Automatic", "Direct", "CG")
+
+#: The largest triangulation solved: 200,000 triangles (a quintic surface of that size has about
+#: 5 million unknowns; see bench/triangular.py for the cost per triangle).
+MAX_TRIANGLES = 200_000
+
+
+@dataclass
+class Constraint:
+    """A point, normal, plane or line constraint at barycentric point `at` of triangle `triangle`
+    (corners in the order given)."""
+    kind: str  # "point", "normal", "plane", "line"
+    triangle: int
+    at: Point
+    target: Point = (0.0, 0.0, 0.0)
+    direction: Point = (0.0, 0.0, 1.0)
+
+
+@dataclass
+class Settings:
+    degree: int = 3
+    stretch: float = 0.0
+    bend: float = 1.0
+    g1: bool = True
+    approximate_g1: bool = False
+    border_angle: float = -1.0  # degrees; negative: the angle the mesh spans at each border vertex
+    interpolate_vertices: bool = True
+    solver: str = "Automatic"
+    angle_tolerance: float = 0.01  # degrees
+
+
+@dataclass
+class Outcome:
+    patches: list  # native TriangularBezier, per triangle
+    report: object  # native TriangularReport
+    brep: str = ""
+    closed: bool = False
+    faces: int = 0
+    seam_angle: float = 0.0  # degrees: the largest tangent-plane angle across any B-rep seam
+    seams: int = 0
+    export_seconds: float = 0.0
+    warnings: List[str] = field(default_factory=list)
+
+
+def _problem(points: Sequence[Point], triangles: Sequence[Triangle], settings: Settings,
+             constraints: Sequence[Constraint]):
+    nat = native()
+    if settings.solver not in SOLVERS:
+        raise SheetError(f"Solver must be one of {', '.join(SOLVERS)}, not {settings.solver!r}")
+    if len(triangles) > MAX_TRIANGLES:
+        raise SheetError(f"the mesh has {len(triangles)} triangles, more than the {MAX_TRIANGLES} a triangular "
+                         "surface takes: use a coarser mesh (its triangles are patches, not samples)")
+    problem = nat.TriangularProblem()
+    problem.vertices = np.asarray(points, float).reshape(-1, 3)
+    problem.triangles = [tuple(int(c) for c in t) for t in triangles]
+    problem.degree = int(settings.degree)
+    problem.stretch = float(settings.stretch)
+    problem.bend = float(settings.bend)
+    problem.g1 = bool(settings.g1)
+    problem.approximate_g1 = bool(settings.approximate_g1)
+    angle = float(settings.border_angle)
+    problem.border_angle = math.radians(angle) if angle > 0.0 else -1.0
+    problem.interpolate_vertices = bool(settings.interpolate_vertices)
+    problem.solver = {"Automatic": nat.TriangularSolver.automatic, "Direct": nat.TriangularSolver.direct,
+                      "CG": nat.TriangularSolver.cg}[settings.solver]
+    problem.angle_tolerance = float(settings.angle_tolerance)
+    kinds = {"point": nat.TriangularConstraintKind.point, "normal": nat.TriangularConstraintKind.normal,
+             "plane": nat.TriangularConstraintKind.plane, "line": nat.TriangularConstraintKind.line}
+    native_constraints = []
+    for index, c in enumerate(constraints):
+        if c.kind not in kinds:
+            raise SheetError(f"constraint {index} is of kind {c.kind!r}: give one of {', '.join(kinds)}")
+        native_constraints.append(nat.TriangularConstraint(kinds[c.kind], int(c.triangle), np.asarray(c.at, float),
+                                                           np.asarray(c.target, float),
+                                                           np.asarray(c.direction, float)))
+    problem.constraints = native_constraints
+    return problem
+
+
+def solve(points: Sequence[Point], triangles: Sequence[Triangle], settings: Settings = Settings(),
+          constraints: Sequence[Constraint] = (), export: bool = True, tolerance: float = 0.0) -> Outcome:
+    """The fairest surface over the triangulation and, with `export`, its B-rep: each patch as three
+    n x n Bezier faces, sewn at `tolerance` (0: a ten-millionth of the mesh's size). SheetError
+    names the triangle, edge, vertex or constraint at fault."""
+    nat = native()
+    problem = _problem(points, triangles, settings, constraints)
+    try:
+        result = nat.solve_triangular(problem)
+    except nat.InvalidInput as error:
+        raise SheetError(advised(f"the triangulation cannot carry a surface: {error}",
+                                 "repair the mesh")) from error
+    except nat.SolveFailure as error:
+        raise SheetError(advised(str(error), "add a point constraint")) from error
+    report = result.report
+    outcome = Outcome(list(result.patches), report)
+    for (a, b), angle in list(zip(report.overruled_edges, report.overruled_angles))[:5]:
+        outcome.warnings.append(f"edge ({a}, {b}) is not G1: its patches meet at {angle:.3g} degrees "
+                                "(continuity overruled by interpolation or beyond the conditions)")
+    if len(report.overruled_edges) > 5:
+        outcome.warnings.append(f"{len(report.overruled_edges) - 5} more edges are not G1")
+    if report.singular_vertices:
+        listed = ", ".join(str(v) for v in report.singular_vertices[:8])
+        outcome.warnings.append(f"vertices {listed} are nearly singular (tangents collapsed to "
+                                f"{report.shortest_tangent:.2g} of an edge): raise Degree or remesh there")
+    if export:
+        import time
+        started = time.perf_counter()
+        vertices = np.asarray(points, float).reshape(-1, 3)
+        size = float(np.linalg.norm(vertices.max(axis=0) - vertices.min(axis=0))) if len(vertices) else 1.0
+        tolerance = float(tolerance) or max(1e-7 * size, 1e-9)
+        quads = [q for patch in result.patches for q in nat.triangle_quads(patch)]
+        try:
+            shell = nat.patch_shell(quads, [False] * len(quads), tolerance, 11)
+        except (nat.InvalidInput, nat.GeometryError) as error:
+            raise SheetError(advised(f"the patches cannot be sewn: {error}", "raise the tolerance")) from error
+        if not shell.shell.valid:
+            raise SheetError(f"the sewn faces are not a valid shape ({shell.shell.message}): raise the tolerance")
+        outcome.brep = shell.shell.brep
+        outcome.closed = bool(shell.shell.closed)
+        outcome.faces = len(quads)
+        outcome.seam_angle = float(shell.regular_angle)
+        outcome.seams = int(shell.regular_seams)
+        outcome.export_seconds = time.perf_counter() - started
+    return outcome
+
+
+def loop_triangulation(loop: Sequence[Point], rings: int = 2) -> Tuple[List[Point], List[Triangle]]:
+    """A triangulation of the region inside a closed loop of points (an N-sided hole's border
+    sampled, each point once, in order): `rings` rings shrinking towards the loop's centroid, joined
+    by triangles, and a fan at the centre. The loop's points come first, in order; the region must
+    be star-shaped from the centroid (every border point seen from it)."""
+    corners = np.asarray(loop, float).reshape(-1, 3)
+    count = len(corners)
+    if count < 3:
+        raise SheetError(f"a loop needs at least 3 points, not {count}: select the hole's border edges")
+    if not 1 <= int(rings) <= 50:
+        raise SheetError(f"Rings must be 1 to 50, not {rings}")
+    centre = corners.mean(axis=0)
+    points = [tuple(p) for p in corners]
+    for ring in range(1, int(rings)):
+        scale = 1.0 - ring / int(rings)
+        points += [tuple(centre + scale * (p - centre)) for p in corners]
+    points.append(tuple(centre))
+    triangles: List[Triangle] = []
+    for ring in range(int(rings) - 1):
+        outer, inner = ring * count, (ring + 1) * count
+        for k in range(count):
+            a, b = outer + k, outer + (k + 1) % count
+            c, d = inner + k, inner + (k + 1) % count
+            triangles += [(a, b, d), (a, d, c)]
+    last, middle = (int(rings) - 1) * count, len(points) - 1
+    triangles += [(last + k, last + (k + 1) % count, middle) for k in range(count)]
+    return points, triangles

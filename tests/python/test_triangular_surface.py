@@ -1,0 +1,210 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""The TriangularSurface feature (Veltkamp & Wesselink's triangular Bezier surfaces) on FreeCAD
+inputs: a coarse Mesh of a handle (genus 1) and a Part Box's faces become smooth closed G1 solids
+through their vertices, written exactly as Bezier faces, sewn, checked by OCCT's full check and
+through STEP; an open mesh read from an STL file; rigid motion; saving, reopening, undo and the
+recorded command; bad meshes named with the object in error and the document intact."""
+
+import math
+
+import FreeCAD
+import Mesh
+import Part
+import pytest
+
+import varsurf
+from scenes import reopened
+from varsurf.solve import triangular
+
+V = FreeCAD.Vector
+
+
+def torus_mesh(nu=8, nv=6, big=20.0, small=7.0):
+    """A coarse triangle mesh of a torus (a handle): nu x nv quads, each cut in two."""
+    points = []
+    for i in range(nu):
+        for j in range(nv):
+            u, v = 2 * math.pi * i / nu, 2 * math.pi * j / nv
+            points.append(((big + small * math.cos(v)) * math.cos(u), (big + small * math.cos(v)) * math.sin(u),
+                           small * math.sin(v)))
+    triangles = []
+    for i in range(nu):
+        for j in range(nv):
+            a, b = i * nv + j, ((i + 1) % nu) * nv + j
+            c, d = i * nv + (j + 1) % nv, ((i + 1) % nu) * nv + (j + 1) % nv
+            triangles += [(a, b, d), (a, d, c)]
+    return points, triangles
+
+
+def add_mesh(doc, points, triangles, name="Handle"):
+    obj = doc.addObject("Mesh::Feature", name)
+    # Facet by facet: Mesh.addFacets((points, indices)) drops a non-manifold mesh's facets.
+    obj.Mesh = Mesh.Mesh([[V(*points[i]) for i in t] for t in triangles])
+    doc.recompute()
+    return obj
+
+
+def vertices_on(shape, points, tolerance):
+    return max(shape.distToShape(Part.Vertex(V(*p)))[0] for p in points) <= tolerance
+
+
+def test_a_coarse_handle_becomes_a_smooth_closed_g1_solid_that_survives_step(doc, native, tmp_path):
+    from step_check import assert_reads_back
+
+    points, triangles = torus_mesh()
+    mesh = add_mesh(doc, points, triangles)
+    surface = varsurf.make_triangular_surface(mesh, degree=4)
+    doc.recompute()
+    assert surface.isValid(), surface.getStatusString()
+    assert surface.Closed and surface.Shape.ShapeType == "Solid"
+    assert surface.PatchCount == 96 and surface.FaceCount == 3 * 96 == len(surface.Shape.Faces)
+    assert surface.WorstAngle < 0.01 and surface.OverruledEdges == 0 and not surface.SingularVertices
+    # Every seam of the B-rep (between patches and inside each) is tangent to rounding.
+    assert surface.SeamAngle < 1e-6
+    assert vertices_on(surface.Shape, points, 1e-6)
+    surface.Shape.check(True)
+    # A smooth handle: its volume lies between the inscribed mesh's and the exact torus's.
+    torus = Part.makeTorus(20.0, 7.0)
+    assert mesh.Mesh.Volume < surface.Shape.Volume < 1.1 * torus.Volume
+    path = tmp_path / "handle.step"
+    varsurf.export_step(surface, str(path))
+    assert_reads_back(surface.Shape, path, native)
+    name = surface.Name
+    volume = surface.Shape.Volume
+    with reopened(doc, tmp_path / "handle.FCStd") as again:
+        copy = again.getObject(name)
+        assert copy.Closed and len(copy.Shape.Faces) == 288
+        copy.touch()
+        again.recompute()
+        assert copy.isValid(), copy.getStatusString()
+        assert copy.Shape.Volume == pytest.approx(volume, rel=1e-9)
+
+
+def test_a_part_box_says_where_g1_fails_and_a_higher_degree_meets_it(doc):
+    """A Part Box's faces (12 triangles, corners of valence 3 to 6) as the mesh: cubic and quartic
+    patches cannot meet the linear G1 conditions there (the status names the edges); sextic
+    patches meet them and make a valid rounded solid through the corners."""
+    box = doc.addObject("Part::Box", "Box")
+    box.Length, box.Width, box.Height = 30.0, 20.0, 10.0
+    doc.recompute()
+    surface = varsurf.make_triangular_surface(box, degree=3)
+    doc.recompute()
+    assert surface.isValid(), surface.getStatusString()
+    assert surface.Closed and surface.PatchCount == 12
+    assert surface.OverruledEdges > 0 and surface.WorstAngle > 1.0
+    assert "is not G1" in surface.Status
+    surface.Degree = 6
+    doc.recompute()
+    assert surface.WorstAngle < 0.01 and surface.OverruledEdges == 0 and not surface.SingularVertices
+    assert "is not G1" not in surface.Status
+    corners = [(v.Point.x, v.Point.y, v.Point.z) for v in box.Shape.Vertexes]
+    assert vertices_on(surface.Shape, corners, 1e-6)
+    surface.Shape.check(True)
+    # Rounded through the corners: it holds the box's centre and is no box.
+    assert surface.Shape.isInside(V(15, 10, 5), 1e-6, True)
+    assert not math.isclose(surface.Shape.Volume, 6000.0, rel_tol=1e-2)
+
+
+def test_an_open_mesh_read_from_stl_gives_an_open_g1_shell(doc, tmp_path):
+    """A height field over a grid, written to STL and read back as the user imports one."""
+    n = 4
+    points = [(10.0 * i, 10.0 * j, 3.0 * math.sin(i) * math.cos(j)) for j in range(n + 1) for i in range(n + 1)]
+    triangles = []
+    for j in range(n):
+        for i in range(n):
+            a = j * (n + 1) + i
+            triangles += [(a, a + 1, a + n + 2), (a, a + n + 2, a + n + 1)]
+    mesh = Mesh.Mesh()
+    mesh.addFacets(([V(*p) for p in points], triangles))
+    path = tmp_path / "terrain.stl"
+    mesh.write(str(path))
+    imported = doc.addObject("Mesh::Feature", "Terrain")
+    imported.Mesh = Mesh.Mesh(str(path))
+    doc.recompute()
+    surface = varsurf.make_triangular_surface(imported)
+    doc.recompute()
+    assert surface.isValid(), surface.getStatusString()
+    assert not surface.Closed and surface.Shape.ShapeType == "Shell"
+    # The border vertices' weights come from the mesh's angles there; every edge meets G1.
+    assert surface.WorstAngle < 0.01 and surface.SeamAngle < 0.01 and surface.OverruledEdges == 0
+    assert vertices_on(surface.Shape, points, 1e-5)
+    surface.Shape.check(True)
+
+
+def test_rigid_motion_moves_the_surface_rigidly():
+    points, triangles = torus_mesh(6, 5)
+    base = triangular.solve(points, triangles, triangular.Settings(degree=3), export=False)
+    turn = FreeCAD.Placement(V(100.0, -40.0, 7.0), FreeCAD.Rotation(V(0.3, -0.5, 0.8), 71.0))
+    moved_points = [tuple(turn.multVec(V(*p))) for p in points]
+    moved = triangular.solve(moved_points, triangles, triangular.Settings(degree=3), export=False)
+    for a, b in zip(base.patches, moved.patches):
+        for p, q in zip(a.points, b.points):
+            assert (turn.multVec(V(*p)) - V(*q)).Length < 1e-7
+
+
+def test_the_command_is_one_undoable_step_and_its_macro_replays(doc):
+    points, triangles = torus_mesh(6, 4)
+    mesh = add_mesh(doc, points, triangles)
+    lines, namespace = [], {"App": FreeCAD}
+
+    def run(line):
+        lines.append(line)
+        exec(line, namespace)
+
+    surface = varsurf.run_triangular_command([type("Sel", (), {"Object": mesh})()], do_command=run)
+    assert surface is not None and surface.isValid(), surface.getStatusString()
+    assert any("make_triangular_surface" in line for line in lines)
+    count = len(doc.Objects)
+    doc.undo()
+    assert len(doc.Objects) == count - 1
+    doc.redo()
+    assert len(doc.Objects) == count
+    # The recorded lines, replayed in a fresh document with the same mesh, make the same surface.
+    other = FreeCAD.newDocument("Replay")
+    try:
+        add_mesh(other, points, triangles)
+        replay = {"App": FreeCAD}
+        for line in lines:
+            exec(line.replace(repr(doc.Name), repr(other.Name)), replay)
+        again = [o for o in other.Objects if varsurf.is_triangular_surface(o)][0]
+        assert again.Shape.Volume == pytest.approx(surface.Shape.Volume, rel=1e-9)
+    finally:
+        FreeCAD.closeDocument(other.Name)
+
+
+def test_a_non_manifold_mesh_is_named_and_the_document_stays_intact(doc, console_errors):
+    points = [(0, 0, 0), (10, 0, 0), (0, 10, 0), (0, -10, 0), (0, 0, 10)]
+    mesh = add_mesh(doc, points, [(0, 1, 2), (1, 0, 3), (0, 1, 4)], "Fin")
+    box = doc.addObject("Part::Box", "Box")
+    surface = varsurf.make_triangular_surface(mesh)
+    doc.recompute()
+    assert not surface.isValid()
+    status = surface.getStatusString()
+    assert "edge (0, 1) is shared by more than two triangles" in status and status.count("\n") == 0
+    assert "split the mesh" in status
+    assert box.isValid() and math.isclose(box.Shape.Volume, 1000.0)
+    assert mesh.Mesh.CountFacets == 3
+
+
+def test_a_pinched_vertex_and_a_bad_degree_are_refused(doc):
+    points = [(0, 0, 0), (10, 0, 0), (10, 10, 0), (-10, 0, 0), (-10, -10, 0)]
+    mesh = add_mesh(doc, points, [(0, 1, 2), (0, 3, 4)], "Bowtie")
+    surface = varsurf.make_triangular_surface(mesh)
+    doc.recompute()
+    assert not surface.isValid()
+    assert "vertex 0 joins separate fans" in surface.getStatusString()
+    with pytest.raises(triangular.SheetError, match="Solver must be one of"):
+        triangular.solve(points, [(0, 1, 2)], triangular.Settings(solver="LU"))
+
+
+def test_a_loop_triangulation_fills_an_n_sided_region():
+    for sides in (3, 5, 6, 9):
+        loop = [(10 * math.cos(2 * math.pi * k / sides), 10 * math.sin(2 * math.pi * k / sides),
+                 2 * math.sin(3 * math.pi * k / sides)) for k in range(sides)]
+        points, triangles = triangular.loop_triangulation(loop, rings=2)
+        assert points[:sides] == [tuple(p) for p in loop]
+        assert len(triangles) == 3 * sides
+        outcome = triangular.solve(points, triangles, triangular.Settings(degree=4))
+        assert not outcome.closed and outcome.report.worst_angle < 0.01, sides
+    with pytest.raises(triangular.SheetError, match="at least 3 points"):
+        triangular.loop_triangulation([(0, 0, 0), (1, 0, 0)])
