@@ -17,6 +17,8 @@
    tolerance on one interior curve (bench/hierarchical_bench.cpp).
 7. N-sided holes against Surface Filling with G1 (and G2) to the face around them
    (bench/hole_bench.py).
+11. Triangular Bezier surfaces over closed meshes of 24 to 20,000 triangles: direct against CG,
+   G1 measured, the exact B-rep export (bench/triangular_bench.py).
 5. Live dragging in a FreeCAD document (varsurf.app.drag.PointDrag): a 64 x 64 pole Sheet through 10
    curves with a Point constraint; each move's back-substitution and result face against a fresh
    recompute of the same Sheet in the same process.
@@ -576,6 +578,9 @@ def main():
     import multires_bench
 
     multires_bench.main()
+    import triangular_bench
+
+    triangular_bench.main(quick)
 
 
 def platform_line():

@@ -18,7 +18,8 @@ public API (importable headless, without any GUI module):
     set_pins(subd, pins), set_normals(subd, normals), move_pin(subd, i, point)
     set_curves(subd, [(obj, "EdgeN")], placement, level=None, influence=0)
     make_subd_brep(subd_surface, isolation=4)                           -> SubdBRep object (B-rep)
-    make_triangular_surface(mesh, degree=3)                             -> TriangularSurface object
+    make_triangular_surface(mesh, degree=3, constraints=())             -> TriangularSurface object
+    set_triangular_constraints(surface, [(kind, triangle, at, target, direction)])
     install_rest_shape(sheet), melt(sheet)                              -> sheet
     export_step(objects, path)                                           -> path
     selection_to_sheet_args(selection_ex)                                -> (base, curves)
@@ -115,7 +116,7 @@ APP_API = (
     "is_pde_surface", "make_subd_surface", "make_subd_brep", "is_subd_surface", "set_pins", "set_normals",
     "set_curves", "move_pin",
     "run_subd_surface_command", "run_subd_brep_command",
-    "make_triangular_surface", "is_triangular_surface", "run_triangular_command",
+    "make_triangular_surface", "is_triangular_surface", "run_triangular_command", "set_triangular_constraints",
 )
 
 

@@ -186,7 +186,7 @@ def test_a_non_manifold_mesh_is_named_and_the_document_stays_intact(doc, console
     assert mesh.Mesh.CountFacets == 3
 
 
-def test_a_pinched_vertex_and_a_bad_degree_are_refused(doc):
+def test_a_pinched_vertex_and_an_unknown_solver_are_refused(doc):
     points = [(0, 0, 0), (10, 0, 0), (10, 10, 0), (-10, 0, 0), (-10, -10, 0)]
     mesh = add_mesh(doc, points, [(0, 1, 2), (0, 3, 4)], "Bowtie")
     surface = varsurf.make_triangular_surface(mesh)
@@ -208,3 +208,31 @@ def test_a_loop_triangulation_fills_an_n_sided_region():
         assert not outcome.closed and outcome.report.worst_angle < 0.01, sides
     with pytest.raises(triangular.SheetError, match="at least 3 points"):
         triangular.loop_triangulation([(0, 0, 0), (1, 0, 0)])
+
+
+def test_point_and_normal_constraints_shape_the_surface_exactly(doc):
+    """The paper's Fig. 1 on a FreeCAD Mesh: a hexagonal fan pulled up at a point of one triangle
+    and given a tilted normal at another; both met exactly (to rounding), G1 kept, undoable."""
+    ring = [(20 * math.cos(k * math.pi / 3), 20 * math.sin(k * math.pi / 3), 0.0) for k in range(6)]
+    points = [(0.0, 0.0, 0.0)] + ring
+    triangles = [(0, 1 + k, 1 + (k + 1) % 6) for k in range(6)]
+    mesh = add_mesh(doc, points, triangles, "Hexagon")
+    at = (0.5, 0.25, 0.25)
+    pulled = V(*[0.5 * points[0][i] + 0.25 * points[1][i] + 0.25 * points[2][i] for i in range(3)]) + V(0, 0, 6)
+    tilt = V(0.4, 0.0, 1.0)
+    surface = varsurf.make_triangular_surface(mesh, degree=4, constraints=[
+        ("Point", 0, at, tuple(pulled)), ("Normal", 3, (1 / 3, 1 / 3, 1 / 3), (0, 0, 0), tuple(tilt))])
+    doc.recompute()
+    assert surface.isValid(), surface.getStatusString()
+    assert surface.ConstraintResidual < 1e-9
+    assert surface.Shape.distToShape(Part.Vertex(pulled))[0] < 1e-6
+    patch = surface.Proxy.outcome.patches[3]
+    centre = V(*patch.evaluate([1 / 3, 1 / 3, 1 / 3]))
+    face = min(surface.Shape.Faces, key=lambda f: f.distToShape(Part.Vertex(centre))[0])
+    u, v = face.Surface.parameter(centre)
+    assert face.normalAt(u, v).getAngle(tilt) < 1e-6 or face.normalAt(u, v).getAngle(-tilt) < 1e-6
+    assert surface.WorstAngle < 0.01
+    surface.ConstraintTriangles = [0]  # one entry for two constraints
+    doc.recompute()
+    assert not surface.isValid()
+    assert "ConstraintTriangles has 1 entries for 2 ConstraintKinds" in surface.getStatusString()

@@ -43,6 +43,7 @@ from varsurf.app.selection import (
 )
 from varsurf.app.transaction import run_in_transaction
 from varsurf.app.triangular_surface import is_triangular_surface, make_triangular_surface
+from varsurf.app.triangular_surface import set_constraints as set_triangular_constraints
 from varsurf.app.tube import make_tube
 
 __all__ = [
@@ -73,6 +74,7 @@ __all__ = [
     "make_subd_brep",
     "make_triangular_surface",
     "is_triangular_surface",
+    "set_triangular_constraints",
     "run_triangular_command",
     "is_subd_surface",
     "set_pins",

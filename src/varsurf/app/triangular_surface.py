@@ -7,6 +7,8 @@ it. The computation is varsurf.solve.triangular."""
 
 from __future__ import annotations
 
+import FreeCAD
+
 from varsurf.app.feature import FeatureProxy, mark_failed, value
 from varsurf.app.subdivision import target_triangles
 from varsurf.app.view_link import attach as attach_view_provider
@@ -26,6 +28,12 @@ _PROPERTIES = [
     ("BorderAngle", "App::PropertyAngle", "Continuity", "The angle the surface turns through at each border vertex (0: the angle the mesh's own triangles span there)", False),
     ("Solver", "App::PropertyEnumeration", "Solve", "Direct (sparse Cholesky), CG (conjugate gradients) or Automatic", False),
     ("Tolerance", "App::PropertyLength", "Solve", "Sewing tolerance (mm; 0: a ten-millionth of the mesh's size)", False),
+    ("ConstraintKinds", "App::PropertyStringList", "Constraints", "Per constraint: Point (the surface passes through Target), Normal (its normal is Direction), Plane (the point lies in the plane through Target normal to Direction) or Line (on the line through Target along Direction)", False),
+    ("ConstraintTriangles", "App::PropertyIntegerList", "Constraints", "Per constraint: the mesh triangle it sits on (numbered as the mesh's facets)", False),
+    ("ConstraintAt", "App::PropertyVectorList", "Constraints", "Per constraint: where on its triangle, in barycentric coordinates of its corners (each >= 0, summing to 1)", False),
+    ("ConstraintTargets", "App::PropertyVectorList", "Constraints", "Per constraint: the point it holds (Point), or a point of its plane or line", False),
+    ("ConstraintDirections", "App::PropertyVectorList", "Constraints", "Per constraint: the normal (Normal, Plane) or the line's direction (Line); unused by Point", False),
+    ("ConstraintResidual", "App::PropertyFloat", "Result", "The worst constraint's residual (mm; Normal: sine of the angle)", True),
     ("Closed", "App::PropertyBool", "Result", "True if the faces close into a solid", True),
     ("PatchCount", "App::PropertyInteger", "Result", "Triangular patches (one per triangle)", True),
     ("FaceCount", "App::PropertyInteger", "Result", "B-rep faces: three tensor-product Bezier faces per patch", True),
@@ -71,12 +79,12 @@ class TriangularSurfaceFeature(FeatureProxy):
         obj.OverruledEdges = len(report.overruled_edges)
         obj.SingularVertices = list(report.singular_vertices)
         obj.SolveTime = report.assembly_seconds + report.solve_seconds
+        obj.ConstraintResidual = report.constraint_residual
         kind = "solid" if outcome.closed else "open shell"
         obj.Status = (f"OK: {kind} of {outcome.faces} Bezier faces from {report.patches} patches of degree "
                       f"{int(obj.Degree)}; patches meet within {report.worst_angle:.2g}°")
         if outcome.warnings:
             obj.Status = f"{obj.Status}; " + "; ".join(outcome.warnings)
-            import FreeCAD
             FreeCAD.Console.PrintWarning(f"{obj.Label}: {outcome.warnings[0]}\n")
 
 
@@ -87,6 +95,35 @@ def settings_of(obj) -> triangular.Settings:
         solver=str(obj.Solver))
 
 
+KINDS = ("Point", "Normal", "Plane", "Line")
+
+
+def constraints_of(obj):
+    """The feature's constraints (its Constraint* lists) as triangular.Constraint values."""
+    kinds = list(obj.ConstraintKinds)
+    lists = {"ConstraintTriangles": list(obj.ConstraintTriangles), "ConstraintAt": list(obj.ConstraintAt),
+             "ConstraintTargets": list(value(obj, "ConstraintTargets")),
+             "ConstraintDirections": list(value(obj, "ConstraintDirections"))}
+    for name in ("ConstraintTriangles", "ConstraintAt"):
+        if len(lists[name]) != len(kinds):
+            raise errors.SheetError(f"{name} has {len(lists[name])} entries for {len(kinds)} ConstraintKinds: give one "
+                                    "per constraint")
+    for name in ("ConstraintTargets", "ConstraintDirections"):
+        if lists[name] and len(lists[name]) != len(kinds):
+            raise errors.SheetError(f"{name} has {len(lists[name])} entries for {len(kinds)} ConstraintKinds: give one "
+                                    "per constraint (or none)")
+    out = []
+    for k, kind in enumerate(kinds):
+        if kind not in KINDS:
+            raise errors.SheetError(f"constraint {k} is of kind {kind!r}: set one of {', '.join(KINDS)}")
+        at = lists["ConstraintAt"][k]
+        target = lists["ConstraintTargets"][k] if lists["ConstraintTargets"] else FreeCAD.Vector()
+        direction = lists["ConstraintDirections"][k] if lists["ConstraintDirections"] else FreeCAD.Vector(0, 0, 1)
+        out.append(triangular.Constraint(kind.lower(), int(lists["ConstraintTriangles"][k]), (at.x, at.y, at.z),
+                                         (target.x, target.y, target.z), (direction.x, direction.y, direction.z)))
+    return out
+
+
 def compute(obj) -> triangular.Outcome:
     """The surface of the feature's Source with its settings, and its B-rep."""
     source = obj.Source
@@ -95,19 +132,34 @@ def compute(obj) -> triangular.Outcome:
     points, triangles = target_triangles(source)
     if not triangles:
         raise errors.SheetError(f"{source.Label} has no triangles: give a Mesh with facets as Source")
-    return triangular.solve(points, triangles, settings_of(obj), tolerance=float(value(obj, "Tolerance")))
+    return triangular.solve(points, triangles, settings_of(obj), constraints_of(obj),
+                            tolerance=float(value(obj, "Tolerance")))
 
 
 def is_triangular_surface(obj) -> bool:
     return getattr(getattr(obj, "Proxy", None), "Type", "") == TYPE
 
 
-def make_triangular_surface(source, degree: int = 3, name: str = "TriangularSurface"):
+def set_constraints(obj, constraints):
+    """Replace a TriangularSurface's constraints by ``constraints``: (kind, triangle, barycentric
+    point, target, direction) tuples or triangular.Constraint values, kind one of KINDS."""
+    rows = [(c.kind.capitalize(), c.triangle, c.at, c.target, c.direction) if isinstance(c, triangular.Constraint)
+            else tuple(c) + ((0.0, 0.0, 0.0), (0.0, 0.0, 1.0))[len(c) - 3:] for c in constraints]
+    obj.ConstraintKinds = [str(r[0]) for r in rows]
+    obj.ConstraintTriangles = [int(r[1]) for r in rows]
+    obj.ConstraintAt = [FreeCAD.Vector(*r[2]) for r in rows]
+    obj.ConstraintTargets = [FreeCAD.Vector(*r[3]) for r in rows]
+    obj.ConstraintDirections = [FreeCAD.Vector(*r[4]) for r in rows]
+
+
+def make_triangular_surface(source, degree: int = 3, constraints=(), name: str = "TriangularSurface"):
     """Add a TriangularSurface over ``source`` (a Mesh object, or a shape whose faces are
-    tessellated): a patch of degree ``degree`` per triangle (computed at the next recompute)."""
+    tessellated): a patch of degree ``degree`` per triangle, with ``constraints`` (see
+    set_constraints; computed at the next recompute)."""
     obj = source.Document.addObject("Part::FeaturePython", name)
     TriangularSurfaceFeature(obj)
     obj.Source = source
     obj.Degree = int(degree)
+    set_constraints(obj, constraints)
     attach_view_provider(obj, "ViewProviderTriangularSurface")
     return obj
