@@ -13,7 +13,6 @@ degree 3 x 3 and all faces sewn into one solid (OCCT), with the largest tangent-
 any seam of the B-rep. CG stops at a relative residual of 1e-12; above 2,000 triangles it is not
 run (it takes minutes; see the README)."""
 
-import math
 import sys
 import time
 from pathlib import Path
@@ -22,7 +21,9 @@ import numpy as np
 
 REPO = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(REPO / "src"))
+sys.path.insert(0, str(REPO / "examples"))
 
+from triangular_surfaces import torus_mesh  # noqa: E402  (also puts FreeCAD on the path)
 from varsurf.solve.native import native  # noqa: E402
 
 SIZES = ((4, 3), (10, 10), (40, 25), (200, 50))  # 24, 200, 2,000 and 20,000 triangles
@@ -30,18 +31,9 @@ EXPORT_UP_TO = 2000
 CG_UP_TO = 2000
 
 
-def torus(nu, nv, big=20.0, small=7.0):
-    u = 2 * math.pi * np.arange(nu)[:, None] / nu
-    v = 2 * math.pi * np.arange(nv)[None, :] / nv
-    points = np.stack([(big + small * np.cos(v)) * np.cos(u), (big + small * np.cos(v)) * np.sin(u),
-                       small * np.sin(v) + 0.0 * u], axis=-1).reshape(-1, 3)
-    triangles = []
-    for i in range(nu):
-        for j in range(nv):
-            a, b = i * nv + j, ((i + 1) % nu) * nv + j
-            c, d = i * nv + (j + 1) % nv, ((i + 1) % nu) * nv + (j + 1) % nv
-            triangles += [(a, b, d), (a, d, c)]
-    return points, triangles
+def torus(nu, nv):
+    points, triangles = torus_mesh(nu, nv)
+    return np.asarray(points, float), triangles
 
 
 def solve(nat, points, triangles, solver):

@@ -8,6 +8,7 @@ import os
 import sys
 import traceback
 
+import FreeCAD as App
 import FreeCADGui as Gui
 from PySide import QtCore, QtGui
 
@@ -120,3 +121,22 @@ def run_when_up(steps, path, mark_ok=False):
         os._exit(0)
 
     QtCore.QTimer.singleShot(0, main)
+
+
+def proxy_name(obj):
+    """The class name of an object's view-provider proxy ('NoneType' without one)."""
+    return type(getattr(obj.ViewObject, "Proxy", None)).__name__
+
+
+def open_written_without_gui(result, path, shot):
+    """Open the document at `path` (written by a script without the GUI): the sorted view-provider
+    classes its VarSurf objects got as result["restored"], whether all are valid as
+    result["restored_valid"], and a screenshot of the window at `shot` as result["shot_restored"]."""
+    again = App.openDocument(path)
+    Gui.updateGui()
+    result["restored"] = sorted(proxy_name(o) for o in again.Objects
+                                if getattr(getattr(o, "Proxy", None), "Type", "").startswith("VarSurf::"))
+    result["restored_valid"] = all(o.isValid() for o in again.Objects)
+    Gui.ActiveDocument.ActiveView.viewIsometric()
+    Gui.SendMsgToActiveView("ViewFit")
+    result["shot_restored"] = window_shot(shot)

@@ -28,15 +28,11 @@ import varsurf  # the Mod link puts VarSurf on the path
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(varsurf.__file__)))),
                                 "tests", "gui"))
 from gui_helpers import (clipped_widgets, press_task_button, report_view_text, run_when_up, task_widgets,  # noqa: E402
-                         window_shot)
+                         open_written_without_gui, proxy_name, window_shot)
 
 REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(varsurf.__file__))))
 OUT = os.environ.get("VARSURF_GUI_OUT") or os.path.join(os.getcwd(), "out", "gui-subd")
 os.makedirs(OUT, exist_ok=True)
-
-
-def proxy_name(obj):
-    return type(getattr(obj.ViewObject, "Proxy", None)).__name__
 
 
 def run(result):
@@ -76,14 +72,7 @@ def run(result):
     drag_vase(result)
     built = os.environ.get("VARSURF_SUBD_DOC")
     if built:
-        again = App.openDocument(built)
-        Gui.updateGui()
-        result["restored"] = sorted(proxy_name(o) for o in again.Objects
-                                    if getattr(getattr(o, "Proxy", None), "Type", "").startswith("VarSurf::"))
-        result["restored_valid"] = all(o.isValid() for o in again.Objects)
-        Gui.ActiveDocument.ActiveView.viewIsometric()
-        Gui.SendMsgToActiveView("ViewFit")
-        result["shot_restored"] = window_shot(os.path.join(OUT, "subd_restored.png"))
+        open_written_without_gui(result, built, os.path.join(OUT, "subd_restored.png"))
     result["report"] = report_view_text()
 
 

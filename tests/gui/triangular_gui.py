@@ -24,15 +24,11 @@ import varsurf  # the Mod link puts VarSurf on the path
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(varsurf.__file__)))),
                                 "tests", "gui"))
 from gui_helpers import clipped_widgets, press_task_button, report_view_text, run_when_up, task_widgets  # noqa: E402
-from gui_helpers import window_shot  # noqa: E402
+from gui_helpers import open_written_without_gui, proxy_name, window_shot  # noqa: E402
 
 OUT = os.environ.get("VARSURF_GUI_OUT") or os.path.join(os.getcwd(), "out", "gui-triangular")
 os.makedirs(OUT, exist_ok=True)
 FORM = "VarSurfTriangularSurface"
-
-
-def proxy_name(obj):
-    return type(getattr(obj.ViewObject, "Proxy", None)).__name__
 
 
 def handle_mesh(nu=8, nv=6, big=20.0, small=7.0):
@@ -96,14 +92,7 @@ def run(result):
     result["after_undo"] = sorted(o.Name for o in doc.Objects)
     built = os.environ.get("VARSURF_TRI_DOC")
     if built:
-        again = App.openDocument(built)
-        Gui.updateGui()
-        result["restored"] = sorted(proxy_name(o) for o in again.Objects
-                                    if getattr(getattr(o, "Proxy", None), "Type", "").startswith("VarSurf::"))
-        result["restored_valid"] = all(o.isValid() for o in again.Objects)
-        Gui.ActiveDocument.ActiveView.viewIsometric()
-        Gui.SendMsgToActiveView("ViewFit")
-        result["shot_restored"] = window_shot(os.path.join(OUT, "triangular_restored.png"))
+        open_written_without_gui(result, built, os.path.join(OUT, "triangular_restored.png"))
     result["report"] = report_view_text()
 
 

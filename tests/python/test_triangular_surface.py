@@ -14,26 +14,10 @@ import pytest
 
 import varsurf
 from scenes import reopened
+from triangular_surfaces import torus_mesh  # noqa: F401  (examples/: a coarse handle mesh)
 from varsurf.solve import triangular
 
 V = FreeCAD.Vector
-
-
-def torus_mesh(nu=8, nv=6, big=20.0, small=7.0):
-    """A coarse triangle mesh of a torus (a handle): nu x nv quads, each cut in two."""
-    points = []
-    for i in range(nu):
-        for j in range(nv):
-            u, v = 2 * math.pi * i / nu, 2 * math.pi * j / nv
-            points.append(((big + small * math.cos(v)) * math.cos(u), (big + small * math.cos(v)) * math.sin(u),
-                           small * math.sin(v)))
-    triangles = []
-    for i in range(nu):
-        for j in range(nv):
-            a, b = i * nv + j, ((i + 1) % nu) * nv + j
-            c, d = i * nv + (j + 1) % nv, ((i + 1) % nu) * nv + (j + 1) % nv
-            triangles += [(a, b, d), (a, d, c)]
-    return points, triangles
 
 
 def add_mesh(doc, points, triangles, name="Handle"):
