@@ -6,6 +6,7 @@
 #include "varsurf/core/triangle_quads.hpp"
 #include "varsurf/core/triangular_bezier.hpp"
 #include "varsurf/core/triangular_surface.hpp"
+#include "varsurf/occ/closest_point.hpp"
 
 namespace py = pybind11;
 using namespace pybind11::literals;
@@ -49,6 +50,32 @@ void bind_triangular(py::module_& m) {
       .def_readwrite("at", &TriangularConstraint::at)
       .def_readwrite("target", &TriangularConstraint::target)
       .def_readwrite("direction", &TriangularConstraint::direction);
+  using OperatorKind = TriangularOperator::Kind;
+  py::enum_<OperatorKind>(m, "TriangularOperatorKind")
+      .value("point_attractor", OperatorKind::point_attractor)
+      .value("plane_attractor", OperatorKind::plane_attractor)
+      .value("line_attractor", OperatorKind::line_attractor)
+      .value("director", OperatorKind::director)
+      .value("repeller", OperatorKind::repeller)
+      .value("shape_attractor", OperatorKind::shape_attractor);
+  py::class_<TriangularOperator>(m, "TriangularOperator",
+                                 "An external energy operator on some triangles (none: all); a "
+                                 "shape attractor's target is a ClosestPointTarget.")
+      .def(py::init([](OperatorKind kind, std::vector<int> triangles, Eigen::Vector3d origin,
+                       Eigen::Vector3d direction, double strength,
+                       std::shared_ptr<occ::ClosestPointTarget> target) {
+             TriangularOperator op{kind, std::move(triangles), origin, direction, strength, {}};
+             if (target) op.closest = [target](const Eigen::Vector3d& p) { return (*target)(p); };
+             return op;
+           }),
+           "kind"_a, "triangles"_a = std::vector<int>(), "origin"_a = Eigen::Vector3d::Zero(),
+           "direction"_a = Eigen::Vector3d::UnitZ(), "strength"_a = 1.0,
+           "target"_a = std::shared_ptr<occ::ClosestPointTarget>())
+      .def_readwrite("kind", &TriangularOperator::kind)
+      .def_readwrite("triangles", &TriangularOperator::triangles)
+      .def_readwrite("origin", &TriangularOperator::origin)
+      .def_readwrite("direction", &TriangularOperator::direction)
+      .def_readwrite("strength", &TriangularOperator::strength);
   py::enum_<TriangularSolver>(m, "TriangularSolver")
       .value("automatic", TriangularSolver::automatic)
       .value("direct", TriangularSolver::direct)
@@ -68,6 +95,9 @@ void bind_triangular(py::module_& m) {
       .def_readwrite("approximate_g1", &TriangularProblem::approximate_g1)
       .def_readwrite("border_angle", &TriangularProblem::border_angle)
       .def_readwrite("constraints", &TriangularProblem::constraints)
+      .def_readwrite("operators", &TriangularProblem::operators)
+      .def_readwrite("nonlinear_iterations", &TriangularProblem::nonlinear_iterations)
+      .def_readwrite("nonlinear_tolerance", &TriangularProblem::nonlinear_tolerance)
       .def_readwrite("g1_weight", &TriangularProblem::g1_weight)
       .def_readwrite("g1_rounds", &TriangularProblem::g1_rounds)
       .def_readwrite("solver", &TriangularProblem::solver)
@@ -82,6 +112,7 @@ void bind_triangular(py::module_& m) {
       .def_readonly("unknowns", &TriangularReport::unknowns)
       .def_readonly("g1_rows", &TriangularReport::g1_rows)
       .def_readonly("g1_rounds", &TriangularReport::g1_rounds)
+      .def_readonly("operator_iterations", &TriangularReport::operator_iterations)
       .def_readonly("constraint_rows", &TriangularReport::constraint_rows)
       .def_readonly("solver", &TriangularReport::solver)
       .def_readonly("cg_iterations", &TriangularReport::cg_iterations)

@@ -671,6 +671,20 @@ def hostile_triangular_problems():
             variant(constraints=[nat.TriangularConstraint(kind, 0, np.array(at))])
         variant(constraints=[nat.TriangularConstraint(kind, 0, np.array([1 / 3, 1 / 3, 1 / 3]), np.array([INF, 0, 0]),
                                                       np.zeros(3))])
+    for kind in nat.TriangularOperatorKind.__members__.values():
+        for triangles in ([], [0, 7], [8], [-1]):
+            variant(operators=[nat.TriangularOperator(kind, triangles, np.array([0.0, 0.0, 2.0]))])
+        for x in hostile_floats():
+            variant(operators=[nat.TriangularOperator(kind, [], np.array([x, 0.0, 2.0]), np.array([0.0, x, 1.0]), x)])
+        variant(operators=[nat.TriangularOperator(kind, [], np.zeros(3), np.zeros(3))])
+    variant(operators=[nat.TriangularOperator(nat.TriangularOperatorKind.shape_attractor, [],
+                                              target=nat.ClosestPointTarget(FACE_BREP))] * 2)
+    variant(operators=[nat.TriangularOperator(nat.TriangularOperatorKind.repeller, [], np.zeros(3))],
+            nonlinear_iterations=1000, nonlinear_tolerance=1e-300)
+    for n in hostile_ints():
+        variant(nonlinear_iterations=n)
+    for x in hostile_floats():
+        variant(nonlinear_tolerance=x)
     # Conflicting constraints: one point held at two places.
     variant(constraints=[nat.TriangularConstraint(kinds[0], 0, np.array([1 / 3, 1 / 3, 1 / 3]), np.array(t))
                          for t in ([0.0, 0.0, 2.0], [0.0, 0.0, 3.0])])
@@ -691,6 +705,8 @@ CLASS_VALUES = {
     "TriangularProblem": (triangular_problem, hostile_triangular_problems),
     "TriangularBezier": (lambda: nat.TriangularBezier(1, np.array([[0.0, 0, 0], [1, 0, 0], [0, 1, 0]])),
                          hostile_triangular_patches),
+    "TriangularOperatorKind": (lambda: nat.TriangularOperatorKind.point_attractor,
+                               lambda: list(nat.TriangularOperatorKind.__members__.values())),
     "TriangularConstraintKind": (lambda: nat.TriangularConstraintKind.point,
                                  lambda: list(nat.TriangularConstraintKind.__members__.values())),
     "BSplineSurface": (surface, hostile_surfaces),

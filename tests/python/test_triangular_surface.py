@@ -220,3 +220,35 @@ def test_point_and_normal_constraints_shape_the_surface_exactly(doc):
     doc.recompute()
     assert not surface.isValid()
     assert "ConstraintTriangles has 1 entries for 2 ConstraintKinds" in surface.getStatusString()
+
+
+def test_operators_pull_the_surface_and_a_shape_attractor_reaches_a_part(doc):
+    """Veltkamp & Wesselink's operators on a FreeCAD Mesh: a point attractor above a flat hexagon
+    lifts its middle; a ShapeAttractor onto a Part Plane above pulls the surface toward it as the
+    plane attractor through the same plane does (a plane is its own closest-point model); bad
+    operator lists are named."""
+    ring = [(20 * math.cos(k * math.pi / 3), 20 * math.sin(k * math.pi / 3), 0.0) for k in range(6)]
+    mesh = add_mesh(doc, [(0.0, 0.0, 0.0)] + ring, [(0, 1 + k, 1 + (k + 1) % 6) for k in range(6)], "Flat")
+    plane = doc.addObject("Part::Plane", "Lid")
+    plane.Length = plane.Width = 100.0
+    plane.Placement.Base = V(-50, -50, 4)
+    doc.recompute()
+    pulled = varsurf.make_triangular_surface(mesh, degree=4, operators=[
+        ("PointAttractor", [], (0, 0, 10), (0, 0, 1), 2.0)])
+    onto = varsurf.make_triangular_surface(mesh, degree=4, operators=[
+        ("ShapeAttractor", [0, 1, 2], (0, 0, 0), (0, 0, 1), 3.0, plane)])
+    planar = varsurf.make_triangular_surface(mesh, degree=4, operators=[
+        ("PlaneAttractor", [0, 1, 2], (0, 0, 4), (0, 0, 1), 3.0)])
+    doc.recompute()
+    for surface in (pulled, onto, planar):
+        assert surface.isValid(), surface.getStatusString()
+    middle = V(*pulled.Proxy.outcome.patches[0].evaluate([0.4, 0.3, 0.3]))
+    assert middle.z > 0.5
+    a = onto.Proxy.outcome.patches[1].evaluate([1 / 3, 1 / 3, 1 / 3])
+    b = planar.Proxy.outcome.patches[1].evaluate([1 / 3, 1 / 3, 1 / 3])
+    assert a[2] > 0.5 and max(abs(x - y) for x, y in zip(a, b)) < 1e-6
+    assert onto.Proxy.outcome.report.operator_iterations >= 1
+    onto.OperatorTargets = []
+    doc.recompute()
+    assert not onto.isValid()
+    assert "OperatorTargets has 0 shapes for 1 ShapeAttractors" in onto.getStatusString()

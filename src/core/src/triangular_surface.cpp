@@ -8,11 +8,14 @@
 #include <Eigen/SparseCore>
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <string>
 
 #include "serial_openmp.hpp"
 #include "stopwatch.hpp"
 #include "varsurf/core/errors.hpp"
+#include "varsurf/core/operator_terms.hpp"
+#include "varsurf/core/triangle_domain.hpp"
 #include "varsurf/core/triangle_g1.hpp"
 #include "varsurf/core/triangular_energy.hpp"
 
@@ -37,6 +40,9 @@ void check_options(const TriangularProblem& p) {
     throw InvalidInput(
         "the border angle must lie in (0, 2 pi) radians, or be negative for the "
         "angle the mesh spans");
+  if (p.nonlinear_iterations < 1 || p.nonlinear_iterations > 1000 ||
+      !(std::isfinite(p.nonlinear_tolerance) && p.nonlinear_tolerance > 0.0))
+    throw InvalidInput("the operators' Gauss-Newton steps must be 1..1000, their tolerance > 0");
   if (p.g1_rounds < 0 || p.g1_rounds > 1000)
     throw InvalidInput("the G1 rounds must lie in 0..1000");
   if (p.cg_above < 0 || p.cg_iterations < 1 || !(p.cg_tolerance > 0.0 && p.cg_tolerance < 1.0))
@@ -45,40 +51,6 @@ void check_options(const TriangularProblem& p) {
     throw InvalidInput("the angle tolerance must be a positive number of degrees");
   if (p.angle_samples < 2 || p.angle_samples > 100000)
     throw InvalidInput("an edge's angle takes 2 to 100000 samples");
-}
-
-double factorial_ratio(int n, int i, int j, int k) {
-  return std::tgamma(n + 1.0) /
-         (std::tgamma(i + 1.0) * std::tgamma(j + 1.0) * std::tgamma(k + 1.0));
-}
-
-// Bernstein values of degree n at barycentric b, in triangle_index order.
-Eigen::VectorXd bernstein(int n, const Eigen::Vector3d& b) {
-  Eigen::VectorXd out(triangle_points(n));
-  for (int i = 0; i <= n; ++i)
-    for (int j = 0; i + j <= n; ++j) {
-      const int k = n - i - j;
-      out(triangle_index(n, i, j)) =
-          factorial_ratio(n, i, j, k) * std::pow(b(0), i) * std::pow(b(1), j) * std::pow(b(2), k);
-    }
-  return out;
-}
-
-// The derivative along barycentric direction d of each degree-n Bernstein polynomial at b:
-// n sum_c d_c B^(n-1)_(ijk - e_c).
-Eigen::VectorXd bernstein_derivative(int n, const Eigen::Vector3d& b, const Eigen::Vector3d& d) {
-  const Eigen::VectorXd lower = bernstein(n - 1, b);
-  Eigen::VectorXd out = Eigen::VectorXd::Zero(triangle_points(n));
-  for (int i = 0; i <= n; ++i)
-    for (int j = 0; i + j <= n; ++j) {
-      const int k = n - i - j;
-      double s = 0.0;
-      if (i > 0) s += d(0) * lower(triangle_index(n - 1, i - 1, j));
-      if (j > 0) s += d(1) * lower(triangle_index(n - 1, i, j - 1));
-      if (k > 0) s += d(2) * lower(triangle_index(n - 1, i, j));
-      out(triangle_index(n, i, j)) = n * s;
-    }
-  return out;
 }
 
 // One scalar row over the 3 N coordinates (column c N + point): sum over local points l and
@@ -111,6 +83,10 @@ Eigen::Vector3d patch_normal(const TriangularBezier& p, const Eigen::Vector3d& b
   return du.cross(dv).normalized();
 }
 
+// The free points' system and what solves it: per coordinate (the energy's matrix, the same for x,
+// y and z) or, when operators couple the coordinates, as one matrix of 3 nf unknowns. Vectors
+// cross it coordinate-major (x of every free point, then y, then z), which is also an nf x 3
+// matrix's storage.
 struct Factor {
 #ifdef VARSURF_HAVE_CHOLMOD
   Eigen::CholmodDecomposition<Sparse> direct;
@@ -120,6 +96,8 @@ struct Factor {
   Eigen::ConjugateGradient<Sparse, Eigen::Lower | Eigen::Upper, Eigen::IncompleteCholesky<double>>
       cg;
   bool use_cg = false;
+  bool flat = false;  // one 3 nf system
+  int nf = 0;
   int iterations = 0;
   double error = 0.0;
 
@@ -137,7 +115,8 @@ struct Factor {
           "the triangular surface's system is singular: nothing holds it in place; interpolate "
           "the mesh's vertices or add point constraints");
   }
-  Eigen::MatrixXd solve(const Eigen::MatrixXd& b) {
+  // Solves with the factored matrix for each column of b (as many rows as it).
+  Eigen::MatrixXd columns(const Eigen::MatrixXd& b) {
     SerialOpenMp serial;
     if (!use_cg) return direct.solve(b);
     Eigen::MatrixXd x(b.rows(), b.cols());
@@ -146,6 +125,19 @@ struct Factor {
       iterations = std::max(iterations, static_cast<int>(cg.iterations()));
       error = std::max(error, cg.error());
     }
+    return x;
+  }
+  // The free points for right-hand side b (nf x 3).
+  Eigen::MatrixX3d points(const Eigen::MatrixX3d& b) {
+    if (!flat) return columns(b);
+    const Eigen::VectorXd x = columns(Eigen::Map<const Eigen::VectorXd>(b.data(), 3 * nf));
+    return Eigen::Map<const Eigen::MatrixX3d>(x.data(), nf, 3);
+  }
+  // Solves for each column of b (3 nf rows, coordinate-major).
+  Eigen::MatrixXd coordinates(const Eigen::MatrixXd& b) {
+    if (flat) return columns(b);
+    Eigen::MatrixXd x(b.rows(), b.cols());
+    for (int a = 0; a < 3; ++a) x.middleRows(a * nf, nf) = columns(b.middleRows(a * nf, nf));
     return x;
   }
 };
@@ -209,19 +201,12 @@ TriangularResult solve_triangular(const TriangularProblem& problem) {
   const TriangleEnergy unit = triangle_energy(n, 1.0);
   Triplets q_terms;
   for (int t = 0; t < tcount; ++t) {
-    const auto& c = net.triangles[t];
-    const Eigen::Vector3d p = net.vertices.row(c[0]), a = net.vertices.row(c[1]),
-                          b = net.vertices.row(c[2]);
+    const auto [a, b, c] = domain_corners(net, t, problem.equilateral_domain);
     Eigen::MatrixXd local;
-    if (problem.equilateral_domain) {
-      const double side2 = 4.0 * (0.5 * (a - p).cross(b - p).norm()) / std::sqrt(3.0);
-      local = problem.stretch * unit.stretch + problem.bend / side2 * unit.bend;
+    if (problem.equilateral_domain) {  // one matrix for all, scaled (see triangle_energy)
+      local = problem.stretch * unit.stretch + problem.bend / (b - a).squaredNorm() * unit.bend;
     } else {
-      const Eigen::Vector3d x = (a - p).normalized();
-      const Eigen::Vector3d y = ((a - p).cross(b - p)).cross(x).normalized();
-      const TriangleEnergy own =
-          triangle_energy(n, Eigen::Vector2d::Zero(), Eigen::Vector2d((a - p).dot(x), 0.0),
-                          Eigen::Vector2d((b - p).dot(x), (b - p).dot(y)));
+      const TriangleEnergy own = triangle_energy(n, a, b, c);
       local = problem.stretch * own.stretch + problem.bend * own.bend;
     }
     for (int r = 0; r < local.rows(); ++r)
@@ -297,22 +282,6 @@ TriangularResult solve_triangular(const TriangularProblem& problem) {
     Eigen::MatrixX3d x_fixed(fixed_count, 3);
     for (int k = 0; k < fixed_count; ++k) x_fixed.row(k) = start.row(fixed_points[k]);
 
-    const Sparse q_ff = pf.transpose() * q * pf;
-    const Sparse f_f = f * pf;
-    double weight = 0.0;
-    if (f_rows > 0) {
-      const double q_scale = q_ff.diagonal().sum() / nf;
-      const double f_scale = f_f.squaredNorm() / nf;
-      if (f_scale > 0.0) weight = problem.g1_weight * q_scale / f_scale;
-    }
-    Sparse k = q_ff;
-    if (weight > 0.0) k += weight * Sparse(f_f.transpose() * f_f);
-    k.makeCompressed();
-    const Eigen::MatrixX3d rhs =
-        -(pf.transpose() * (q * (px * x_fixed))) -
-        (weight > 0.0 ? Eigen::MatrixX3d(weight * (f_f.transpose() * (f * (px * x_fixed))))
-                      : Eigen::MatrixX3d::Zero(nf, 3));
-
     // The user's constraints, each as rows over the 3 N coordinates.
     std::vector<Row> rows;
     std::vector<int> row_constraint;
@@ -358,30 +327,56 @@ TriangularResult solve_triangular(const TriangularProblem& problem) {
       }
     }
     report.constraint_rows = static_cast<int>(rows.size());
+
+    // The operators: where each acts, its weight (strength made relative as a sheet's).
+    std::vector<int> every(tcount);
+    std::iota(every.begin(), every.end(), 0);
+    const OperatorScales scales =
+        operator_scales(triangles_domain(net, every, problem.equilateral_domain), q);
+    struct Prepared {
+      const TriangularOperator* op;
+      OperatorDomain domain;
+      Eigen::Vector3d direction;
+      double weight;
+    };
+    using Kind = TriangularOperator::Kind;
+    std::vector<Prepared> operators;
+    bool nonlinear = false;
+    for (std::size_t oi = 0; oi < problem.operators.size(); ++oi) {
+      const TriangularOperator& op = problem.operators[oi];
+      const std::string name = "operator " + std::to_string(oi);
+      if (!(std::isfinite(op.strength) && op.strength >= 0.0))
+        throw InvalidInput(name + " has a strength that is negative or not finite; give one >= 0");
+      if (!op.origin.allFinite() || !op.direction.allFinite())
+        throw InvalidInput(name + " has a point or direction that is not finite; give finite ones");
+      for (const int t : op.triangles)
+        if (t < 0 || t >= tcount)
+          throw InvalidInput(name + " names triangle " + std::to_string(t) + " of " +
+                             std::to_string(tcount) + "; give triangles of the mesh");
+      const bool directed = op.kind == Kind::plane_attractor || op.kind == Kind::line_attractor ||
+                            op.kind == Kind::director;
+      if (directed && !(op.direction.norm() > 0.0))
+        throw InvalidInput(name + " has a zero direction; give a direction");
+      if (op.kind == Kind::shape_attractor && !op.closest)
+        throw InvalidInput(name + " attracts to no shape; give its target");
+      if (op.strength == 0.0) continue;
+      nonlinear |= op.kind == Kind::repeller || op.kind == Kind::shape_attractor;
+      operators.push_back(
+          {&op,
+           triangles_domain(net, op.triangles.empty() ? every : op.triangles,
+                            problem.equilateral_domain),
+           directed ? Eigen::Vector3d(op.direction.normalized()) : Eigen::Vector3d::UnitZ(),
+           op.strength * (op.kind == Kind::director ? scales.gradient : scales.value)});
+    }
+    const double size =
+        (net.vertices.colwise().maxCoeff() - net.vertices.colwise().minCoeff()).norm();
     report.assembly_seconds = seconds_since(t0);
 
-    Factor factor;
-    factor.use_cg = problem.solver == TriangularSolver::cg ||
-                    (problem.solver == TriangularSolver::automatic && 3 * nf > problem.cg_above);
-    if (factor.use_cg) {
-      factor.cg.setTolerance(problem.cg_tolerance);
-      factor.cg.setMaxIterations(problem.cg_iterations);
-    }
-    report.solver = factor.use_cg ? "cg" : "direct";
-    factor.compute(k);
-    // Solved for the displacement from the flat start, so that a start nothing moves (a planar
-    // mesh) comes back to rounding instead of through K^-1 (K start).
-    const Eigen::MatrixX3d start_free = pf.transpose() * start;
-    const Eigen::MatrixX3d base = rhs - k * start_free;
-    const Eigen::MatrixX3d start_g1 = f * start;  // rows x 3
-
-    // Exact user constraints through the factored energy: d = d0 - Y lambda, Y = K3^-1 H^T,
+    // Exact user constraints through the factored energy: d = d0 - Y lambda, Y = K^-1 H^T,
     // (H Y) lambda = H d0 - h, least squares where the constraints conflict.
     const int m = static_cast<int>(rows.size());
     Sparse hm(m, 3 * nf);
     Eigen::VectorXd h(m);
-    Eigen::MatrixXd y;
-    Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod;
     if (m > 0) {
       Triplets h_terms;
       for (int r = 0; r < m; ++r) {
@@ -393,47 +388,144 @@ TriangularResult solve_triangular(const TriangularProblem& problem) {
         }
       }
       hm.setFromTriplets(h_terms.begin(), h_terms.end());
-      const Eigen::MatrixXd ht = Eigen::MatrixXd(hm.transpose());
-      y.resize(3 * nf, m);
-      for (int a = 0; a < 3; ++a)
-        y.middleRows(a * nf, nf) = factor.solve(ht.middleRows(a * nf, nf));
-      cod.setThreshold(1e-10);
-      cod.compute(hm * y);
     }
-    const auto solve = [&](const Eigen::MatrixX3d& b) {
-      Eigen::MatrixX3d d = factor.solve(b);
-      if (m == 0) return d;
-      Eigen::VectorXd flat(3 * nf);
-      for (int a = 0; a < 3; ++a) flat.segment(a * nf, nf) = d.col(a);
-      flat -= y * cod.solve(hm * flat - h);
-      for (int a = 0; a < 3; ++a) d.col(a) = flat.segment(a * nf, nf);
-      return d;
-    };
-    Eigen::MatrixX3d x = solve(base);
-    // The G1 rows by the method of multipliers: each round moves the multipliers by the weight
-    // times the rows' residual and solves again with the same factor, so rows that can be met
-    // are met to rounding without a weight that would ruin the factor's accuracy; rows that
-    // conflict stop shrinking, and the rounds stop there.
-    if (weight > 0.0) {
-      Eigen::MatrixX3d multipliers = Eigen::MatrixX3d::Zero(f_rows, 3);
-      double last = (f_f * x + start_g1).cwiseAbs().maxCoeff();
-      for (int round = 0; round < problem.g1_rounds && last > 0.0; ++round) {
-        multipliers += weight * (f_f * x + start_g1);
-        const Eigen::MatrixX3d next = solve(base - f_f.transpose() * multipliers);
-        const double now = (f_f * next + start_g1).cwiseAbs().maxCoeff();
-        x = next;
-        ++report.g1_rounds;
-        if (now > 0.9 * last) break;  // stalled: the rows left conflict
-        last = now;
+    const Sparse f_f = f * pf;
+    const Eigen::MatrixX3d start_free = pf.transpose() * start;
+    const Eigen::MatrixX3d start_g1 = f * start;  // rows x 3
+    Eigen::MatrixX3d current = start;
+    const int iterations = nonlinear ? std::max(1, problem.nonlinear_iterations) : 1;
+    for (int iteration = 0; iteration < iterations; ++iteration) {
+      QuadraticTerms terms(count);
+      for (const Prepared& p : operators) {
+        const TriangularOperator& op = *p.op;
+        switch (op.kind) {
+          case Kind::point_attractor:
+            attractor_terms(p.domain, AttractorKind::point, op.origin, p.direction, p.weight,
+                            terms);
+            break;
+          case Kind::plane_attractor:
+            attractor_terms(p.domain, AttractorKind::plane, op.origin, p.direction, p.weight,
+                            terms);
+            break;
+          case Kind::line_attractor:
+            attractor_terms(p.domain, AttractorKind::line, op.origin, p.direction, p.weight, terms);
+            break;
+          case Kind::director:
+            director_terms(p.domain, p.direction, p.weight, terms);
+            break;
+          case Kind::repeller:
+            repeller_terms(p.domain, op.origin, p.weight, current, 1e-6 * size, terms);
+            break;
+          case Kind::shape_attractor:
+            shape_attractor_terms(p.domain, op.closest, p.weight, current, terms);
+            break;
+        }
       }
+      Sparse separable(count, count);
+      separable.setFromTriplets(terms.separable.begin(), terms.separable.end());
+      const Sparse q_all = q + separable;
+      const Sparse q_ff = pf.transpose() * q_all * pf;
+      double weight = 0.0;
+      if (f_rows > 0) {
+        const double q_scale = q_ff.diagonal().sum() / nf;
+        const double f_scale = f_f.squaredNorm() / nf;
+        if (f_scale > 0.0) weight = problem.g1_weight * q_scale / f_scale;
+      }
+      Sparse k = q_ff;
+      if (weight > 0.0) k += weight * Sparse(f_f.transpose() * f_f);
+      k.makeCompressed();
+      Eigen::MatrixX3d rhs = -(pf.transpose() * (q_all * (px * x_fixed))) +
+                             Eigen::MatrixX3d(pf.transpose() * terms.separable_f);
+      if (weight > 0.0) rhs -= weight * (f_f.transpose() * (f * (px * x_fixed)));
+
+      Factor factor;
+      factor.nf = nf;
+      factor.flat = terms.uses_coupled();
+      factor.use_cg = problem.solver == TriangularSolver::cg ||
+                      (problem.solver == TriangularSolver::automatic && 3 * nf > problem.cg_above);
+      if (factor.use_cg) {
+        factor.cg.setTolerance(problem.cg_tolerance);
+        factor.cg.setMaxIterations(problem.cg_iterations);
+      }
+      report.solver = factor.use_cg ? "cg" : "direct";
+      Sparse system = k;
+      if (factor.flat) {
+        // The energy once per coordinate and the coupling terms (3 p + c in the terms,
+        // c nf + free index here; fixed points move to the right-hand side).
+        Triplets big;
+        for (int a = 0; a < 3; ++a)
+          for (int col = 0; col < k.outerSize(); ++col)
+            for (Sparse::InnerIterator it(k, col); it; ++it)
+              big.emplace_back(a * nf + static_cast<int>(it.row()), a * nf + col, it.value());
+        for (const auto& term : terms.coupled) {
+          const int p = term.row() / 3, c = term.row() % 3, o = term.col() / 3, e = term.col() % 3;
+          if (free_index[p] < 0) continue;
+          if (free_index[o] >= 0)
+            big.emplace_back(c * nf + free_index[p], e * nf + free_index[o], term.value());
+          else
+            rhs(free_index[p], c) -= term.value() * start(o, e);
+        }
+        for (int p = 0; p < count; ++p)
+          if (free_index[p] >= 0)
+            for (int c = 0; c < 3; ++c) rhs(free_index[p], c) += terms.coupled_f(3 * p + c);
+        system.resize(3 * nf, 3 * nf);
+        system.setFromTriplets(big.begin(), big.end());
+      }
+      factor.compute(system);
+      const auto times = [&](const Eigen::MatrixX3d& v) -> Eigen::MatrixX3d {
+        if (!factor.flat) return k * v;
+        const Eigen::VectorXd out = system * Eigen::Map<const Eigen::VectorXd>(v.data(), 3 * nf);
+        return Eigen::Map<const Eigen::MatrixX3d>(out.data(), nf, 3);
+      };
+      // Solved for the displacement from the flat start, so that a start nothing moves (a planar
+      // mesh) comes back to rounding instead of through K^-1 (K start).
+      const Eigen::MatrixX3d base = rhs - times(start_free);
+      Eigen::MatrixXd y;
+      Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod;
+      if (m > 0) {
+        y = factor.coordinates(Eigen::MatrixXd(hm.transpose()));
+        cod.setThreshold(1e-10);
+        cod.compute(hm * y);
+      }
+      const auto solve = [&](const Eigen::MatrixX3d& b) {
+        Eigen::MatrixX3d d = factor.points(b);
+        if (m == 0) return d;
+        Eigen::Map<Eigen::VectorXd> flat(d.data(), 3 * nf);
+        flat -= y * cod.solve(hm * flat - h);
+        return d;
+      };
+      Eigen::MatrixX3d x = solve(base);
+      // The G1 rows by the method of multipliers: each round moves the multipliers by the weight
+      // times the rows' residual and solves again with the same factor, so rows that can be met
+      // are met to rounding without a weight that would ruin the factor's accuracy; rows that
+      // conflict stop shrinking, and the rounds stop there.
+      report.g1_rounds = 0;
+      if (weight > 0.0) {
+        Eigen::MatrixX3d multipliers = Eigen::MatrixX3d::Zero(f_rows, 3);
+        double last = (f_f * x + start_g1).cwiseAbs().maxCoeff();
+        for (int round = 0; round < problem.g1_rounds && last > 0.0; ++round) {
+          multipliers += weight * (f_f * x + start_g1);
+          const Eigen::MatrixX3d next = solve(base - f_f.transpose() * multipliers);
+          const double now = (f_f * next + start_g1).cwiseAbs().maxCoeff();
+          x = next;
+          ++report.g1_rounds;
+          if (now > 0.9 * last) break;  // stalled: the rows left conflict
+          last = now;
+        }
+      }
+      x += start_free;
+      report.cg_iterations = std::max(report.cg_iterations, factor.iterations);
+      report.cg_error = std::max(report.cg_error, factor.error);
+      Eigen::MatrixX3d next = start;
+      for (int i = 0; i < nf; ++i) next.row(free_points[i]) = x.row(i);
+      if (!next.allFinite())
+        throw SolveFailure("the triangular surface's solve gave points that are not finite");
+      const double moved = (next - current).cwiseAbs().maxCoeff();
+      current = next;
+      if (nonlinear) report.operator_iterations = iteration + 1;
+      if (!nonlinear || moved <= problem.nonlinear_tolerance * size) break;
     }
-    x += start_free;
-    report.cg_iterations = factor.iterations;
-    report.cg_error = factor.error;
-    result.control = start;
-    for (int i = 0; i < nf; ++i) result.control.row(free_points[i]) = x.row(i);
-    if (!result.control.allFinite())
-      throw SolveFailure("the triangular surface's solve gave points that are not finite");
+    result.control = current;
     report.solve_seconds = seconds_since(t0) - report.assembly_seconds;
   }
 

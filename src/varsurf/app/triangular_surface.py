@@ -33,6 +33,12 @@ _PROPERTIES = [
     ("ConstraintAt", "App::PropertyVectorList", "Constraints", "Per constraint: where on its triangle, in barycentric coordinates of its corners (each >= 0, summing to 1)", False),
     ("ConstraintTargets", "App::PropertyVectorList", "Constraints", "Per constraint: the point it holds (Point), or a point of its plane or line", False),
     ("ConstraintDirections", "App::PropertyVectorList", "Constraints", "Per constraint: the normal (Normal, Plane) or the line's direction (Line); unused by Point", False),
+    ("OperatorKinds", "App::PropertyStringList", "Operators", "Per operator: PointAttractor, PlaneAttractor, LineAttractor (pull toward Origin: a point, the plane normal to Direction, the line along it), Director (normals toward Direction), Repeller (away from Origin) or ShapeAttractor (onto the next of OperatorTargets)", False),
+    ("OperatorTriangles", "App::PropertyStringList", "Operators", "Per operator: the triangles it acts on, numbers separated by spaces (empty: all)", False),
+    ("OperatorOrigins", "App::PropertyVectorList", "Operators", "Per operator: its point (attractors, Repeller)", False),
+    ("OperatorDirections", "App::PropertyVectorList", "Operators", "Per operator: the plane's normal, the line's direction or the Director's", False),
+    ("OperatorStrengths", "App::PropertyFloatList", "Operators", "Per operator: its strength (1 pulls about as hard as the surface resists)", False),
+    ("OperatorTargets", "App::PropertyLinkList", "Operators", "The shapes the ShapeAttractors pull onto, in their order", False),
     ("ConstraintResidual", "App::PropertyFloat", "Result", "The worst constraint's residual (mm; Normal: sine of the angle)", True),
     ("Closed", "App::PropertyBool", "Result", "True if the faces close into a solid", True),
     ("PatchCount", "App::PropertyInteger", "Result", "Triangular patches (one per triangle)", True),
@@ -124,6 +130,41 @@ def constraints_of(obj):
     return out
 
 
+def operators_of(obj):
+    """The feature's operators (its Operator* lists) as triangular.Operator values."""
+    kinds = list(getattr(obj, "OperatorKinds", []) or [])
+    if not kinds:
+        return []
+    lists = {"OperatorTriangles": list(obj.OperatorTriangles), "OperatorOrigins": list(value(obj, "OperatorOrigins")),
+             "OperatorDirections": list(value(obj, "OperatorDirections")),
+             "OperatorStrengths": list(obj.OperatorStrengths)}
+    for name, entries in lists.items():
+        if entries and len(entries) != len(kinds):
+            raise errors.SheetError(f"{name} has {len(entries)} entries for {len(kinds)} OperatorKinds: give one per "
+                                    "operator (or none)")
+    targets = list(obj.OperatorTargets or [])
+    if len(targets) != kinds.count("ShapeAttractor"):
+        raise errors.SheetError(f"OperatorTargets has {len(targets)} shapes for {kinds.count('ShapeAttractor')} "
+                                "ShapeAttractors: link one shape per ShapeAttractor")
+    out = []
+    for k, kind in enumerate(kinds):
+        text = lists["OperatorTriangles"][k] if lists["OperatorTriangles"] else ""
+        try:
+            triangles = [int(t) for t in str(text).replace(",", " ").split()]
+        except ValueError as error:
+            raise errors.SheetError(f"operator {k}'s triangles {text!r} are not numbers: give triangle numbers "
+                                    "separated by spaces") from error
+        origin = lists["OperatorOrigins"][k] if lists["OperatorOrigins"] else FreeCAD.Vector()
+        direction = lists["OperatorDirections"][k] if lists["OperatorDirections"] else FreeCAD.Vector(0, 0, 1)
+        strength = lists["OperatorStrengths"][k] if lists["OperatorStrengths"] else 1.0
+        brep = ""
+        if kind == "ShapeAttractor":
+            brep = targets.pop(0).Shape.exportBrepToString()
+        out.append(triangular.Operator(kind, triangles, (origin.x, origin.y, origin.z),
+                                       (direction.x, direction.y, direction.z), float(strength), brep))
+    return out
+
+
 def compute(obj) -> triangular.Outcome:
     """The surface of the feature's Source with its settings, and its B-rep."""
     source = obj.Source
@@ -133,7 +174,7 @@ def compute(obj) -> triangular.Outcome:
     if not triangles:
         raise errors.SheetError(f"{source.Label} has no triangles: give a Mesh with facets as Source")
     return triangular.solve(points, triangles, settings_of(obj), constraints_of(obj),
-                            tolerance=float(value(obj, "Tolerance")))
+                            tolerance=float(value(obj, "Tolerance")), operators=operators_of(obj))
 
 
 def is_triangular_surface(obj) -> bool:
@@ -152,14 +193,28 @@ def set_constraints(obj, constraints):
     obj.ConstraintDirections = [FreeCAD.Vector(*r[4]) for r in rows]
 
 
-def make_triangular_surface(source, degree: int = 3, constraints=(), name: str = "TriangularSurface"):
+def set_operators(obj, operators):
+    """Replace a TriangularSurface's operators by ``operators``: (kind, triangles, origin, direction,
+    strength[, target]) tuples, kind one of triangular.OPERATOR_KINDS, triangles a list (empty: all),
+    target the document object a ShapeAttractor pulls onto."""
+    rows = [tuple(o) + (None,) * (6 - len(o)) for o in operators]
+    obj.OperatorKinds = [str(r[0]) for r in rows]
+    obj.OperatorTriangles = [" ".join(str(int(t)) for t in r[1]) for r in rows]
+    obj.OperatorOrigins = [FreeCAD.Vector(*r[2]) for r in rows]
+    obj.OperatorDirections = [FreeCAD.Vector(*r[3]) for r in rows]
+    obj.OperatorStrengths = [float(r[4]) for r in rows]
+    obj.OperatorTargets = [r[5] for r in rows if r[5] is not None]
+
+
+def make_triangular_surface(source, degree: int = 3, constraints=(), operators=(), name: str = "TriangularSurface"):
     """Add a TriangularSurface over ``source`` (a Mesh object, or a shape whose faces are
     tessellated): a patch of degree ``degree`` per triangle, with ``constraints`` (see
-    set_constraints; computed at the next recompute)."""
+    set_constraints) and ``operators`` (see set_operators; computed at the next recompute)."""
     obj = source.Document.addObject("Part::FeaturePython", name)
     TriangularSurfaceFeature(obj)
     obj.Source = source
     obj.Degree = int(degree)
     set_constraints(obj, constraints)
+    set_operators(obj, operators)
     attach_view_provider(obj, "ViewProviderTriangularSurface")
     return obj

@@ -38,6 +38,25 @@ class Constraint:
     direction: Point = (0.0, 0.0, 1.0)
 
 
+#: Operator kinds, as a feature names them.
+OPERATOR_KINDS = ("PointAttractor", "PlaneAttractor", "LineAttractor", "Director", "Repeller", "ShapeAttractor")
+
+
+@dataclass
+class Operator:
+    """An external energy operator on `triangles` (empty: all): attractors pull toward `origin` (a
+    point, the plane through it normal to `direction`, the line through it along `direction`), a
+    Director turns the normals toward `direction`, a Repeller pushes away from `origin`, a
+    ShapeAttractor pulls onto the shape `target_brep` (a BREP string). Strength 1 pulls about as hard
+    as the surface resists."""
+    kind: str
+    triangles: Sequence[int] = ()
+    origin: Point = (0.0, 0.0, 0.0)
+    direction: Point = (0.0, 0.0, 1.0)
+    strength: float = 1.0
+    target_brep: str = ""
+
+
 @dataclass
 class Settings:
     degree: int = 3
@@ -64,8 +83,31 @@ class Outcome:
     warnings: List[str] = field(default_factory=list)
 
 
+def _operators(nat, operators: Sequence[Operator]):
+    kinds = {name: getattr(nat.TriangularOperatorKind, snake) for name, snake in zip(
+        OPERATOR_KINDS, ("point_attractor", "plane_attractor", "line_attractor", "director", "repeller",
+                         "shape_attractor"))}
+    out = []
+    for index, op in enumerate(operators):
+        if op.kind not in kinds:
+            raise SheetError(f"operator {index} is of kind {op.kind!r}: give one of {', '.join(kinds)}")
+        target = None
+        if op.kind == "ShapeAttractor":
+            if not op.target_brep:
+                raise SheetError(f"operator {index} (ShapeAttractor) has no target: give the shape to pull onto")
+            try:
+                target = nat.ClosestPointTarget(op.target_brep)
+            except (nat.InvalidInput, nat.GeometryError) as error:
+                raise SheetError(advised(f"operator {index}'s target cannot be read: {error}",
+                                         "give a shape with faces or edges")) from error
+        out.append(nat.TriangularOperator(kinds[op.kind], [int(t) for t in op.triangles],
+                                          np.asarray(op.origin, float), np.asarray(op.direction, float),
+                                          float(op.strength), target))
+    return out
+
+
 def _problem(points: Sequence[Point], triangles: Sequence[Triangle], settings: Settings,
-             constraints: Sequence[Constraint]):
+             constraints: Sequence[Constraint], operators: Sequence[Operator] = ()):
     nat = native()
     if settings.solver not in SOLVERS:
         raise SheetError(f"Solver must be one of {', '.join(SOLVERS)}, not {settings.solver!r}")
@@ -96,16 +138,18 @@ def _problem(points: Sequence[Point], triangles: Sequence[Triangle], settings: S
                                                            np.asarray(c.target, float),
                                                            np.asarray(c.direction, float)))
     problem.constraints = native_constraints
+    problem.operators = _operators(nat, operators)
     return problem
 
 
 def solve(points: Sequence[Point], triangles: Sequence[Triangle], settings: Settings = Settings(),
-          constraints: Sequence[Constraint] = (), export: bool = True, tolerance: float = 0.0) -> Outcome:
-    """The fairest surface over the triangulation and, with `export`, its B-rep: each patch as three
-    n x n Bezier faces, sewn at `tolerance` (0: a ten-millionth of the mesh's size). SheetError
-    names the triangle, edge, vertex or constraint at fault."""
+          constraints: Sequence[Constraint] = (), export: bool = True, tolerance: float = 0.0,
+          operators: Sequence[Operator] = ()) -> Outcome:
+    """The fairest surface over the triangulation, shaped by `operators`, and, with `export`, its
+    B-rep: each patch as three n x n Bezier faces, sewn at `tolerance` (0: a ten-millionth of the
+    mesh's size). SheetError names the triangle, edge, vertex, constraint or operator at fault."""
     nat = native()
-    problem = _problem(points, triangles, settings, constraints)
+    problem = _problem(points, triangles, settings, constraints, operators)
     try:
         result = nat.solve_triangular(problem)
     except nat.InvalidInput as error:

@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "varsurf/core/external_energy.hpp"
 #include "varsurf/core/triangle_net.hpp"
 #include "varsurf/core/triangular_bezier.hpp"
 
@@ -36,6 +37,28 @@ struct TriangularConstraint {
   Eigen::Vector3d at = Eigen::Vector3d::Constant(1.0 / 3.0);
   Eigen::Vector3d target = Eigen::Vector3d::Zero();
   Eigen::Vector3d direction = Eigen::Vector3d::UnitZ();
+};
+
+// An external energy operator (their sec. 5) on some of the surface's triangles, through the
+// same terms as a sheet's (operator_terms.hpp): attractors pull toward a point, plane or line,
+// a director turns the normals toward a direction, a repeller pushes away from a point, a shape
+// attractor pulls onto another surface or curve. Strengths are relative as a sheet's: 1 pulls
+// about as hard as the surface resists.
+struct TriangularOperator {
+  enum class Kind {
+    point_attractor,
+    plane_attractor,
+    line_attractor,
+    director,
+    repeller,
+    shape_attractor
+  };
+  Kind kind = Kind::point_attractor;
+  std::vector<int> triangles;  // where it acts (numbered as given); empty: everywhere
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();
+  Eigen::Vector3d direction = Eigen::Vector3d::UnitZ();  // plane normal, line, director
+  double strength = 1.0;
+  ClosestPointFunction closest;  // shape attractor: the target
 };
 
 enum class TriangularSolver {
@@ -63,6 +86,11 @@ struct TriangularProblem {
   // own triangles span (a corner of the mesh stays a corner); their default is pi.
   double border_angle = -1.0;
   std::vector<TriangularConstraint> constraints;
+  std::vector<TriangularOperator> operators;
+  // Repellers and shape attractors are not quadratic: Gauss-Newton steps until no control point
+  // moves by more than nonlinear_tolerance times the mesh's size, or this many.
+  int nonlinear_iterations = 30;
+  double nonlinear_tolerance = 1e-9;
   // The G1 conditions' penalty weight over the energy's (both scaled to unit mean diagonal), and
   // the most rounds of multiplier updates that drive the rows that can be met to zero.
   double g1_weight = 1e6;
@@ -78,9 +106,10 @@ struct TriangularProblem {
 struct TriangularReport {
   int patches = 0;
   int control_points = 0;
-  int unknowns = 0;   // free coordinates
-  int g1_rows = 0;    // per coordinate
-  int g1_rounds = 0;  // multiplier updates made
+  int unknowns = 0;             // free coordinates
+  int g1_rows = 0;              // per coordinate
+  int g1_rounds = 0;            // multiplier updates made (the last solve's)
+  int operator_iterations = 0;  // Gauss-Newton steps of the non-quadratic operators
   int constraint_rows = 0;
   std::string solver;  // "direct" or "cg"
   int cg_iterations = 0;
@@ -109,9 +138,10 @@ struct TriangularResult {
   TriangularReport report;
 };
 
-// InvalidInput naming the triangle, edge, vertex or constraint at fault (see make_triangle_net;
-// a constraint's triangle out of range, a point outside its triangle, a zero direction, a
-// vertex whose G1 weights do not exist); SolveFailure when the system cannot be factored.
+// InvalidInput naming the triangle, edge, vertex, constraint or operator at fault (see
+// make_triangle_net; a constraint's triangle out of range, a point outside its triangle, a zero
+// direction, a vertex whose G1 weights do not exist); SolveFailure when the system cannot be
+// factored.
 TriangularResult solve_triangular(const TriangularProblem& problem);
 
 // The largest angle (degrees) between the normals of the two patches at each inner edge of `net`.
