@@ -6,6 +6,9 @@
 
 - fig1: point and normal constraints (their Fig. 1): a flat hexagonal fan of six triangles pulled up
   at a point of one triangle and given a tilted normal at another; both met exactly, G1 kept.
+- fig8: external energy operators (their Fig. 8): a flat square of 32 triangles shaped only by
+  operators: a point attractor raises a hump, a line attractor a ridge along one side, a repeller
+  pushes a dent, a director tilts a corner's normals.
 - handle: a closed genus-1 model from a coarse mesh of 48 triangles (a handle drawn as a triangle
   mesh) to a smooth closed G1 solid through its vertices.
 - hole5, hole6: a five- and a six-sided hole in a wavy B-spline face filled by a triangular surface:
@@ -50,6 +53,37 @@ def fig1(doc):
         ("Normal", 3, (1 / 3, 1 / 3, 1 / 3), (0, 0, 0), (0.4, 0.0, 1.0))])
     doc.recompute()
     return [surface], [surface], [f"fig1: constraint residual {surface.ConstraintResidual:.1e}"]
+
+
+def fig8(doc):
+    n = 4
+    points = [(15.0 * i, 15.0 * j, 0.0) for j in range(n + 1) for i in range(n + 1)]
+    triangles = []
+    for j in range(n):
+        for i in range(n):
+            a = j * (n + 1) + i
+            triangles += [(a, a + 1, a + n + 2), (a, a + n + 2, a + n + 1)]
+    mesh = add_mesh(doc, "Square", points, triangles)
+    # Triangles by cell (i, j): 2 (j n + i) and 2 (j n + i) + 1.
+    cells = lambda pairs: [2 * (j * n + i) + k for i, j in pairs for k in (0, 1)]  # noqa: E731
+    # Sculpting: the energy is of the displacement from the flat square, whose vertices are free
+    # control points here; its four corners are held by point constraints, the operators move
+    # the rest.
+    corners = [(0, (1, 0, 0), points[0]), (2 * (n - 1) + 0, (0, 1, 0), points[n]),
+               (2 * (n * n - 1) + 0, (0, 0, 1), points[-1]), (2 * (n * (n - 1)) + 1, (0, 0, 1), points[n * (n + 1)])]
+    surface = varsurf.make_triangular_surface(
+        mesh, degree=4, constraints=[("Point", t, at, p) for t, at, p in corners], operators=[
+            ("PointAttractor", cells([(1, 1), (1, 2), (2, 1), (2, 2)]), (30, 30, 25), (0, 0, 1), 0.05),
+            ("LineAttractor", cells([(i, 3) for i in range(4)]), (0, 60, 10), (1, 0, 0), 0.05),
+            ("Repeller", cells([(3, 0)]), (52, 8, -4), (0, 0, 1), 0.2),
+            ("Director", cells([(0, 0)]), (0, 0, 0), (-0.6, -0.6, 1.0), 0.2)])
+    surface.InterpolateVertices = False
+    surface.RestShape = True
+    surface.Stretch = 1.0
+    doc.recompute()
+    report = surface.Proxy.outcome.report
+    return [surface], [surface], [f"fig8: {report.operator_iterations} Gauss-Newton steps for the repeller; "
+                                  f"patches meet within {report.worst_angle:.1e}°"]
 
 
 def torus_mesh(nu=8, nv=6, big=20.0, small=7.0):
@@ -149,7 +183,8 @@ def border_fit(surface, around, pieces, samples=20):
     return gap, angle
 
 
-FIGURES = {"fig1": fig1, "handle": handle, "hole5": lambda doc: hole(doc, 5), "hole6": lambda doc: hole(doc, 6)}
+FIGURES = {"fig1": fig1, "fig8": fig8, "handle": handle, "hole5": lambda doc: hole(doc, 5),
+           "hole6": lambda doc: hole(doc, 6)}
 
 
 def _build_report(stem, doc):

@@ -91,6 +91,7 @@ void bind_triangular(py::module_& m) {
       .def_readwrite("bend", &TriangularProblem::bend)
       .def_readwrite("interpolate_vertices", &TriangularProblem::interpolate_vertices)
       .def_readwrite("equilateral_domain", &TriangularProblem::equilateral_domain)
+      .def_readwrite("energy_of_displacement", &TriangularProblem::energy_of_displacement)
       .def_readwrite("g1", &TriangularProblem::g1)
       .def_readwrite("approximate_g1", &TriangularProblem::approximate_g1)
       .def_readwrite("border_angle", &TriangularProblem::border_angle)

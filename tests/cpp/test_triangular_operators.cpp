@@ -210,3 +210,34 @@ TEST(TriangularOperators, BadOperatorsAreRefusedByName) {
   p.operators[0].origin(0) = NAN;
   expect_refused([&] { solve_triangular(p); }, "not finite");
 }
+
+TEST(TriangularOperators, TheEnergyOfTheDisplacementKeepsWhatNothingPulls) {
+  // Sculpting: the vertices free, the energy of the displacement from the mesh's flat patches.
+  // With nothing pulling, a flat mesh (already G1) comes back as it is; a point attractor moves
+  // its own triangles' points most.
+  TriangularProblem p = flat_fan();
+  p.interpolate_vertices = false;
+  p.energy_of_displacement = true;
+  p.stretch = 1.0;
+  for (int k = 0; k < 6; ++k) {  // the border vertices held, the middle one free
+    TriangularConstraint hold;
+    hold.triangle = k;
+    hold.at = Eigen::Vector3d(0.0, 1.0, 0.0);
+    hold.target = p.vertices.row(k + 1).transpose();
+    p.constraints.push_back(hold);
+  }
+  const TriangularResult still = solve_triangular(p);
+  TriangularProblem flat = flat_fan();
+  const TriangularResult start = solve_triangular(flat);  // interpolating: the flat patches
+  // To the solve's accuracy, about 1e-8 of the model's size (2) with the G1 weight.
+  EXPECT_LT((still.control - start.control).cwiseAbs().maxCoeff(), 2 * 5e-8);
+  TriangularOperator op;
+  op.origin = Eigen::Vector3d(0.5, 0.3, 1.0);
+  op.triangles = {0};
+  op.strength = 0.5;
+  p.operators = {op};
+  const TriangularResult pulled = solve_triangular(p);
+  EXPECT_GT(pulled.patches[0].evaluate(Eigen::Vector3d::Constant(1.0 / 3.0)).z(),
+            2.0 * std::abs(pulled.patches[3].evaluate(Eigen::Vector3d::Constant(1.0 / 3.0)).z()));
+  EXPECT_LT(pulled.report.worst_angle, 0.01);
+}

@@ -1,17 +1,27 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
 """The triangular-surface examples (examples/triangular_surfaces.py, after Veltkamp & Wesselink)
-build what they show: Fig. 1's point and normal met exactly; the handle a closed G1 solid; the
+build what they show: Fig. 1's point and normal met exactly; Fig. 8's operators sculpting a
+square whose corners are held; the handle a closed G1 solid; the
 five- and six-sided holes filled through their border within the measured gap and angle, the
 fill's STEP file read back through check(True)."""
 
 
 import varsurf
-from triangular_surfaces import fig1, handle, hole
+from triangular_surfaces import fig1, fig8, handle, hole
 
 
 def test_fig1_meets_its_point_and_normal(doc):
     (surface,), _, _ = fig1(doc)
     assert surface.isValid() and surface.ConstraintResidual < 1e-9 and surface.WorstAngle < 0.01
+
+
+def test_fig8_operators_sculpt_the_square_with_its_corners_held(doc):
+    (surface,), _, _ = fig8(doc)
+    assert surface.isValid(), surface.getStatusString()
+    report = surface.Proxy.outcome.report
+    assert surface.ConstraintResidual < 1e-9 and surface.WorstAngle < 0.01 and report.operator_iterations > 1
+    # The point attractor above the middle lifted it.
+    assert surface.Proxy.outcome.patches[12].evaluate([1 / 3, 1 / 3, 1 / 3])[2] > 1.0
 
 
 def test_the_handle_is_a_closed_g1_solid(doc):

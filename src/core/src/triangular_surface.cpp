@@ -434,8 +434,13 @@ TriangularResult solve_triangular(const TriangularProblem& problem) {
       Sparse k = q_ff;
       if (weight > 0.0) k += weight * Sparse(f_f.transpose() * f_f);
       k.makeCompressed();
-      Eigen::MatrixX3d rhs = -(pf.transpose() * (q_all * (px * x_fixed))) +
-                             Eigen::MatrixX3d(pf.transpose() * terms.separable_f);
+      // The energy of the points, or of their displacement from the flat start (whose fixed
+      // points do not move, so only the free ones' part remains).
+      Eigen::MatrixX3d rhs = (problem.energy_of_displacement
+                                  ? Eigen::MatrixX3d(pf.transpose() * (q * start))
+                                  : Eigen::MatrixX3d(-(pf.transpose() * (q * (px * x_fixed))))) -
+                             pf.transpose() * (separable * (px * x_fixed)) +
+                             pf.transpose() * terms.separable_f;
       if (weight > 0.0) rhs -= weight * (f_f.transpose() * (f * (px * x_fixed)));
 
       Factor factor;

@@ -21,6 +21,8 @@ TYPE = "VarSurf::TriangularSurface"
 _PROPERTIES = [
     ("Source", "App::PropertyLink", "TriangularSurface", "The triangulation: a Mesh (each triangle becomes a patch through its corners), or a shape whose faces are tessellated", False),
     ("Degree", "App::PropertyIntegerConstraint", "TriangularSurface", "Degree of every patch (3: the paper's cubics; higher degrees meet G1 with more freedom)", False),
+    ("InterpolateVertices", "App::PropertyBool", "TriangularSurface", "The surface passes through every vertex of the mesh (off: the vertices are free like the other control points, and point constraints or operators hold the surface)", False),
+    ("RestShape", "App::PropertyBool", "Energy", "The energy is of the displacement from the mesh's own flat triangles (sculpting: operators and constraints move the mesh, which stays where nothing pulls) instead of the surface's own", False),
     ("Stretch", "App::PropertyFloat", "Energy", "Weight of the stretch energy (area-like)", False),
     ("Bend", "App::PropertyFloat", "Energy", "Weight of the bend energy (thin plate)", False),
     ("G1", "App::PropertyBool", "Continuity", "Tangent-plane continuity across every inner edge (the default constraints)", False),
@@ -65,7 +67,7 @@ class TriangularSurfaceFeature(FeatureProxy):
     TYPE = TYPE
     VIEW_PROVIDER = "ViewProviderTriangularSurface"
     PROPERTIES = _PROPERTIES
-    DEFAULTS = {"Degree": (3, 3, 12, 1), "Bend": 1.0, "G1": True, "Solver": _set_solver}
+    DEFAULTS = {"Degree": (3, 3, 12, 1), "Bend": 1.0, "G1": True, "Solver": _set_solver, "InterpolateVertices": True}
 
     def consumed(self, obj):
         source = getattr(obj, "Source", None)
@@ -98,7 +100,8 @@ def settings_of(obj) -> triangular.Settings:
     return triangular.Settings(
         degree=int(obj.Degree), stretch=float(obj.Stretch), bend=float(obj.Bend), g1=bool(obj.G1),
         approximate_g1=bool(obj.ApproximateG1), border_angle=float(value(obj, "BorderAngle")) or -1.0,
-        solver=str(obj.Solver))
+        solver=str(obj.Solver), interpolate_vertices=bool(obj.InterpolateVertices),
+        rest_shape=bool(obj.RestShape))
 
 
 KINDS = ("Point", "Normal", "Plane", "Line")

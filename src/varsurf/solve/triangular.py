@@ -66,6 +66,7 @@ class Settings:
     approximate_g1: bool = False
     border_angle: float = -1.0  # degrees; negative: the angle the mesh spans at each border vertex
     interpolate_vertices: bool = True
+    rest_shape: bool = False  # the energy of the displacement from the mesh's own flat patches
     solver: str = "Automatic"
     angle_tolerance: float = 0.01  # degrees
 
@@ -125,6 +126,7 @@ def _problem(points: Sequence[Point], triangles: Sequence[Triangle], settings: S
     angle = float(settings.border_angle)
     problem.border_angle = math.radians(angle) if angle > 0.0 else -1.0
     problem.interpolate_vertices = bool(settings.interpolate_vertices)
+    problem.energy_of_displacement = bool(settings.rest_shape)
     problem.solver = {"Automatic": nat.TriangularSolver.automatic, "Direct": nat.TriangularSolver.direct,
                       "CG": nat.TriangularSolver.cg}[settings.solver]
     problem.angle_tolerance = float(settings.angle_tolerance)

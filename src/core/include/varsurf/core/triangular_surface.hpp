@@ -80,6 +80,10 @@ struct TriangularProblem {
   // Each patch's energy over the equilateral triangle of its area (their eq. 25), or over the mesh
   // triangle itself laid flat, which follows the mesh's own proportions.
   bool equilateral_domain = true;
+  // The energy of the displacement from the mesh's own flat patches instead of the points' own
+  // (as a sheet's rest shape): what nothing pulls stays where the mesh is, so operators and
+  // constraints sculpt the mesh rather than replace it.
+  bool energy_of_displacement = false;
   bool g1 = true;
   bool approximate_g1 = false;  // their weaker variant (one row between the vertex rows)
   // Border vertices: the angle the surface turns through there. Negative: the angle the mesh's
