@@ -76,6 +76,16 @@ void bind_triangular(py::module_& m) {
       .def_readwrite("origin", &TriangularOperator::origin)
       .def_readwrite("direction", &TriangularOperator::direction)
       .def_readwrite("strength", &TriangularOperator::strength);
+  py::class_<FixedEdge>(m, "FixedEdge",
+                        "The control points (degree + 1, from `from` to `to`) a mesh edge must "
+                        "take: a curve the surface contains.")
+      .def(py::init([](int from, int to, Eigen::MatrixX3d points) {
+             return FixedEdge{from, to, std::move(points)};
+           }),
+           "from"_a, "to"_a, "points"_a)
+      .def_readwrite("from_vertex", &FixedEdge::from)
+      .def_readwrite("to_vertex", &FixedEdge::to)
+      .def_readwrite("points", &FixedEdge::points);
   py::enum_<TriangularSolver>(m, "TriangularSolver")
       .value("automatic", TriangularSolver::automatic)
       .value("direct", TriangularSolver::direct)
@@ -97,6 +107,7 @@ void bind_triangular(py::module_& m) {
       .def_readwrite("border_angle", &TriangularProblem::border_angle)
       .def_readwrite("constraints", &TriangularProblem::constraints)
       .def_readwrite("operators", &TriangularProblem::operators)
+      .def_readwrite("fixed_edges", &TriangularProblem::fixed_edges)
       .def_readwrite("nonlinear_iterations", &TriangularProblem::nonlinear_iterations)
       .def_readwrite("nonlinear_tolerance", &TriangularProblem::nonlinear_tolerance)
       .def_readwrite("g1_weight", &TriangularProblem::g1_weight)

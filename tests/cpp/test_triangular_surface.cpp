@@ -325,3 +325,62 @@ TEST(TriangularSurface, RefusesBadInputByName) {
   loose.interpolate_vertices = false;
   expect_refused([&] { solve_triangular(loose); }, "nothing holds the triangular surface");
 }
+
+TEST(TriangularSurface, FixedEdgesCarryTheirCurvesExactly) {
+  // Their sec. 4.2: a cubic curve set as the control points of a chain of edges is contained by
+  // the surface exactly; the surface stays G1 across it (the curve is one of its inner edges).
+  const test::Mesh m = test::grid_mesh(4, 2, 0.0);  // edges along y = 0.5 from (0, .5) to (1, .5)
+  TriangularProblem p = problem_of(m, 4);
+  const auto curve = [](double x) {
+    return Eigen::Vector3d(x, 0.5, 0.3 * x * (1.0 - x) * (1.0 + x));  // a cubic in x
+  };
+  for (int i = 0; i < 4; ++i) {
+    // Vertices 5 + i and 6 + i lie on y = 0.5; the piece of the cubic between them, as a quartic
+    // Bezier: its points are the blossom at (a^(4-k), b^k) of the cubic elevated, here by sampling
+    // and solving (exact for a polynomial of degree <= 4).
+    const double a = i / 4.0, b = (i + 1) / 4.0;
+    Eigen::MatrixXd basis(5, 5);
+    Eigen::MatrixX3d values(5, 3);
+    for (int s = 0; s <= 4; ++s) {
+      const double t = s / 4.0;
+      for (int k = 0; k <= 4; ++k)
+        basis(s, k) = std::tgamma(5.0) / (std::tgamma(k + 1.0) * std::tgamma(5.0 - k)) *
+                      std::pow(t, k) * std::pow(1 - t, 4 - k);
+      values.row(s) = curve(a + t * (b - a)).transpose();
+    }
+    p.fixed_edges.push_back({5 + i, 6 + i, basis.partialPivLu().solve(values)});
+  }
+  p.interpolate_vertices = true;
+  // The vertices on the curve move to it (the fixed edges overrule the mesh's positions).
+  const TriangularResult r = solve_triangular(p);
+  const TriangleNet net = make_triangle_net(m.points, m.triangles, 4);
+  double worst = 0.0;
+  for (int i = 0; i < 4; ++i) {
+    const int e = net.edge(5 + i, 6 + i);
+    const NetEdge& edge = net.edges[e];
+    TriangularBezier patch = r.patches[edge.left];
+    for (int s = 0; s <= 20; ++s) {
+      const double t = s / 20.0;
+      Eigen::Vector3d bary = Eigen::Vector3d::Zero();
+      const int from = edge.a == 5 + i ? edge.left_corners[0] : edge.left_corners[1];
+      const int to = edge.a == 5 + i ? edge.left_corners[1] : edge.left_corners[0];
+      bary(from) = 1.0 - t;
+      bary(to) = t;
+      worst = std::max(worst, (patch.evaluate(bary) - curve((i + t) / 4.0)).norm());
+    }
+  }
+  EXPECT_LT(worst, 1e-12);
+  EXPECT_LT(r.report.worst_angle, 0.01);
+  // Bad fixed edges are named.
+  TriangularProblem bad = problem_of(m, 4);
+  bad.fixed_edges = {{0, 14, Eigen::MatrixX3d::Zero(5, 3)}};
+  expect_refused([&] { solve_triangular(bad); }, "fixed edge 0 joins vertices 0 and 14");
+  bad.fixed_edges = {{0, 1, Eigen::MatrixX3d::Zero(3, 3)}};
+  expect_refused([&] { solve_triangular(bad); }, "fixed edge 0 has 3 points");
+  // The first edge ends at vertex 1 at the origin, the second starts there at (5, 5, 5).
+  const Eigen::MatrixX3d first = Eigen::MatrixX3d::Zero(5, 3);
+  Eigen::MatrixX3d second = Eigen::MatrixX3d::Zero(5, 3);
+  second.row(0) << 5.0, 5.0, 5.0;
+  bad.fixed_edges = {{0, 1, first}, {1, 2, second}};
+  expect_refused([&] { solve_triangular(bad); }, "put vertex 1 at different places");
+}

@@ -685,6 +685,13 @@ def hostile_triangular_problems():
         variant(nonlinear_iterations=n)
     for x in hostile_floats():
         variant(nonlinear_tolerance=x)
+    line = np.array([[0.0, 0.0, 1.0], [0.3, 0.0, 0.7], [0.7, 0.0, 0.3], [1.0, 0.0, 0.0]])
+    for a, b in ((0, 1), (1, 0), (0, 5), (0, 0), (-1, 1), (0, 99)):
+        variant(fixed_edges=[nat.FixedEdge(a, b, line)])
+    for rows in (line[:2], np.zeros((0, 3)), np.vstack([line, line]), line * NAN, line * INF):
+        variant(fixed_edges=[nat.FixedEdge(0, 1, rows)])
+    variant(fixed_edges=[nat.FixedEdge(0, 1, line), nat.FixedEdge(1, 2, line + 1.0)])
+    variant(fixed_edges=[nat.FixedEdge(0, 1, line)] * 2, interpolate_vertices=False)
     # Conflicting constraints: one point held at two places.
     variant(constraints=[nat.TriangularConstraint(kinds[0], 0, np.array([1 / 3, 1 / 3, 1 / 3]), np.array(t))
                          for t in ([0.0, 0.0, 2.0], [0.0, 0.0, 3.0])])

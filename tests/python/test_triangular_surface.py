@@ -252,3 +252,51 @@ def test_operators_pull_the_surface_and_a_shape_attractor_reaches_a_part(doc):
     doc.recompute()
     assert not onto.isValid()
     assert "OperatorTargets has 0 shapes for 1 ShapeAttractors" in onto.getStatusString()
+
+
+def test_a_curve_through_mesh_vertices_is_carried_by_the_patch_edges(doc):
+    """Their Fig. 2 with the mesh drawn along the curve: an arc (a Part edge) through the middle
+    row of a grid mesh's vertices; the mesh edges between them carry it, so the surface contains
+    it (to the interpolation of each piece by a quartic). With the vertices at even steps of the
+    arc's parameter the pieces meet with equal tangents and the surface is G1 across it; at
+    uneven steps the tangents' lengths jump at the vertices, the linear G1 conditions cannot hold
+    there, and the report names those edges."""
+    arc = doc.addObject("Part::Feature", "Arc")
+    arc.Shape = Part.Arc(V(0, 20, 0), V(20, 20, 8), V(40, 20, 0)).toShape()
+    doc.recompute()
+    edge = arc.Shape.Edges[0]
+    first, last = edge.FirstParameter, edge.LastParameter
+    n = 4
+
+    def grid(steps):
+        points = [(10.0 * i, 10.0 * j, 0.0) for j in range(n + 1) for i in range(n + 1)]
+        for i, t in enumerate(steps):  # the middle row on the arc
+            points[2 * (n + 1) + i] = tuple(edge.valueAt(first + t * (last - first)))
+        triangles = []
+        for j in range(n):
+            for i in range(n):
+                a = j * (n + 1) + i
+                triangles += [(a, a + 1, a + n + 2), (a, a + n + 2, a + n + 1)]
+        return points, triangles
+
+    surfaces = []
+    for name, steps in (("Even", [0, 0.25, 0.5, 0.75, 1]), ("Uneven", [0, 0.15, 0.5, 0.8, 1])):
+        surface = varsurf.make_triangular_surface(add_mesh(doc, *grid(steps), name), degree=4)
+        surface.Curves = [(arc, ["Edge1"])]
+        surfaces.append(surface)
+    doc.recompute()
+    for surface in surfaces:
+        assert surface.isValid(), surface.getStatusString()
+        worst = max(surface.Shape.distToShape(Part.Vertex(edge.valueAt(first + (last - first) * s / 50.0)))[0]
+                    for s in range(51))
+        assert worst < 1e-4, worst
+    even, uneven = surfaces
+    assert even.WorstAngle < 0.01 and even.OverruledEdges == 0
+    assert uneven.WorstAngle > 0.01 and uneven.OverruledEdges > 0 and "is not G1" in uneven.Status
+    # A curve that misses the mesh's vertices is named.
+    stray = doc.addObject("Part::Feature", "Stray")
+    stray.Shape = Part.LineSegment(V(3, 3, 30), V(7, 9, 30)).toShape()
+    even.Curves = [(stray, ["Edge1"])]
+    doc.recompute()
+    assert not even.isValid()
+    assert "curve Stray.Edge1 passes through 0 vertices of the mesh" in even.getStatusString()

@@ -160,7 +160,7 @@ std::vector<double> edge_angles(const TriangleNet& net,
 TriangularResult solve_triangular(const TriangularProblem& problem) {
   check_options(problem);
   // The energy and the G1 rows do not change under translation: something must fix it.
-  const bool held = problem.interpolate_vertices ||
+  const bool held = problem.interpolate_vertices || !problem.fixed_edges.empty() ||
                     std::any_of(problem.constraints.begin(), problem.constraints.end(),
                                 [](const TriangularConstraint& c) {
                                   return c.kind == TriangularConstraint::Kind::point;
@@ -251,11 +251,47 @@ TriangularResult solve_triangular(const TriangularProblem& problem) {
   f.setFromTriplets(f_terms.begin(), f_terms.end());
   report.g1_rows = f_rows;
 
+  // Fixed edges: their points replace the start's and are not solved for; two edges that end at
+  // one vertex must agree on where it goes.
+  const double size =
+      (net.vertices.colwise().maxCoeff() - net.vertices.colwise().minCoeff()).norm();
+  std::vector<bool> prescribed(count, false);
+  std::vector<int> placed_by(vcount, -1);
+  for (std::size_t ei = 0; ei < problem.fixed_edges.size(); ++ei) {
+    const FixedEdge& fe = problem.fixed_edges[ei];
+    const std::string name = "fixed edge " + std::to_string(ei);
+    const int e =
+        fe.from >= 0 && fe.to >= 0 && fe.from < vcount && fe.to < vcount && fe.from != fe.to
+            ? net.edge(fe.from, fe.to)
+            : -1;
+    if (e < 0)
+      throw InvalidInput(name + " joins vertices " + std::to_string(fe.from) + " and " +
+                         std::to_string(fe.to) + ", which share no edge of the mesh; give an edge");
+    if (fe.points.rows() != n + 1 || !fe.points.allFinite())
+      throw InvalidInput(
+          name + " has " + std::to_string(fe.points.rows()) +
+          " points (or some not finite); give degree + 1 = " + std::to_string(n + 1));
+    const std::vector<int> along = net.edge_points(e, fe.from);
+    for (int s = 0; s <= n; ++s) {
+      if (s == 0 || s == n) {
+        const int v = along[s];
+        if (placed_by[v] >= 0 && (start.row(v) - fe.points.row(s)).norm() > 1e-9 * size)
+          throw InvalidInput(name + " and fixed edge " + std::to_string(placed_by[v]) +
+                             " put vertex " + std::to_string(v) +
+                             " at different places; give "
+                             "curves that meet there");
+        placed_by[v] = static_cast<int>(ei);
+      }
+      start.row(along[s]) = fe.points.row(s);
+      prescribed[along[s]] = true;
+    }
+  }
+
   // Fixed points and the free numbering.
   std::vector<int> free_index(count, -1);
   std::vector<int> free_points;
   for (int k = 0; k < count; ++k)
-    if (!(problem.interpolate_vertices && k < vcount)) {
+    if (!prescribed[k] && !(problem.interpolate_vertices && k < vcount)) {
       free_index[k] = static_cast<int>(free_points.size());
       free_points.push_back(k);
     }
@@ -368,8 +404,6 @@ TriangularResult solve_triangular(const TriangularProblem& problem) {
            directed ? Eigen::Vector3d(op.direction.normalized()) : Eigen::Vector3d::UnitZ(),
            op.strength * (op.kind == Kind::director ? scales.gradient : scales.value)});
     }
-    const double size =
-        (net.vertices.colwise().maxCoeff() - net.vertices.colwise().minCoeff()).norm();
     report.assembly_seconds = seconds_since(t0);
 
     // Exact user constraints through the factored energy: d = d0 - Y lambda, Y = K^-1 H^T,

@@ -21,6 +21,7 @@ TYPE = "VarSurf::TriangularSurface"
 _PROPERTIES = [
     ("Source", "App::PropertyLink", "TriangularSurface", "The triangulation: a Mesh (each triangle becomes a patch through its corners), or a shape whose faces are tessellated", False),
     ("Degree", "App::PropertyIntegerConstraint", "TriangularSurface", "Degree of every patch (3: the paper's cubics; higher degrees meet G1 with more freedom)", False),
+    ("Curves", "App::PropertyLinkSubList", "TriangularSurface", "Edges the surface contains (sketch lines, arcs, splines): each runs through vertices of the mesh, and the mesh edges between them carry it", False),
     ("InterpolateVertices", "App::PropertyBool", "TriangularSurface", "The surface passes through every vertex of the mesh (off: the vertices are free like the other control points, and point constraints or operators hold the surface)", False),
     ("RestShape", "App::PropertyBool", "Energy", "The energy is of the displacement from the mesh's own flat triangles (sculpting: operators and constraints move the mesh, which stays where nothing pulls) instead of the surface's own", False),
     ("Stretch", "App::PropertyFloat", "Energy", "Weight of the stretch energy (area-like)", False),
@@ -168,6 +169,48 @@ def operators_of(obj):
     return out
 
 
+def curve_edges(obj, points, triangles, degree):
+    """(from, to, control points) of the mesh edges that carry the feature's Curves: the vertices
+    on each curve (within 1e-6 of the mesh's size) in the curve's order, each pair of neighbours
+    joined by a mesh edge, the curve's piece between them as that edge's Bezier points (its ends
+    the vertices)."""
+    import Part
+
+    links = list(getattr(obj, "Curves", []) or [])
+    if not links:
+        return []
+    box = FreeCAD.BoundBox()
+    for p in points:
+        box.add(FreeCAD.Vector(*p))
+    tolerance = 1e-6 * max(box.DiagonalLength, 1e-12)
+    mesh_edges = {frozenset((t[k], t[(k + 1) % 3])) for t in triangles for k in range(3)}
+    out = []
+    for link, subs in links:
+        names = list(subs) or [f"Edge{k + 1}" for k in range(len(link.Shape.Edges))]
+        for sub in names:
+            edge = link.Shape.getElement(sub)
+            label = f"{link.Label}.{sub}"
+            on = []
+            for k, p in enumerate(points):
+                vertex = Part.Vertex(FreeCAD.Vector(*p))
+                if edge.distToShape(vertex)[0] <= tolerance:
+                    on.append((edge.Curve.parameter(FreeCAD.Vector(*p)), k))
+            on.sort()
+            if len(on) < 2:
+                raise errors.SheetError(f"curve {label} passes through {len(on)} vertices of the mesh: move two or "
+                                        "more vertices onto it (the mesh edges between them carry it)")
+            for (ta, a), (tb, b) in zip(on[:-1], on[1:]):
+                if frozenset((a, b)) not in mesh_edges:
+                    raise errors.SheetError(f"curve {label} runs from vertex {a} to vertex {b}, which share no edge "
+                                            "of the mesh: add that edge to the mesh")
+                piece = triangular.bezier_piece(lambda t: tuple(edge.valueAt(t)), ta, tb, degree)
+                # The ends at the vertices themselves (on the curve within the tolerance): two
+                # curves meeting at a vertex, each within its own tolerance, agree there.
+                piece[0], piece[-1] = points[a], points[b]
+                out.append((a, b, piece))
+    return out
+
+
 def compute(obj) -> triangular.Outcome:
     """The surface of the feature's Source with its settings, and its B-rep."""
     source = obj.Source
@@ -177,7 +220,8 @@ def compute(obj) -> triangular.Outcome:
     if not triangles:
         raise errors.SheetError(f"{source.Label} has no triangles: give a Mesh with facets as Source")
     return triangular.solve(points, triangles, settings_of(obj), constraints_of(obj),
-                            tolerance=float(value(obj, "Tolerance")), operators=operators_of(obj))
+                            tolerance=float(value(obj, "Tolerance")), operators=operators_of(obj),
+                            fixed_edges=curve_edges(obj, points, triangles, int(obj.Degree)))
 
 
 def is_triangular_surface(obj) -> bool:

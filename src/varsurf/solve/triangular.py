@@ -146,12 +146,15 @@ def _problem(points: Sequence[Point], triangles: Sequence[Triangle], settings: S
 
 def solve(points: Sequence[Point], triangles: Sequence[Triangle], settings: Settings = Settings(),
           constraints: Sequence[Constraint] = (), export: bool = True, tolerance: float = 0.0,
-          operators: Sequence[Operator] = ()) -> Outcome:
+          operators: Sequence[Operator] = (), fixed_edges: Sequence[Tuple[int, int, np.ndarray]] = ()) -> Outcome:
     """The fairest surface over the triangulation, shaped by `operators`, and, with `export`, its
     B-rep: each patch as three n x n Bezier faces, sewn at `tolerance` (0: a ten-millionth of the
-    mesh's size). SheetError names the triangle, edge, vertex, constraint or operator at fault."""
+    mesh's size); `fixed_edges` are (from vertex, to vertex, degree + 1 control points) that mesh
+    edges must take (curves the surface contains). SheetError names the triangle, edge, vertex,
+    constraint or operator at fault."""
     nat = native()
     problem = _problem(points, triangles, settings, constraints, operators)
+    problem.fixed_edges = [nat.FixedEdge(int(a), int(b), np.asarray(p, float)) for a, b, p in fixed_edges]
     try:
         result = nat.solve_triangular(problem)
     except nat.InvalidInput as error:
@@ -190,6 +193,19 @@ def solve(points: Sequence[Point], triangles: Sequence[Triangle], settings: Sett
         outcome.seams = int(shell.regular_seams)
         outcome.export_seconds = time.perf_counter() - started
     return outcome
+
+
+def bezier_piece(curve, first: float, last: float, degree: int) -> np.ndarray:
+    """The degree-`degree` Bezier control points (rows) of the polynomial through `curve(t)` at
+    degree + 1 Chebyshev-Lobatto parameters of [first, last]: the piece itself when it is a
+    polynomial of that degree or lower, else its interpolant (whose error falls as the piece's
+    length to the power degree + 1)."""
+    n = int(degree)
+    nodes = 0.5 - 0.5 * np.cos(np.pi * np.arange(n + 1) / n)
+    values = np.array([np.asarray(curve(first + t * (last - first)), float) for t in nodes])
+    binomial = np.array([math.comb(n, k) for k in range(n + 1)], float)
+    basis = binomial * nodes[:, None] ** np.arange(n + 1) * (1.0 - nodes[:, None]) ** (n - np.arange(n + 1))
+    return np.linalg.solve(basis, values)
 
 
 def loop_triangulation(loop: Sequence[Point], rings: int = 2) -> Tuple[List[Point], List[Triangle]]:

@@ -61,6 +61,14 @@ struct TriangularOperator {
   ClosestPointFunction closest;  // shape attractor: the target
 };
 
+// A curve the surface must contain along a chain of mesh edges (their sec. 4.2: patch edges carry
+// the curve): the edge from vertex `from` to vertex `to` gets the degree + 1 control points
+// `points`, in that order; the first and last are where the two vertices go.
+struct FixedEdge {
+  int from = 0, to = 1;
+  Eigen::MatrixX3d points;
+};
+
 enum class TriangularSolver {
   // Direct up to `cg_above` unknowns, CG above. The G1 rows' weight makes CG slow: measured on a
   // torus of 1600 cubic patches (19200 unknowns), 2092 iterations and 1.4 s against the direct
@@ -91,6 +99,7 @@ struct TriangularProblem {
   double border_angle = -1.0;
   std::vector<TriangularConstraint> constraints;
   std::vector<TriangularOperator> operators;
+  std::vector<FixedEdge> fixed_edges;
   // Repellers and shape attractors are not quadratic: Gauss-Newton steps until no control point
   // moves by more than nonlinear_tolerance times the mesh's size, or this many.
   int nonlinear_iterations = 30;
