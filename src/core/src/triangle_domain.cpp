@@ -7,6 +7,7 @@
 
 #include "varsurf/core/gauss_legendre.hpp"
 #include "varsurf/core/triangular_bezier.hpp"
+#include "varsurf/core/triangular_energy.hpp"
 
 namespace varsurf {
 
@@ -73,13 +74,7 @@ OperatorDomain triangles_domain(const TriangleNet& net, std::vector<int> triangl
     const GaussRule& rule = gauss_legendre(n + 1);
     for (const int t : triangles) {
       const auto [a, b, c] = domain_corners(net, t, equilateral);
-      const double twice = (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
-      const auto gradient = [twice](const Eigen::Vector2d& p,
-                                    const Eigen::Vector2d& q) -> Eigen::Vector2d {
-        return Eigen::Vector2d(-(q - p).y(), (q - p).x()) / twice;
-      };
-      const Eigen::Vector2d ga = gradient(b, c), gb = gradient(c, a), gc = gradient(a, b);
-      const Eigen::Vector3d dx(ga.x(), gb.x(), gc.x()), dy(ga.y(), gb.y(), gc.y());
+      const BarycentricAxes axes = barycentric_axes(a, b, c);
       BasisSample sample;
       sample.index = net.control[t];
       sample.values.resize(3, triangle_points(n));
@@ -89,9 +84,9 @@ OperatorDomain triangles_domain(const TriangleNet& net, std::vector<int> triangl
           const double s = 0.5 * (rule.nodes[i] + 1.0), r = 0.5 * (rule.nodes[j] + 1.0);
           const Eigen::Vector3d bary(s, (1.0 - s) * r, (1.0 - s) * (1.0 - r));
           sample.values.row(0) = bernstein(n, bary).transpose();
-          sample.values.row(1) = bernstein_derivative(n, bary, dx).transpose();
-          sample.values.row(2) = bernstein_derivative(n, bary, dy).transpose();
-          visit(sample, 0.25 * rule.weights[i] * rule.weights[j] * (1.0 - s) * twice);
+          sample.values.row(1) = bernstein_derivative(n, bary, axes.x).transpose();
+          sample.values.row(2) = bernstein_derivative(n, bary, axes.y).transpose();
+          visit(sample, 0.25 * rule.weights[i] * rule.weights[j] * (1.0 - s) * 2.0 * axes.area);
         }
     }
   };

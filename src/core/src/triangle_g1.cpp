@@ -58,15 +58,7 @@ Eigen::MatrixXd g1_edge_equations(int n, const G1Weights& start, const G1Weights
   return rows;
 }
 
-namespace {
-
-Eigen::Vector3d normal_at(const TriangularBezier& p, const Eigen::Vector3d& b) {
-  const Eigen::Vector3d du = p.derivative(Eigen::Vector3d(-1.0, 1.0, 0.0)).evaluate(b);
-  const Eigen::Vector3d dv = p.derivative(Eigen::Vector3d(-1.0, 0.0, 1.0)).evaluate(b);
-  return du.cross(dv).normalized();
-}
-
-}  // namespace
+namespace {}  // namespace
 
 double shared_edge_angle(const TriangularBezier& a, int a_from, int a_to, const TriangularBezier& b,
                          int b_from, int b_to, int samples) {
@@ -82,7 +74,7 @@ double shared_edge_angle(const TriangularBezier& a, int a_from, int a_to, const 
         (1.0 - t) * Eigen::Vector3d::Unit(a_from) + t * Eigen::Vector3d::Unit(a_to);
     const Eigen::Vector3d pb =
         (1.0 - t) * Eigen::Vector3d::Unit(b_from) + t * Eigen::Vector3d::Unit(b_to);
-    const double d = normal_at(a, pa).dot(normal_at(b, pb));
+    const double d = patch_normal(a, pa).dot(patch_normal(b, pb));
     if (!std::isfinite(d)) return M_PI;  // a patch without a normal there: as bad as it gets
     worst = std::max(worst, std::acos(std::clamp(d, -1.0, 1.0)));
   }

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: LGPL-2.1-or-later
 #include "varsurf/core/triangular_bezier.hpp"
 
+#include <Eigen/Geometry>
 #include <cmath>
 #include <string>
 
@@ -104,6 +105,12 @@ std::array<TriangularBezier, 2> split_at_edge(const TriangularBezier& patch, int
   first[static_cast<size_t>(b)] = p;   // corner, next corner, p
   second[static_cast<size_t>(a)] = p;  // corner, p, the one after
   return {sub_patch(patch, first), sub_patch(patch, second)};
+}
+
+Eigen::Vector3d patch_normal(const TriangularBezier& p, const Eigen::Vector3d& b) {
+  const Eigen::Vector3d du = p.derivative(Eigen::Vector3d(-1.0, 1.0, 0.0)).evaluate(b);
+  const Eigen::Vector3d dv = p.derivative(Eigen::Vector3d(-1.0, 0.0, 1.0)).evaluate(b);
+  return du.cross(dv).normalized();
 }
 
 }  // namespace varsurf

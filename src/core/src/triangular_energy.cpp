@@ -58,6 +58,20 @@ TriangleEnergy triangle_energy(int degree, double side) {
                          Eigen::Vector2d(0.5 * side, 0.5 * std::sqrt(3.0) * side));
 }
 
+BarycentricAxes barycentric_axes(const Eigen::Vector2d& a, const Eigen::Vector2d& b,
+                                 const Eigen::Vector2d& c) {
+  // A corner's coordinate grows across the opposite edge: its gradient is that edge turned
+  // inward, over twice the area.
+  const double twice = (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
+  const auto gradient = [twice](const Eigen::Vector2d& p,
+                                const Eigen::Vector2d& q) -> Eigen::Vector2d {
+    return Eigen::Vector2d(-(q - p).y(), (q - p).x()) / twice;  // of the corner left of p -> q
+  };
+  const Eigen::Vector2d ga = gradient(b, c), gb = gradient(c, a), gc = gradient(a, b);
+  return {Eigen::Vector3d(ga.x(), gb.x(), gc.x()), Eigen::Vector3d(ga.y(), gb.y(), gc.y()),
+          0.5 * twice};
+}
+
 TriangleEnergy triangle_energy(int degree, const Eigen::Vector2d& a, const Eigen::Vector2d& b,
                                const Eigen::Vector2d& c) {
   if (degree < 1 || degree > 20)
@@ -69,16 +83,9 @@ TriangleEnergy triangle_energy(int degree, const Eigen::Vector2d& a, const Eigen
       std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()});
   if (!(twice > 1e-12 * longest))
     throw InvalidInput("the domain triangle must have area, its corners counterclockwise");
-  // The barycentric coordinates' gradients: a Cartesian direction e is the barycentric direction
-  // (grad u . e, grad v . e, grad w . e); grad of the coordinate of a corner is the opposite
-  // edge turned inward, over twice the area.
-  const auto gradient = [twice](const Eigen::Vector2d& p,
-                                const Eigen::Vector2d& q) -> Eigen::Vector2d {
-    return Eigen::Vector2d(-(q - p).y(), (q - p).x()) / twice;  // of the corner left of p -> q
-  };
-  const Eigen::Vector2d ga = gradient(b, c), gb = gradient(c, a), gc = gradient(a, b);
-  const Eigen::Vector3d dx(ga.x(), gb.x(), gc.x()), dy(ga.y(), gb.y(), gc.y());
-  const double area = 0.5 * twice;
+  const BarycentricAxes axes = barycentric_axes(a, b, c);
+  const Eigen::Vector3d &dx = axes.x, &dy = axes.y;
+  const double area = axes.area;
   const int n = degree;
   TriangleEnergy out;
   const Eigen::MatrixXd gx = derivative_matrix(n, dx), gy = derivative_matrix(n, dy);

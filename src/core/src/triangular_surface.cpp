@@ -77,12 +77,6 @@ std::array<Eigen::Vector3d, 2> perpendiculars(const Eigen::Vector3d& d) {
   return {u, d.cross(u).normalized()};
 }
 
-Eigen::Vector3d patch_normal(const TriangularBezier& p, const Eigen::Vector3d& b) {
-  const Eigen::Vector3d du = p.derivative(Eigen::Vector3d(-1.0, 1.0, 0.0)).evaluate(b);
-  const Eigen::Vector3d dv = p.derivative(Eigen::Vector3d(-1.0, 0.0, 1.0)).evaluate(b);
-  return du.cross(dv).normalized();
-}
-
 // The free points' system and what solves it: per coordinate (the energy's matrix, the same for x,
 // y and z) or, when operators couple the coordinates, as one matrix of 3 nf unknowns. Vectors
 // cross it coordinate-major (x of every free point, then y, then z), which is also an nf x 3

@@ -29,6 +29,10 @@ struct TriangularBezier {
   TriangularBezier derivative(const Eigen::Vector3d& direction, int order = 1) const;
 };
 
+// The unit normal at barycentric b, (T_v - T_u) x (T_w - T_u) in the patch's corner order; not
+// finite where the patch has no tangent plane.
+Eigen::Vector3d patch_normal(const TriangularBezier& patch, const Eigen::Vector3d& b);
+
 // The patch with its corners replaced by the three points `corners` of its own domain (each in
 // barycentric coordinates): the same surface over the sub-triangle, a patch of the same degree
 // (the blossom of T at the new corners). Sub-triangles need not lie inside the domain.

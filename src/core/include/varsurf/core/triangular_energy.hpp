@@ -26,6 +26,15 @@ struct TriangleEnergy {
 // is not a positive finite number.
 TriangleEnergy triangle_energy(int degree, double side = 1.0);
 
+// The Cartesian directions x and y of the triangle a, b, c (counterclockwise) as barycentric
+// directions: entry k is the derivative of corner k's coordinate along x (or y). No checks.
+struct BarycentricAxes {
+  Eigen::Vector3d x, y;
+  double area = 0.0;
+};
+BarycentricAxes barycentric_axes(const Eigen::Vector2d& a, const Eigen::Vector2d& b,
+                                 const Eigen::Vector2d& c);
+
 // The same over any triangle of the plane, corners a, b, c counterclockwise (corner 1, 2, 3 of
 // the patch). InvalidInput for a degree outside 1..20 or a triangle without area.
 TriangleEnergy triangle_energy(int degree, const Eigen::Vector2d& a, const Eigen::Vector2d& b,
