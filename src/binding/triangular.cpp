@@ -100,6 +100,7 @@ void bind_triangular(py::module_& m) {
       .def_readwrite("stretch", &TriangularProblem::stretch)
       .def_readwrite("bend", &TriangularProblem::bend)
       .def_readwrite("interpolate_vertices", &TriangularProblem::interpolate_vertices)
+      .def_readwrite("free_vertices", &TriangularProblem::free_vertices)
       .def_readwrite("equilateral_domain", &TriangularProblem::equilateral_domain)
       .def_readwrite("energy_of_displacement", &TriangularProblem::energy_of_displacement)
       .def_readwrite("g1", &TriangularProblem::g1)

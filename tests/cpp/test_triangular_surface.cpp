@@ -384,3 +384,20 @@ TEST(TriangularSurface, FixedEdgesCarryTheirCurvesExactly) {
   bad.fixed_edges = {{0, 1, first}, {1, 2, second}};
   expect_refused([&] { solve_triangular(bad); }, "put vertex 1 at different places");
 }
+
+TEST(TriangularSurface, FreeVerticesAreLeftToTheEnergy) {
+  // A vertex a split added off the curves shapes only the control structure: raised above a
+  // flat hexagon, it is not interpolated, and the fairest surface through the ring is the plane.
+  Mesh m = test::fan_mesh(6, 0.7);
+  for (int i = 1; i <= 6; ++i) m.points(i, 2) = 0.0;
+  TriangularProblem p = problem_of(m, 4);
+  p.free_vertices = {0};
+  const TriangularResult r = solve_triangular(p);
+  EXPECT_LT(r.control.col(2).cwiseAbs().maxCoeff(), 2 * 5e-9);
+  EXPECT_LT(r.report.worst_angle, 1e-5);
+  // Interpolated, it stays where it is.
+  p.free_vertices.clear();
+  EXPECT_NEAR(solve_triangular(p).control(0, 2), 0.7, 1e-12);
+  p.free_vertices = {7};
+  expect_refused([&] { solve_triangular(p); }, "free vertex 7 is not a vertex of the mesh");
+}

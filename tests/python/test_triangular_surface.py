@@ -14,6 +14,7 @@ import pytest
 
 import varsurf
 from scenes import reopened
+from triangle_grids import grid_points, grid_triangles
 from triangular_surfaces import torus_mesh  # noqa: F401  (examples/: a coarse handle mesh)
 from varsurf.solve import triangular
 
@@ -269,15 +270,10 @@ def test_a_curve_through_mesh_vertices_is_carried_by_the_patch_edges(doc):
     n = 4
 
     def grid(steps):
-        points = [(10.0 * i, 10.0 * j, 0.0) for j in range(n + 1) for i in range(n + 1)]
+        points = grid_points(n, 10.0)
         for i, t in enumerate(steps):  # the middle row on the arc
             points[2 * (n + 1) + i] = tuple(edge.valueAt(first + t * (last - first)))
-        triangles = []
-        for j in range(n):
-            for i in range(n):
-                a = j * (n + 1) + i
-                triangles += [(a, a + 1, a + n + 2), (a, a + n + 2, a + n + 1)]
-        return points, triangles
+        return points, grid_triangles(n)
 
     surfaces = []
     for name, steps in (("Even", [0, 0.25, 0.5, 0.75, 1]), ("Uneven", [0, 0.15, 0.5, 0.8, 1])):
@@ -293,10 +289,129 @@ def test_a_curve_through_mesh_vertices_is_carried_by_the_patch_edges(doc):
     even, uneven = surfaces
     assert even.WorstAngle < 0.01 and even.OverruledEdges == 0
     assert uneven.WorstAngle > 0.01 and uneven.OverruledEdges > 0 and "is not G1" in uneven.Status
-    # A curve that misses the mesh's vertices is named.
+    # The mesh drawn through the curve is not split.
+    assert even.SplitTriangles == 0 and even.PatchCount == 32
+    # A curve that starts off the mesh is named.
     stray = doc.addObject("Part::Feature", "Stray")
-    stray.Shape = Part.LineSegment(V(3, 3, 30), V(7, 9, 30)).toShape()
+    stray.Shape = Part.LineSegment(V(-30, 5, 0), V(20, 5, 0)).toShape()
     even.Curves = [(stray, ["Edge1"])]
     doc.recompute()
     assert not even.isValid()
-    assert "curve Stray.Edge1 passes through 0 vertices of the mesh" in even.getStatusString()
+    assert "curve Stray.Edge1 starts outside the mesh" in even.getStatusString()
+    even.Curves = [(stray, ["Edge7"])]
+    doc.recompute()
+    assert not even.isValid()
+    assert "curve Stray.Edge7 does not exist" in even.getStatusString()
+    # Repaired, whole again; the mesh and the curve untouched.
+    even.Curves = [(arc, ["Edge1"])]
+    doc.recompute()
+    assert even.isValid() and even.WorstAngle < 0.01
+    assert stray.Shape.isValid() and len(even.Source.Mesh.Facets) == 32
+
+
+def jittered_grid(n=6, cell=10.0, jitter=0.2):
+    """A grid_points/grid_triangles grid, its inner points moved by up to `jitter` of a cell."""
+    return grid_points(n, cell, lambda i, j: (jitter * cell * math.sin(7.1 * i + 3.3 * j),
+                                              jitter * cell * math.cos(5.7 * i - 2.9 * j))), grid_triangles(n)
+
+
+def profile_sketch(doc, joined=True):
+    """A sketch lifted 3 mm over the grid: a line, an arc and a B-spline, end to end (the arc
+    tangent to the line, the spline leaving the arc at 6.5 degrees) or apart."""
+    import Sketcher  # noqa: F401  (registers the sketch type)
+
+    sketch = doc.addObject("Sketcher::SketchObject", "Profile" if joined else "Apart")
+    sketch.Placement = FreeCAD.Placement(V(0, 0, 3), FreeCAD.Rotation())
+    spline = Part.BSplineCurve()
+    if joined:
+        sketch.addGeometry(Part.LineSegment(V(8, 13, 0), V(25, 13, 0)))
+        sketch.addGeometry(Part.ArcOfCircle(Part.Circle(V(25, 21, 0), V(0, 0, 1), 8), -math.pi / 2, 0.0))
+        spline.interpolate([V(33, 21, 0), V(36, 33, 0), V(44, 41, 0), V(52, 47, 0)])
+    else:
+        sketch.addGeometry(Part.LineSegment(V(8, 8, 0), V(50, 12, 0)))
+        sketch.addGeometry(Part.ArcOfCircle(Part.Circle(V(22, 32, 0), V(0, 0, 1), 8), 0.3, 2.5))
+        spline.interpolate([V(36, 22, 0), V(40, 33, 0), V(46, 41, 0), V(52, 52, 0)])
+    sketch.addGeometry(spline)
+    doc.recompute()
+    return sketch
+
+
+def contains(surface, edge, within):
+    first, last = edge.FirstParameter, edge.LastParameter
+    return max(surface.Shape.distToShape(Part.Vertex(edge.valueAt(first + (last - first) * s / 40.0)))[0]
+               for s in range(41)) <= within
+
+
+def test_a_sketch_arc_across_the_mesh_is_carried_and_survives_step(doc, native, tmp_path):
+    """Their Fig. 3 with a FreeCAD sketch's arc lifted over a flat mesh, crossing triangles
+    anywhere: the triangles it crosses are split, the surface contains it (within CurveFit, a
+    millionth of the mesh), is G1 to 1e-4 degrees, passes OCCT's full check and survives STEP."""
+    from step_check import assert_reads_back
+
+    mesh = add_mesh(doc, *jittered_grid(), "Grid")
+    sketch = profile_sketch(doc, joined=False)
+    surface = varsurf.make_triangular_surface(mesh, degree=5)
+    surface.Curves = [(sketch, ["Edge2"])]
+    doc.recompute()
+    assert surface.isValid(), surface.getStatusString()
+    assert surface.SplitTriangles > 0 and surface.PatchCount > 72 and not surface.FoldedPatches
+    assert surface.SelfIntersections == 0
+    size = mesh.Mesh.BoundBox.DiagonalLength
+    assert surface.CurveFit <= 1e-6 * size
+    assert contains(surface, sketch.Shape.Edges[1], surface.CurveFit + 1e-6 * size)
+    assert surface.WorstAngle < 1e-4
+    path = tmp_path / "arc.step"
+    varsurf.export_step(surface, str(path))
+    assert_reads_back(surface.Shape, path, native)
+    # The mesh's own border vertices are still interpolated.
+    assert vertices_on(surface.Shape, [p for p in jittered_grid()[0] if p[0] in (0.0, 60.0)], 1e-6)
+
+
+def test_a_sketch_of_lines_arcs_and_splines_is_carried_and_its_folds_named(doc):
+    """A whole sketch as Curves (a line, an arc and a B-spline): every edge is contained within
+    CurveFit. Where the split leaves crowded, high-valence vertices (here, where the curves meet)
+    the fair surface can fold inside a patch or overlap itself: OCCT's full check runs after the
+    split and Status says what it finds (a known limit); the patches turned over inside are named
+    in FoldedPatches."""
+    mesh = add_mesh(doc, *jittered_grid(), "Grid")
+    size = mesh.Mesh.BoundBox.DiagonalLength
+    for joined in (True, False):
+        sketch = profile_sketch(doc, joined)
+        surface = varsurf.make_triangular_surface(mesh, degree=5)
+        surface.Curves = [sketch]  # the whole sketch: every edge
+        doc.recompute()
+        assert surface.isValid(), surface.getStatusString()
+        assert surface.SplitTriangles > 0 and surface.CurveFit <= 1e-5 * size
+        for edge in sketch.Shape.Edges:
+            assert contains(surface, edge, surface.CurveFit + 1e-6 * size)
+        try:
+            surface.Shape.check(True)
+            faults = 0
+        except ValueError as fault:
+            faults = str(fault).count("SelfIntersect")
+        assert surface.SelfIntersections == faults
+        assert (f"OCCT's check finds {faults} self-intersections" in surface.Status) == (faults > 0)
+        if surface.FoldedPatches:
+            assert "fold (the surface turns over inside them)" in surface.Status
+
+
+def test_a_constraint_on_a_split_triangle_follows_it(doc):
+    """A point constraint on a source triangle that a curve splits stays where it was put."""
+    points, triangles = jittered_grid()
+    mesh = add_mesh(doc, points, triangles, "Grid")
+    arc = doc.addObject("Part::Feature", "Arc")
+    arc.Shape = Part.Arc(V(12, 14, 0), V(30, 26, 5), V(48, 44, 0)).toShape()
+    doc.recompute()
+    # The triangle under the arc's middle, and a point on it raised 4 mm.
+    middle = V(30, 26, 0)
+    index = min(range(len(triangles)), key=lambda k: (sum((V(*points[c]) for c in triangles[k]), V())
+                                                      * (1.0 / 3.0) - middle).Length)
+    corner = [V(*points[c]) for c in triangles[index]]
+    target = (corner[0] * 0.6 + corner[1] * 0.2 + corner[2] * 0.2) + V(0, 0, 4)
+    surface = varsurf.make_triangular_surface(mesh, degree=5, constraints=[
+        ("Point", index, (0.6, 0.2, 0.2), tuple(target))])
+    surface.Curves = [(arc, ["Edge1"])]
+    doc.recompute()
+    assert surface.isValid(), surface.getStatusString()
+    assert surface.SplitTriangles > 0 and surface.ConstraintResidual < 1e-6
+    assert surface.Shape.distToShape(Part.Vertex(target))[0] < 1e-6

@@ -284,8 +284,16 @@ TriangularResult solve_triangular(const TriangularProblem& problem) {
   // Fixed points and the free numbering.
   std::vector<int> free_index(count, -1);
   std::vector<int> free_points;
+  std::vector<bool> interpolated(vcount, problem.interpolate_vertices);
+  for (int v : problem.free_vertices) {
+    if (v < 0 || v >= vcount)
+      throw InvalidInput("free vertex " + std::to_string(v) +
+                         " is not a vertex of the mesh (0 to " + std::to_string(vcount - 1) +
+                         "); give vertices of the mesh");
+    interpolated[v] = false;
+  }
   for (int k = 0; k < count; ++k)
-    if (!prescribed[k] && !(problem.interpolate_vertices && k < vcount)) {
+    if (!prescribed[k] && !(k < vcount && interpolated[k])) {
       free_index[k] = static_cast<int>(free_points.size());
       free_points.push_back(k);
     }

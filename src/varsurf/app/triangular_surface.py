@@ -12,7 +12,7 @@ import FreeCAD
 from varsurf.app.feature import FeatureProxy, mark_failed, value
 from varsurf.app.subdivision import target_triangles
 from varsurf.app.view_link import attach as attach_view_provider
-from varsurf.solve import errors, triangular
+from varsurf.solve import curve_insertion, errors, triangular
 from varsurf.solve.shapes import shape_from_brep
 
 TYPE = "VarSurf::TriangularSurface"
@@ -21,7 +21,7 @@ TYPE = "VarSurf::TriangularSurface"
 _PROPERTIES = [
     ("Source", "App::PropertyLink", "TriangularSurface", "The triangulation: a Mesh (each triangle becomes a patch through its corners), or a shape whose faces are tessellated", False),
     ("Degree", "App::PropertyIntegerConstraint", "TriangularSurface", "Degree of every patch (3: the paper's cubics; higher degrees meet G1 with more freedom)", False),
-    ("Curves", "App::PropertyLinkSubList", "TriangularSurface", "Edges the surface contains (sketch lines, arcs, splines): each runs through vertices of the mesh, and the mesh edges between them carry it", False),
+    ("Curves", "App::PropertyLinkSubList", "TriangularSurface", "Edges the surface contains (sketch lines, arcs, splines): the triangles each crosses are split so that mesh edges carry it", False),
     ("InterpolateVertices", "App::PropertyBool", "TriangularSurface", "The surface passes through every vertex of the mesh (off: the vertices are free like the other control points, and point constraints or operators hold the surface)", False),
     ("RestShape", "App::PropertyBool", "Energy", "The energy is of the displacement from the mesh's own flat triangles (sculpting: operators and constraints move the mesh, which stays where nothing pulls) instead of the surface's own", False),
     ("Stretch", "App::PropertyFloat", "Energy", "Weight of the stretch energy (area-like)", False),
@@ -44,7 +44,11 @@ _PROPERTIES = [
     ("OperatorTargets", "App::PropertyLinkList", "Operators", "The shapes the ShapeAttractors pull onto, in their order", False),
     ("ConstraintResidual", "App::PropertyFloat", "Result", "The worst constraint's residual (mm; Normal: sine of the angle)", True),
     ("Closed", "App::PropertyBool", "Result", "True if the faces close into a solid", True),
-    ("PatchCount", "App::PropertyInteger", "Result", "Triangular patches (one per triangle)", True),
+    ("PatchCount", "App::PropertyInteger", "Result", "Triangular patches (one per triangle, after the splits along Curves)", True),
+    ("SplitTriangles", "App::PropertyInteger", "Result", "Triangles of the mesh split so that mesh edges carry the Curves", True),
+    ("CurveFit", "App::PropertyFloat", "Result", "How far the patch edges carrying the Curves stray from them at most (mm)", True),
+    ("FoldedPatches", "App::PropertyIntegerList", "Result", "Patches whose surface turns over inside (a fold: the faces self-intersect)", True),
+    ("SelfIntersections", "App::PropertyInteger", "Result", "Self-intersection faults OCCT's full check finds in the shape (checked when Curves split the mesh)", True),
     ("FaceCount", "App::PropertyInteger", "Result", "B-rep faces: three tensor-product Bezier faces per patch", True),
     ("Unknowns", "App::PropertyInteger", "Result", "Free control-point coordinates solved for", True),
     ("WorstAngle", "App::PropertyFloat", "Result", "The largest angle between the normals of two patches along their shared edge (degrees, 50 points an edge)", True),
@@ -84,6 +88,8 @@ class TriangularSurfaceFeature(FeatureProxy):
         report = outcome.report
         obj.Closed = outcome.closed
         obj.PatchCount, obj.FaceCount, obj.Unknowns = report.patches, outcome.faces, report.unknowns
+        obj.SplitTriangles, obj.CurveFit = outcome.split_triangles, outcome.curve_fit
+        obj.FoldedPatches = list(outcome.folded)
         obj.WorstAngle, obj.SeamAngle = report.worst_angle, outcome.seam_angle
         obj.OverruledEdges = len(report.overruled_edges)
         obj.SingularVertices = list(report.singular_vertices)
@@ -92,9 +98,29 @@ class TriangularSurfaceFeature(FeatureProxy):
         kind = "solid" if outcome.closed else "open shell"
         obj.Status = (f"OK: {kind} of {outcome.faces} Bezier faces from {report.patches} patches of degree "
                       f"{int(obj.Degree)}; patches meet within {report.worst_angle:.2g}°")
+        if outcome.split_triangles:
+            # Split along curves, the surface can fold or overlap itself where the remeshing left
+            # crowded vertices (README); OCCT's full check says so before the user builds on it.
+            faults = self_intersections(obj.Shape)
+            obj.SelfIntersections = faults
+            if faults:
+                outcome.warnings.insert(0, f"OCCT's check finds {faults} self-intersections: raise Degree, move the "
+                                           "curves or remesh there")
+        else:
+            obj.SelfIntersections = 0
         if outcome.warnings:
             obj.Status = f"{obj.Status}; " + "; ".join(outcome.warnings)
             FreeCAD.Console.PrintWarning(f"{obj.Label}: {outcome.warnings[0]}\n")
+
+
+def self_intersections(shape) -> int:
+    """How many self-intersection faults OCCT's full check (BRepCheck and the Boolean operations'
+    checks) finds in `shape`."""
+    try:
+        shape.check(True)
+    except ValueError as fault:  # FreeCAD raises with the list of faults
+        return max(1, str(fault).count("SelfIntersect"))
+    return 0
 
 
 def settings_of(obj) -> triangular.Settings:
@@ -169,59 +195,87 @@ def operators_of(obj):
     return out
 
 
-def curve_edges(obj, points, triangles, degree):
-    """(from, to, control points) of the mesh edges that carry the feature's Curves: the vertices
-    on each curve (within 1e-6 of the mesh's size) in the curve's order, each pair of neighbours
-    joined by a mesh edge, the curve's piece between them as that edge's Bezier points (its ends
-    the vertices)."""
-    import Part
-
-    links = list(getattr(obj, "Curves", []) or [])
-    if not links:
-        return []
-    box = FreeCAD.BoundBox()
-    for p in points:
-        box.add(FreeCAD.Vector(*p))
-    tolerance = 1e-6 * max(box.DiagonalLength, 1e-12)
-    mesh_edges = {frozenset((t[k], t[(k + 1) % 3])) for t in triangles for k in range(3)}
+def curve_paths(obj):
+    """The feature's Curves as curve_insertion.CurvePath values, in the order linked (a link
+    without sub-elements: all its edges)."""
     out = []
-    for link, subs in links:
-        names = list(subs) or [f"Edge{k + 1}" for k in range(len(link.Shape.Edges))]
+    for link, subs in list(getattr(obj, "Curves", []) or []):
+        names = [s for s in subs if s] or [f"Edge{k + 1}" for k in range(len(link.Shape.Edges))]
         for sub in names:
-            edge = link.Shape.getElement(sub)
-            label = f"{link.Label}.{sub}"
-            on = []
-            for k, p in enumerate(points):
-                vertex = Part.Vertex(FreeCAD.Vector(*p))
-                if edge.distToShape(vertex)[0] <= tolerance:
-                    on.append((edge.Curve.parameter(FreeCAD.Vector(*p)), k))
-            on.sort()
-            if len(on) < 2:
-                raise errors.SheetError(f"curve {label} passes through {len(on)} vertices of the mesh: move two or "
-                                        "more vertices onto it (the mesh edges between them carry it)")
-            for (ta, a), (tb, b) in zip(on[:-1], on[1:]):
-                if frozenset((a, b)) not in mesh_edges:
-                    raise errors.SheetError(f"curve {label} runs from vertex {a} to vertex {b}, which share no edge "
-                                            "of the mesh: add that edge to the mesh")
-                piece = triangular.bezier_piece(lambda t: tuple(edge.valueAt(t)), ta, tb, degree)
-                # The ends at the vertices themselves (on the curve within the tolerance): two
-                # curves meeting at a vertex, each within its own tolerance, agree there.
-                piece[0], piece[-1] = points[a], points[b]
-                out.append((a, b, piece))
+            try:
+                edge = link.Shape.getElement(sub)
+            except Exception as error:  # FreeCAD raises a plain Exception for a missing element
+                raise errors.SheetError(f"curve {link.Label}.{sub} does not exist: link an edge of "
+                                        f"{link.Label}") from error
+            if edge.ShapeType != "Edge" or edge.Length <= 0.0:
+                raise errors.SheetError(f"curve {link.Label}.{sub} is not an edge of length: link edges as Curves")
+            out.append(curve_insertion.CurvePath(
+                f"{link.Label}.{sub}", lambda t, e=edge: tuple(e.valueAt(t)), edge.FirstParameter,
+                edge.LastParameter, lambda t, e=edge: tuple(e.derivative1At(t))))
     return out
 
 
+def _constraints_on(insertion, constraints, count):
+    """The constraints moved from the source's triangles onto the split ones."""
+    out = []
+    for k, c in enumerate(constraints):
+        if not 0 <= c.triangle < count:
+            raise errors.SheetError(f"constraint {k} names triangle {c.triangle}, the mesh has {count}: give a "
+                                    "triangle of the mesh")
+        if min(c.at) < -1e-9 or abs(sum(c.at) - 1.0) > 1e-9:
+            raise errors.SheetError(f"constraint {k} lies outside its triangle (barycentric {tuple(c.at)}): give "
+                                    "coordinates of at least 0 summing to 1")
+        triangle, at = insertion.locate(c.triangle, c.at)
+        out.append(triangular.Constraint(c.kind, triangle, at, c.target, c.direction))
+    return out
+
+
+def _operators_on(insertion, operators):
+    """The operators' triangles renumbered as the split triangles that lie in them."""
+    return [triangular.Operator(op.kind, sorted({t for s in op.triangles for t in insertion.triangles_of(int(s))}),
+                                op.origin, op.direction, op.strength, op.target_brep) if op.triangles else op
+            for op in operators]
+
+
 def compute(obj) -> triangular.Outcome:
-    """The surface of the feature's Source with its settings, and its B-rep."""
+    """The surface of the feature's Source with its settings, and its B-rep: with Curves, the
+    mesh's triangles split so that its edges carry them (curve_insertion)."""
     source = obj.Source
     if source is None:
         raise errors.SheetError("no Source: link a Mesh (a coarse triangle mesh) whose triangles become patches")
     points, triangles = target_triangles(source)
     if not triangles:
         raise errors.SheetError(f"{source.Label} has no triangles: give a Mesh with facets as Source")
-    return triangular.solve(points, triangles, settings_of(obj), constraints_of(obj),
-                            tolerance=float(value(obj, "Tolerance")), operators=operators_of(obj),
-                            fixed_edges=curve_edges(obj, points, triangles, int(obj.Degree)))
+    constraints, operators, curves = constraints_of(obj), operators_of(obj), curve_paths(obj)
+    settings, tolerance = settings_of(obj), float(value(obj, "Tolerance"))
+    if not curves:
+        return triangular.solve(points, triangles, settings, constraints, tolerance=tolerance, operators=operators)
+    for k, op in enumerate(operators):
+        for t in op.triangles:
+            if not 0 <= int(t) < len(triangles):
+                raise errors.SheetError(f"operator {k} names triangle {t}, the mesh has {len(triangles)}: give "
+                                        "triangles of the mesh")
+    box = FreeCAD.BoundBox()
+    for p in points:
+        box.add(FreeCAD.Vector(*p))
+    # A vertex is on a curve, and a carried piece follows its curve, within a millionth of the
+    # mesh's size.
+    near = 1e-6 * max(box.DiagonalLength, 1e-12)
+    insertion = curve_insertion.insert_curves(points, triangles, curves, near, int(obj.Degree), near)
+    outcome = triangular.solve(insertion.points, insertion.triangles, settings,
+                               _constraints_on(insertion, constraints, len(triangles)), tolerance=tolerance,
+                               operators=_operators_on(insertion, operators),
+                               fixed_edges=curve_insertion.carried_edges(insertion, int(obj.Degree)),
+                               free_vertices=insertion.free)
+    outcome.split_triangles, outcome.curve_fit = insertion.split, insertion.fit_error
+    if insertion.fit_error > near:
+        outcome.warnings.append(f"the curves are carried within {insertion.fit_error:.3g} mm only: raise Degree")
+    if insertion.moved:
+        listed = ", ".join(str(v) for v, _ in insertion.moved[:8])
+        farthest = max(gap for _, gap in insertion.moved)
+        outcome.warnings.append(f"vertices {listed} of the mesh moved onto the curves (up to {farthest:.3g} mm): "
+                                "move them onto the curves in the mesh to keep them")
+    return outcome
 
 
 def is_triangular_surface(obj) -> bool:

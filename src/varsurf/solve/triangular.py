@@ -82,6 +82,9 @@ class Outcome:
     seams: int = 0
     export_seconds: float = 0.0
     warnings: List[str] = field(default_factory=list)
+    split_triangles: int = 0  # of the source, split so that edges carry curves
+    curve_fit: float = 0.0  # how far the edges carrying curves stray from them
+    folded: List[int] = field(default_factory=list)  # patches that turn over inside
 
 
 def _operators(nat, operators: Sequence[Operator]):
@@ -146,15 +149,18 @@ def _problem(points: Sequence[Point], triangles: Sequence[Triangle], settings: S
 
 def solve(points: Sequence[Point], triangles: Sequence[Triangle], settings: Settings = Settings(),
           constraints: Sequence[Constraint] = (), export: bool = True, tolerance: float = 0.0,
-          operators: Sequence[Operator] = (), fixed_edges: Sequence[Tuple[int, int, np.ndarray]] = ()) -> Outcome:
+          operators: Sequence[Operator] = (), fixed_edges: Sequence[Tuple[int, int, np.ndarray]] = (),
+          free_vertices: Sequence[int] = ()) -> Outcome:
     """The fairest surface over the triangulation, shaped by `operators`, and, with `export`, its
     B-rep: each patch as three n x n Bezier faces, sewn at `tolerance` (0: a ten-millionth of the
     mesh's size); `fixed_edges` are (from vertex, to vertex, degree + 1 control points) that mesh
-    edges must take (curves the surface contains). SheetError names the triangle, edge, vertex,
+    edges must take (curves the surface contains); `free_vertices` are not interpolated (added by
+    splitting off the curves). SheetError names the triangle, edge, vertex,
     constraint or operator at fault."""
     nat = native()
     problem = _problem(points, triangles, settings, constraints, operators)
     problem.fixed_edges = [nat.FixedEdge(int(a), int(b), np.asarray(p, float)) for a, b, p in fixed_edges]
+    problem.free_vertices = [int(v) for v in free_vertices]
     try:
         result = nat.solve_triangular(problem)
     except nat.InvalidInput as error:
@@ -169,6 +175,11 @@ def solve(points: Sequence[Point], triangles: Sequence[Triangle], settings: Sett
                                 "(continuity overruled by interpolation or beyond the conditions)")
     if len(report.overruled_edges) > 5:
         outcome.warnings.append(f"{len(report.overruled_edges) - 5} more edges are not G1")
+    outcome.folded = folded_patches(result.patches)
+    if outcome.folded:
+        listed = ", ".join(str(k) for k in outcome.folded[:8])
+        outcome.warnings.append(f"patches {listed} fold (the surface turns over inside them): raise Degree, "
+                                "move the curves or remesh there")
     if report.singular_vertices:
         listed = ", ".join(str(v) for v in report.singular_vertices[:8])
         outcome.warnings.append(f"vertices {listed} are nearly singular (tangents collapsed to "
@@ -195,17 +206,67 @@ def solve(points: Sequence[Point], triangles: Sequence[Triangle], settings: Sett
     return outcome
 
 
-def bezier_piece(curve, first: float, last: float, degree: int) -> np.ndarray:
+def folded_patches(patches, samples: int = 8) -> List[int]:
+    """The patches whose surface turns over inside (a fold): each sampled as samples^2 small
+    triangles, one of whose normals points away from the patch's mean normal. Folds the G1 angle
+    cannot see (it measures only along the edges) and that make OCCT's check find the faces
+    self-intersecting."""
+    n = int(samples)
+    grid = [(i, j) for i in range(n + 1) for j in range(n + 1 - i)]
+    index = {ij: k for k, ij in enumerate(grid)}
+    small = [(index[(i, j)], index[(i + 1, j)], index[(i, j + 1)]) for i in range(n) for j in range(n - i)]
+    small += [(index[(i + 1, j)], index[(i + 1, j + 1)], index[(i, j + 1)]) for i in range(n) for j in range(n - 1 - i)]
+    small = np.array(small)
+    out = []
+    for k, patch in enumerate(patches):
+        points = np.array([patch.evaluate(np.array([i / n, j / n, 1.0 - (i + j) / n])) for i, j in grid])
+        normals = np.cross(points[small[:, 1]] - points[small[:, 0]], points[small[:, 2]] - points[small[:, 0]])
+        mean = normals.sum(axis=0)
+        if (normals @ mean < -1e-12 * np.abs(normals).sum() * np.linalg.norm(mean)).any():
+            out.append(k)
+    return out
+
+
+def bezier_piece(curve, first: float, last: float, degree: int, derivative=None, speeds=None) -> np.ndarray:
     """The degree-`degree` Bezier control points (rows) of the polynomial through `curve(t)` at
     degree + 1 Chebyshev-Lobatto parameters of [first, last]: the piece itself when it is a
     polynomial of that degree or lower, else its interpolant (whose error falls as the piece's
-    length to the power degree + 1)."""
+    length to the power degree + 1). With `derivative` (the curve's first derivative) the ends
+    take the curve's own tangents too and the inner nodes are one fewer at each end, so that two
+    pieces of equal span meet with equal tangents, which G1 across the curve needs. `speeds`
+    (dt/ds at the two ends, s the piece's own parameter; by default last - first) scale those
+    tangents, the piece then following the curve through t(s), the cubic with those end slopes:
+    pieces of two curves joined at a vertex can meet with equal tangents too."""
     n = int(degree)
-    nodes = 0.5 - 0.5 * np.cos(np.pi * np.arange(n + 1) / n)
-    values = np.array([np.asarray(curve(first + t * (last - first)), float) for t in nodes])
     binomial = np.array([math.comb(n, k) for k in range(n + 1)], float)
-    basis = binomial * nodes[:, None] ** np.arange(n + 1) * (1.0 - nodes[:, None]) ** (n - np.arange(n + 1))
-    return np.linalg.solve(basis, values)
+
+    def basis(s):
+        s = np.asarray(s, float)[:, None]
+        return binomial * s ** np.arange(n + 1) * (1.0 - s) ** (n - np.arange(n + 1))
+
+    span = last - first
+    slope0, slope1 = (span, span) if speeds is None else (float(speeds[0]), float(speeds[1]))
+
+    def at(s):
+        return np.array([np.asarray(curve(float(u)), float) for u in hermite_parameter(s, first, last, slope0, slope1)])
+
+    if derivative is None or n < 3:
+        nodes = 0.5 - 0.5 * np.cos(np.pi * np.arange(n + 1) / n)
+        return np.linalg.solve(basis(nodes), at(nodes))
+    nodes = 0.5 - 0.5 * np.cos(np.pi * np.arange(n - 1) / (n - 2))
+    ends = np.zeros((2, n + 1))
+    ends[0, :2] = (-n, n)
+    ends[1, -2:] = (-n, n)
+    slopes = np.array([slope0 * np.asarray(derivative(first), float), slope1 * np.asarray(derivative(last), float)])
+    return np.linalg.solve(np.vstack([basis(nodes), ends]), np.vstack([at(nodes), slopes]))
+
+
+def hermite_parameter(s, first: float, last: float, slope0: float, slope1: float) -> np.ndarray:
+    """t(s) on [0, 1]: the cubic from first to last with slopes slope0 and slope1 at its ends
+    (the line when both are last - first)."""
+    s = np.asarray(s, float)
+    return (first * (2 * s**3 - 3 * s**2 + 1) + slope0 * (s**3 - 2 * s**2 + s) + last * (3 * s**2 - 2 * s**3)
+            + slope1 * (s**3 - s**2))
 
 
 def loop_triangulation(loop: Sequence[Point], rings: int = 2) -> Tuple[List[Point], List[Triangle]]:

@@ -85,6 +85,9 @@ struct TriangularProblem {
   double stretch = 0.0;  // weights of eq. 1's internal energy
   double bend = 1.0;
   bool interpolate_vertices = true;  // the mesh's vertices are points of the surface
+  // Vertices not interpolated even so: those a split added off the curves, which only shape the
+  // control structure (their sec. 4.2), so the energy places them.
+  std::vector<int> free_vertices;
   // Each patch's energy over the equilateral triangle of its area (their eq. 25), or over the mesh
   // triangle itself laid flat, which follows the mesh's own proportions.
   bool equilateral_domain = true;
