@@ -265,8 +265,7 @@ def compute(obj) -> triangular.Outcome:
     outcome = triangular.solve(insertion.points, insertion.triangles, settings,
                                _constraints_on(insertion, constraints, len(triangles)), tolerance=tolerance,
                                operators=_operators_on(insertion, operators),
-                               fixed_edges=curve_insertion.carried_edges(insertion, int(obj.Degree)),
-                               free_vertices=insertion.free)
+                               fixed_edges=curve_insertion.carried_edges(insertion, int(obj.Degree)))
     outcome.split_triangles, outcome.curve_fit = insertion.split, insertion.fit_error
     if insertion.fit_error > near:
         outcome.warnings.append(f"the curves are carried within {insertion.fit_error:.3g} mm only: raise Degree")
